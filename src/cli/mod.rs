@@ -1,0 +1,25 @@
+//! Command-line layer: clap arguments, one module per subcommand, errors to exit codes.
+
+pub mod args;
+pub mod survey;
+
+use crate::error::InputError;
+use crate::units::{lookup_dim, parse_quantity, Dimension};
+use args::{Cli, Command};
+
+/// Run a parsed command line; errors carry a message for stderr.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Survey(a) => survey::run(a),
+    }
+}
+
+/// Parse a command-line length (`"30 m"`, `9000ft`; bare number = m) for option `name`.
+pub fn parse_length_option(name: &str, text: &str) -> Result<f64, InputError> {
+    parse_quantity(text, Dimension::Length, "m").map_err(|m| InputError::option(name, m))
+}
+
+/// Parse a command-line length unit (`ft`, `m`) for option `name`.
+pub fn parse_length_unit(name: &str, text: &str) -> Result<crate::units::Unit, InputError> {
+    lookup_dim(text, Dimension::Length).map_err(|m| InputError::option(name, m))
+}

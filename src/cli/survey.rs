@@ -1,0 +1,74 @@
+//! `drillpath survey`: minimum-curvature positions and a short summary.
+
+use super::args::SurveyArgs;
+use super::parse_length_unit;
+use crate::geometry::{Vec3, WellPath};
+use crate::io::case_toml::{load_case, CaseOverrides};
+use crate::io::survey_csv::{read_survey_csv, SurveyUnits};
+use crate::report::{survey_table::survey_csv, write_atomic};
+use anyhow::Context;
+
+/// Run the command.
+pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
+    let md_unit = a
+        .md_unit
+        .as_deref()
+        .map(|u| parse_length_unit("--md-unit", u))
+        .transpose()?;
+    let is_toml = a.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let (path, notes, label) = if is_toml {
+        let case = load_case(
+            &a.input,
+            &CaseOverrides {
+                survey_md_unit: md_unit,
+                bit_md_m: None,
+            },
+        )?;
+        let label = format!("{} ({})", case.name, case.well.survey_path.display());
+        (case.well.path, case.well.survey.notes, label)
+    } else {
+        let sf = read_survey_csv(
+            &a.input,
+            &SurveyUnits {
+                md: md_unit,
+                angle: None,
+            },
+        )?;
+        let wp = WellPath::new(&sf.survey, Vec3::zeros())
+            .map_err(|p| crate::InputError::file(&a.input, format!("station {}: {}", p.index + 1, p.message)))?;
+        (wp, sf.notes, a.input.display().to_string())
+    };
+    let table = survey_csv(&path).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    if let Some(out) = &a.out {
+        write_atomic(out, table.as_bytes()).with_context(|| format!("cannot write {}", out.display()))?;
+    }
+    if a.csv {
+        print!("{table}");
+        return Ok(());
+    }
+    let n = path.stations().len();
+    let last = path.station_position(n - 1);
+    let (max_dls, at) = path.max_dls();
+    println!("survey: {label}");
+    for note in &notes {
+        println!("  note: {note}");
+    }
+    println!("  stations: {n}, MD {:.2} m to {:.2} m", path.md_start(), path.md_end());
+    println!("  total depth: {:.2} m MD, {:.2} m TVD", path.md_end(), last.z);
+    println!(
+        "  max DLS: {:.2} deg/30m in the interval ending at {:.2} m MD",
+        max_dls.to_degrees() * 30.0,
+        at
+    );
+    println!(
+        "  final position: north {:.2} m, east {:.2} m, TVD {:.2} m (horizontal displacement {:.2} m)",
+        last.x,
+        last.y,
+        last.z,
+        (last.x * last.x + last.y * last.y).sqrt()
+    );
+    if let Some(out) = &a.out {
+        println!("  wrote {}", out.display());
+    }
+    Ok(())
+}

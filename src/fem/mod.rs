@@ -1,0 +1,4 @@
+//! Finite element model of the whole string.
+
+pub mod band;
+pub mod sparse_faer;

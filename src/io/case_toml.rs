@@ -1,0 +1,666 @@
+//! TOML case files -> validated [`Case`] (interface.md "Case file").
+//!
+//! Default units of bare numbers (documented in the README): measured depths and lengths m,
+//! diameters (`od`, `id`, `body_od`, `tool_joint_od`, `diameter`) in, forces kN, torques kN.m,
+//! mud density sg, weight per length kg/m, ROP m/h, trip speed m/s, angles deg, moduli GPa,
+//! material density kg/m3, viscosity cP.
+
+use super::survey_csv::{read_survey_csv, SurveyFile, SurveyUnits};
+use super::toml_reader::Section;
+use crate::case::*;
+use crate::error::{InputError, InputResult};
+use crate::geometry::{HoleSection, HoleSize, Vec3, WellPath};
+use crate::string::component::{Component, ComponentKind};
+use crate::string::material::{material_by_name, steel, MATERIAL_NAMES};
+use crate::string::DrillString;
+use crate::units::{lookup_dim, Dimension as D, Unit, G};
+use std::path::{Path, PathBuf};
+
+/// Values from the command line that override or complete the case file.
+#[derive(Debug, Clone, Default)]
+pub struct CaseOverrides {
+    /// Unit of a survey MD column whose header has none (`--md-unit`).
+    pub survey_md_unit: Option<Unit>,
+    /// Bit measured depth (`--bit-md`), m.
+    pub bit_md_m: Option<f64>,
+}
+
+/// Default joint spacing of pipe with tool joints, m (30 ft).
+pub const DEFAULT_JOINT_LENGTH_M: f64 = 9.144;
+
+/// Read and validate a case file.
+pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
+    let text =
+        std::fs::read_to_string(path).map_err(|e| InputError::file(path, format!("cannot read case file: {e}")))?;
+    if text.trim().is_empty() {
+        return Err(InputError::file(path, "the case file is empty"));
+    }
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        let msg = e.message().to_string();
+        match e.span() {
+            Some(span) => {
+                let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
+                InputError::line(path, line, None, format!("TOML syntax error: {msg}"))
+            }
+            None => InputError::file(path, format!("TOML syntax error: {msg}")),
+        }
+    })?;
+    let top = Section::new(path, "", &table);
+    let name = top.string("name")?.unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default()
+    });
+    let description = top.string("description")?.unwrap_or_default();
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+
+    let well_sec = top
+        .table("well")?
+        .ok_or_else(|| top.error("well", "missing the [well] table (survey and hole sizes)"))?;
+    let (survey_file, survey_path, origin, hole) = read_well(&well_sec, &dir, overrides)?;
+    let wellpath = WellPath::new(&survey_file.survey, origin)
+        .map_err(|p| InputError::file(&survey_path, format!("station {}: {}", p.index + 1, p.message)))?;
+
+    let mud = match top.table("mud")? {
+        Some(s) => {
+            let density = s.positive("density", D::Density, "sg", false)?.unwrap_or(1000.0);
+            if density > 3000.0 {
+                return Err(s.error("density", "mud density above 3 sg is not plausible"));
+            }
+            let pv = s
+                .positive("plastic_viscosity", D::Viscosity, "cP", true)?
+                .unwrap_or(0.02);
+            s.finish(&["density", "plastic_viscosity"])?;
+            Mud {
+                density_kg_m3: density,
+                plastic_viscosity_pa_s: pv,
+            }
+        }
+        None => Mud {
+            density_kg_m3: 1000.0,
+            plastic_viscosity_pa_s: 0.02,
+        },
+    };
+
+    let empty = toml::Table::new();
+    let op_sec = top
+        .table("operation")?
+        .unwrap_or_else(|| Section::new(path, "operation", &empty));
+    let operation = read_operation(&op_sec, &wellpath, &hole, overrides)?;
+
+    let string = match top.tables("string")? {
+        Some(secs) => read_string(&secs, &top, &operation, &hole, &mud)?,
+        None => DrillString { components: vec![] },
+    };
+
+    let br_sec = top
+        .table("bit_rock")?
+        .unwrap_or_else(|| Section::new(path, "bit_rock", &empty));
+    let bit_rock = read_bit_rock(&br_sec)?;
+    let sol_sec = top
+        .table("solver")?
+        .unwrap_or_else(|| Section::new(path, "solver", &empty));
+    let solver = read_solver(&sol_sec)?;
+    top.finish(&[
+        "name",
+        "description",
+        "well",
+        "mud",
+        "operation",
+        "string",
+        "bit_rock",
+        "solver",
+    ])?;
+
+    Ok(Case {
+        name,
+        description,
+        path: path.to_path_buf(),
+        well: Well {
+            survey: survey_file,
+            survey_path,
+            path: wellpath,
+            hole,
+        },
+        mud,
+        operation,
+        string,
+        bit_rock,
+        solver,
+    })
+}
+
+fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
+    let rel = s
+        .string("survey")?
+        .ok_or_else(|| s.error("survey", "missing the survey CSV path"))?;
+    let survey_path = dir.join(&rel);
+    if !survey_path.exists() {
+        return Err(s.error("survey", format!("survey file `{}` not found", survey_path.display())));
+    }
+    let case_unit = match s.string("survey_md_unit")? {
+        Some(u) => Some(lookup_dim(&u, D::Length).map_err(|m| s.error("survey_md_unit", m))?),
+        None => None,
+    };
+    let units = SurveyUnits {
+        md: ov.survey_md_unit.or(case_unit),
+        angle: None,
+    };
+    let survey = read_survey_csv(&survey_path, &units)?;
+    let origin = match s.quantity_array3("origin")? {
+        Some(o) => o,
+        None => Vec3::zeros(),
+    };
+    let secs = s.tables("hole")?.ok_or_else(|| {
+        s.error(
+            "hole",
+            "missing the hole sections, e.g. hole = [{ to_md = \"3000 m\", diameter = \"8.5 in\" }]",
+        )
+    })?;
+    if secs.is_empty() {
+        return Err(s.error("hole", "needs at least one section"));
+    }
+    let mut sections = Vec::new();
+    for h in &secs {
+        let to_md = h.req_quantity("to_md", D::Length, "m")?;
+        let diameter = h
+            .positive("diameter", D::Length, "in", false)?
+            .ok_or_else(|| h.error("diameter", "missing hole diameter"))?;
+        if diameter > 2.0 {
+            return Err(h.error(
+                "diameter",
+                format!("hole diameter {diameter:.3} m is not plausible (bare numbers are inches)"),
+            ));
+        }
+        let friction = h.number("friction")?;
+        if let Some(f) = friction {
+            if !(0.0..=1.5).contains(&f) {
+                return Err(h.error("friction", format!("friction coefficient {f} outside [0, 1.5]")));
+            }
+        }
+        if let Some(prev) = sections.last() {
+            let prev: &HoleSection = prev;
+            if to_md <= prev.to_md_m {
+                return Err(h.error("to_md", "hole sections must be listed top down with increasing to_md"));
+            }
+        }
+        h.finish(&["to_md", "diameter", "friction"])?;
+        sections.push(HoleSection {
+            to_md_m: to_md,
+            diameter_m: diameter,
+            friction,
+        });
+    }
+    let caliper = match s.string("caliper")? {
+        Some(rel) => read_caliper(&dir.join(rel), s)?,
+        None => vec![],
+    };
+    s.finish(&["survey", "survey_md_unit", "origin", "hole", "caliper"])?;
+    Ok((survey, survey_path, origin, HoleSize::new(sections, caliper)))
+}
+
+impl Section<'_> {
+    /// Optional array of three lengths (m), e.g. `origin = [0, 0, 0]`.
+    fn quantity_array3(&self, key: &str) -> InputResult<Option<Vec3>> {
+        if !self.has(key) {
+            return Ok(None);
+        }
+        let raw = self.raw(key);
+        let parts: Vec<f64> = raw
+            .trim_matches(|c| c == '[' || c == ']')
+            .split(',')
+            .map(|p| crate::units::parse_quantity(p.trim().trim_matches('"'), D::Length, "m"))
+            .collect::<Result<_, _>>()
+            .map_err(|m| self.error(key, m))?;
+        if parts.len() != 3 {
+            return Err(self.error(key, "expected [north, east, tvd] in m"));
+        }
+        Ok(Some(Vec3::new(parts[0], parts[1], parts[2])))
+    }
+}
+
+fn read_caliper(path: &Path, s: &Section) -> InputResult<Vec<(f64, f64)>> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| s.error("caliper", format!("cannot read `{}`: {e}", path.display())))?;
+    let mut rows = Vec::new();
+    let mut header_seen = false;
+    for (i, line) in text.lines().enumerate() {
+        let l = line.trim().trim_start_matches('\u{feff}');
+        if l.is_empty() || l.starts_with('#') {
+            continue;
+        }
+        if !header_seen {
+            header_seen = true;
+            continue;
+        }
+        let f: Vec<&str> = l.split(',').collect();
+        let parse = |k: usize, dim: D, unit: &str, col: &str| -> InputResult<f64> {
+            let t = f
+                .get(k)
+                .ok_or_else(|| InputError::line(path, i + 1, Some(col), "missing value"))?;
+            crate::units::parse_quantity(t, dim, unit).map_err(|m| InputError::line(path, i + 1, Some(col), m))
+        };
+        let md = parse(0, D::Length, "m", "md")?;
+        let d = parse(1, D::Length, "in", "diameter")?;
+        if d <= 0.0 {
+            return Err(InputError::line(
+                path,
+                i + 1,
+                Some("diameter"),
+                "diameter must be positive",
+            ));
+        }
+        if let Some(&(m0, _)) = rows.last() {
+            if md <= m0 {
+                return Err(InputError::line(path, i + 1, Some("md"), "MD must strictly increase"));
+            }
+        }
+        rows.push((md, d));
+    }
+    if rows.len() < 2 {
+        return Err(InputError::file(
+            path,
+            "a caliper file needs a header (md_m, diameter_in) and at least two rows",
+        ));
+    }
+    Ok(rows)
+}
+
+fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverrides) -> InputResult<Operation> {
+    let mode = match s.string("mode")? {
+        Some(m) => {
+            Mode::parse(&m).ok_or_else(|| s.error("mode", format!("unknown mode `{m}` (expected {})", Mode::NAMES)))?
+        }
+        None => Mode::Drilling,
+    };
+    let bit_md_case = s.quantity("bit_md", D::Length, "m")?;
+    let bit_md = ov.bit_md_m.or(bit_md_case).unwrap_or_else(|| path.md_end());
+    let (lo, hi) = (path.md_start(), path.md_end());
+    if bit_md <= lo || bit_md > hi + 1e-6 {
+        let msg = format!("bit MD {bit_md:.2} m is outside the surveyed hole ({lo:.2} m to {hi:.2} m)");
+        return Err(if ov.bit_md_m.is_some() {
+            InputError::option("--bit-md", msg)
+        } else {
+            s.error("bit_md", msg)
+        });
+    }
+    if bit_md > hole.deepest_md() + 1e-6 {
+        return Err(s.error(
+            "bit_md",
+            format!(
+                "bit MD {bit_md:.2} m is below the deepest hole section ({:.2} m)",
+                hole.deepest_md()
+            ),
+        ));
+    }
+    let wob = s.positive("wob", D::Force, "kN", true)?;
+    let hook = s.positive("hook_load", D::Force, "kN", true)?;
+    if wob.is_some() && hook.is_some() {
+        return Err(s.error("hook_load", "give either wob or hook_load, not both"));
+    }
+    let wob = if mode.on_bottom() { wob.unwrap_or(0.0) } else { 0.0 };
+    let rpm = s
+        .quantity("rpm", D::RotarySpeed, "rpm")?
+        .map(|w| w * 60.0 / std::f64::consts::TAU)
+        .unwrap_or(0.0);
+    if !(0.0..=400.0).contains(&rpm) {
+        return Err(s.error("rpm", format!("rotary speed {rpm:.1} rpm outside [0, 400]")));
+    }
+    let rop = s.positive("rop", D::Speed, "m/h", true)?.unwrap_or(0.0);
+    let trip = s.positive("trip_speed", D::Speed, "m/s", false)?.unwrap_or(0.3);
+    let friction = s.number("friction")?.unwrap_or(0.25);
+    if !(0.0..=1.5).contains(&friction) {
+        return Err(s.error("friction", format!("friction coefficient {friction} outside [0, 1.5]")));
+    }
+    let bit_torque = s.quantity("bit_torque", D::Moment, "kN.m")?;
+    let viscous = s.boolean("viscous_torque")?.unwrap_or(true);
+    s.finish(&[
+        "mode",
+        "bit_md",
+        "wob",
+        "hook_load",
+        "rpm",
+        "rop",
+        "trip_speed",
+        "friction",
+        "bit_torque",
+        "viscous_torque",
+    ])?;
+    Ok(Operation {
+        mode,
+        bit_md_m: bit_md,
+        wob_n: wob,
+        hook_load_n: hook,
+        rpm,
+        rop_m_s: rop,
+        trip_speed_m_s: trip,
+        friction,
+        bit_torque_nm: bit_torque,
+        viscous_torque: viscous,
+    })
+}
+
+const COMPONENT_KEYS: &[&str] = &[
+    "type",
+    "name",
+    "od",
+    "body_od",
+    "id",
+    "length",
+    "weight",
+    "tool_joint_od",
+    "joint_length",
+    "material",
+    "youngs_modulus",
+    "shear_modulus",
+    "material_density",
+];
+
+fn read_string(
+    secs: &[Section],
+    top: &Section,
+    op: &Operation,
+    hole: &HoleSize,
+    mud: &Mud,
+) -> InputResult<DrillString> {
+    if secs.is_empty() {
+        return Err(top.error("string", "the string has no components"));
+    }
+    let mut comps: Vec<Component> = Vec::new();
+    let mut missing_length: Option<usize> = None;
+    for (k, c) in secs.iter().enumerate() {
+        let kind_name = c
+            .string("type")?
+            .ok_or_else(|| c.error("type", format!("missing component type ({})", ComponentKind::NAMES)))?;
+        let kind = ComponentKind::parse(&kind_name).ok_or_else(|| {
+            c.error(
+                "type",
+                format!(
+                    "unknown component type `{kind_name}` (expected {})",
+                    ComponentKind::NAMES
+                ),
+            )
+        })?;
+        if kind == ComponentKind::Bit && k != 0 {
+            return Err(c.error(
+                "type",
+                "the bit must be the first component (components are listed from the bit upward)",
+            ));
+        }
+        let name = c.string("name")?.unwrap_or_else(|| kind.name().to_string());
+        let od = c
+            .positive("od", D::Length, "in", false)?
+            .ok_or_else(|| c.error("od", "missing outer diameter"))?;
+        let body_od = c.positive("body_od", D::Length, "in", false)?;
+        let body = match (kind, body_od) {
+            (ComponentKind::Stabilizer, None) => {
+                return Err(c.error("body_od", "a stabilizer needs body_od (od is the blade diameter)"))
+            }
+            (ComponentKind::Stabilizer, Some(b)) if b > od => {
+                return Err(c.error("body_od", "body_od is larger than the blade od"))
+            }
+            (_, Some(b)) => b,
+            (_, None) => od,
+        };
+        let id = match c.positive("id", D::Length, "in", true)? {
+            Some(id) => id,
+            None if kind == ComponentKind::Bit => 0.0,
+            None => return Err(c.error("id", "missing inner diameter (bore)")),
+        };
+        if id >= body {
+            return Err(c.error(
+                "id",
+                format!(
+                    "inner diameter {:.4} in is not smaller than the outer diameter {:.4} in",
+                    id / 0.0254,
+                    body / 0.0254
+                ),
+            ));
+        }
+        let length = c.positive("length", D::Length, "m", false)?;
+        let length = match length {
+            Some(l) => l,
+            None => {
+                if k + 1 != secs.len() {
+                    return Err(c.error(
+                        "length",
+                        "missing length (only the topmost component may leave it out to fill to surface)",
+                    ));
+                }
+                missing_length = Some(k);
+                0.0
+            }
+        };
+        let tj = c.positive("tool_joint_od", D::Length, "in", false)?;
+        if let Some(t) = tj {
+            if t < body {
+                return Err(c.error("tool_joint_od", "tool_joint_od is smaller than the body od"));
+            }
+        }
+        let joint_length = c
+            .positive("joint_length", D::Length, "m", false)?
+            .unwrap_or(DEFAULT_JOINT_LENGTH_M);
+        let mut material = match c.string("material")? {
+            Some(m) => material_by_name(&m).ok_or_else(|| {
+                c.error(
+                    "material",
+                    format!("unknown material `{m}` (expected {})", MATERIAL_NAMES.join(", ")),
+                )
+            })?,
+            None => steel(),
+        };
+        if let Some(e) = c.positive("youngs_modulus", D::Pressure, "GPa", false)? {
+            material.youngs_modulus_pa = e;
+        }
+        if let Some(g) = c.positive("shear_modulus", D::Pressure, "GPa", false)? {
+            material.shear_modulus_pa = g;
+        }
+        if let Some(r) = c.positive("material_density", D::Density, "kg/m3", false)? {
+            material.density_kg_m3 = r;
+        }
+        if mud.density_kg_m3 >= material.density_kg_m3 {
+            return Err(c.error(
+                "material_density",
+                "material density must exceed the mud density (the string would float)",
+            ));
+        }
+        let area = std::f64::consts::PI / 4.0 * (body * body - id * id);
+        let weight = match c.positive("weight", D::LinearMass, "kg/m", false)? {
+            Some(m) => m * G,
+            None => area * material.density_kg_m3 * G,
+        };
+        c.finish(COMPONENT_KEYS)?;
+        let bottom = comps.last().map(|p: &Component| p.top_m()).unwrap_or(0.0);
+        let contact = match kind {
+            ComponentKind::Bit | ComponentKind::Stabilizer => od,
+            _ => body,
+        };
+        comps.push(Component {
+            kind,
+            name,
+            length_m: length,
+            bottom_m: bottom,
+            body_od_m: body,
+            contact_od_m: contact,
+            id_m: id,
+            tool_joint_od_m: tj,
+            joint_length_m: joint_length,
+            material,
+            weight_air_n_per_m: weight,
+        });
+    }
+    let total: f64 = comps.iter().map(|c| c.length_m).sum();
+    let bit_md = op.bit_md_m;
+    if let Some(k) = missing_length {
+        let fill = bit_md - total;
+        if fill <= 0.0 {
+            return Err(secs[k].error(
+                "length",
+                format!("the components below already measure {total:.2} m, more than the bit MD {bit_md:.2} m: the string is longer than the hole"),
+            ));
+        }
+        comps[k].length_m = fill;
+    } else if total > bit_md + 0.01 {
+        return Err(top.error(
+            "string",
+            format!("the string ({total:.2} m) is longer than the hole to the bit ({bit_md:.2} m MD)"),
+        ));
+    } else if total < bit_md - 0.01 {
+        return Err(top.error(
+            "string",
+            format!("the string ({total:.2} m) does not reach the surface from the bit at {bit_md:.2} m MD; leave out the topmost length to fill"),
+        ));
+    }
+    // OD against the hole where each component sits (bit and stabilizers may be exactly gauge).
+    for (k, c) in comps.iter().enumerate() {
+        let top_md = bit_md - c.top_m();
+        let bottom_md = bit_md - c.bottom_m;
+        let mut md = top_md.max(0.0);
+        let widest = c.contact_od_m.max(c.tool_joint_od_m.unwrap_or(0.0));
+        let gauge_ok = matches!(c.kind, ComponentKind::Bit | ComponentKind::Stabilizer);
+        loop {
+            let d = hole.diameter_at(md);
+            let allowance = if gauge_ok { 1e-3 } else { 0.0 };
+            if widest > d + allowance {
+                return Err(secs[k].error(
+                    if c.tool_joint_od_m.is_some_and(|t| t > c.contact_od_m) {
+                        "tool_joint_od"
+                    } else {
+                        "od"
+                    },
+                    format!(
+                        "component `{}` ({:.3} in) is wider than the hole ({:.3} in) at MD {md:.1} m",
+                        c.name,
+                        widest / 0.0254,
+                        d / 0.0254
+                    ),
+                ));
+            }
+            if md >= bottom_md {
+                break;
+            }
+            md = (md + 1.0).min(bottom_md);
+        }
+    }
+    Ok(DrillString { components: comps })
+}
+
+fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
+    let law = s.string("law")?.unwrap_or_else(|| "ho".into());
+    if law != "ho" {
+        return Err(s.error("law", format!("unknown bit-rock law `{law}` (expected ho)")));
+    }
+    let beta = s.number("lateral_drillability")?.unwrap_or(1.0);
+    if !(beta > 0.0 && beta <= 1.0) {
+        return Err(s.error("lateral_drillability", format!("{beta} outside (0, 1]")));
+    }
+    let walk = s.quantity("walk_angle", D::Angle, "deg")?.unwrap_or(0.0);
+    let ir = s.number("rock_anisotropy")?.unwrap_or(0.0);
+    if !(-0.5..=0.5).contains(&ir) {
+        return Err(s.error("rock_anisotropy", format!("{ir} outside [-0.5, 0.5]")));
+    }
+    let dip = s.quantity("dip", D::Angle, "deg")?.unwrap_or(0.0);
+    let dipdir = s.quantity("dip_direction", D::Angle, "deg")?.unwrap_or(0.0);
+    let step = s.positive("step", D::Length, "m", false)?.unwrap_or(1.0);
+    let bit_friction = s.number("bit_friction")?.unwrap_or(0.25);
+    let mut formations = Vec::new();
+    if let Some(fs) = s.tables("formations")? {
+        for f in fs {
+            let from = f.req_quantity("from_md", D::Length, "m")?;
+            let to = f.req_quantity("to_md", D::Length, "m")?;
+            if to <= from {
+                return Err(f.error("to_md", "to_md must exceed from_md"));
+            }
+            let fi = f.number("rock_anisotropy")?.unwrap_or(ir);
+            let fd = f.quantity("dip", D::Angle, "deg")?.unwrap_or(dip);
+            let fdd = f.quantity("dip_direction", D::Angle, "deg")?.unwrap_or(dipdir);
+            f.finish(&["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"])?;
+            formations.push(Formation {
+                from_md_m: from,
+                to_md_m: to,
+                rock_anisotropy: fi,
+                dip_rad: fd,
+                dip_direction_rad: fdd,
+            });
+        }
+    }
+    s.finish(&[
+        "law",
+        "lateral_drillability",
+        "walk_angle",
+        "rock_anisotropy",
+        "dip",
+        "dip_direction",
+        "step",
+        "bit_friction",
+        "formations",
+    ])?;
+    Ok(BitRock {
+        law,
+        lateral_drillability: beta,
+        walk_angle_rad: walk,
+        rock_anisotropy: ir,
+        dip_rad: dip,
+        dip_direction_rad: dipdir,
+        formations,
+        step_m: step,
+        bit_friction,
+    })
+}
+
+fn read_solver(s: &Section) -> InputResult<SolverSettings> {
+    let d = SolverSettings::default();
+    let el = s
+        .positive("element_length", D::Length, "m", false)?
+        .unwrap_or(d.element_length_m);
+    let bha = s
+        .positive("bha_element_length", D::Length, "m", false)?
+        .unwrap_or(d.bha_element_length_m.min(el));
+    let tol = s.number("tolerance")?.unwrap_or(d.tolerance);
+    if !(tol > 0.0 && tol <= 0.1) {
+        return Err(s.error("tolerance", format!("{tol} outside (0, 0.1]")));
+    }
+    let fidelity = match s.string("fidelity")?.as_deref() {
+        None | Some("auto") => Fidelity::Auto,
+        Some("soft") => Fidelity::Soft,
+        Some("bha") => Fidelity::Bha,
+        Some("whole") => Fidelity::Whole,
+        Some(other) => {
+            return Err(s.error(
+                "fidelity",
+                format!("unknown fidelity `{other}` (expected auto, soft, bha, whole)"),
+            ))
+        }
+    };
+    let method = match s.string("method")?.as_deref() {
+        None | Some("newton") => Method::Newton,
+        Some("paper") => Method::Paper,
+        Some(other) => return Err(s.error("method", format!("unknown method `{other}` (expected newton, paper)"))),
+    };
+    let max_it = s.number("max_iterations")?.unwrap_or(d.max_iterations as f64);
+    if !(1.0..=100_000.0).contains(&max_it) {
+        return Err(s.error("max_iterations", "must be between 1 and 100000"));
+    }
+    let alpha = s.number("alpha")?.unwrap_or(d.alpha);
+    if !(alpha > 0.0 && alpha < 1.0) {
+        return Err(s.error("alpha", format!("{alpha} outside (0, 1)")));
+    }
+    s.finish(&[
+        "element_length",
+        "bha_element_length",
+        "tolerance",
+        "fidelity",
+        "method",
+        "max_iterations",
+        "alpha",
+    ])?;
+    Ok(SolverSettings {
+        element_length_m: el,
+        bha_element_length_m: bha,
+        tolerance: tol,
+        fidelity,
+        method,
+        max_iterations: max_it as usize,
+        alpha,
+    })
+}

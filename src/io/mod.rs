@@ -1,0 +1,5 @@
+//! Input files: survey CSV and TOML case files, turned into validated library types.
+
+pub mod case_toml;
+pub mod survey_csv;
+pub mod toml_reader;

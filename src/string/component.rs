@@ -1,0 +1,129 @@
+//! String components (bit, stabilizer, collar, pipe, ...) and their section properties.
+
+use super::material::Material;
+use crate::units::G;
+use std::f64::consts::PI;
+
+/// Kind of string component.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ComponentKind {
+    /// Drill bit (centred on the hole axis at its face; does not touch the wall above it).
+    Bit,
+    /// Stabilizer: touches the wall at the middle of its length with its blade OD.
+    Stabilizer,
+    /// Drill collar.
+    Collar,
+    /// Drill pipe (tool joints optional).
+    Pipe,
+    /// Heavy-weight drill pipe.
+    Hwdp,
+    /// Downhole motor (straight model).
+    Motor,
+    /// MWD tool.
+    Mwd,
+    /// Sub or crossover.
+    Sub,
+    /// Drilling jar.
+    Jar,
+}
+
+impl ComponentKind {
+    /// Parse the case-file name.
+    pub fn parse(s: &str) -> Option<ComponentKind> {
+        Some(match s.to_ascii_lowercase().as_str() {
+            "bit" => ComponentKind::Bit,
+            "stabilizer" | "stabiliser" | "stab" => ComponentKind::Stabilizer,
+            "collar" | "dc" => ComponentKind::Collar,
+            "pipe" | "dp" => ComponentKind::Pipe,
+            "hwdp" => ComponentKind::Hwdp,
+            "motor" => ComponentKind::Motor,
+            "mwd" => ComponentKind::Mwd,
+            "sub" => ComponentKind::Sub,
+            "jar" => ComponentKind::Jar,
+            _ => return None,
+        })
+    }
+    /// Name as written in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ComponentKind::Bit => "bit",
+            ComponentKind::Stabilizer => "stabilizer",
+            ComponentKind::Collar => "collar",
+            ComponentKind::Pipe => "pipe",
+            ComponentKind::Hwdp => "hwdp",
+            ComponentKind::Motor => "motor",
+            ComponentKind::Mwd => "mwd",
+            ComponentKind::Sub => "sub",
+            ComponentKind::Jar => "jar",
+        }
+    }
+    /// Accepted names, for messages.
+    pub const NAMES: &'static str = "bit, stabilizer, collar, pipe, hwdp, motor, mwd, sub, jar";
+}
+
+/// One component of the string, SI units. Positions are distances from the bit face, m.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Component {
+    /// Kind.
+    pub kind: ComponentKind,
+    /// User label (or the kind's name).
+    pub name: String,
+    /// Length, m.
+    pub length_m: f64,
+    /// Distance from the bit face to the component's bottom, m.
+    pub bottom_m: f64,
+    /// Body outer diameter used for stiffness, weight and contact, m.
+    pub body_od_m: f64,
+    /// Contact diameter where the component touches the wall: stabilizer blade OD, bit OD, else body OD, m.
+    pub contact_od_m: f64,
+    /// Inner diameter, m (0 for a solid body).
+    pub id_m: f64,
+    /// Tool-joint outer diameter, m, if the component has tool joints.
+    pub tool_joint_od_m: Option<f64>,
+    /// Joint spacing, m (default 9.144 m = 30 ft).
+    pub joint_length_m: f64,
+    /// Material (after per-component overrides).
+    pub material: Material,
+    /// Weight in air per length, N/m (given adjusted weight, or from the body and density).
+    pub weight_air_n_per_m: f64,
+}
+
+impl Component {
+    /// Distance from the bit face to the component's top, m.
+    pub fn top_m(&self) -> f64 {
+        self.bottom_m + self.length_m
+    }
+    /// Steel cross-section area, m2.
+    pub fn area_m2(&self) -> f64 {
+        PI / 4.0 * (self.body_od_m.powi(2) - self.id_m.powi(2))
+    }
+    /// Second moment of area, m4.
+    pub fn inertia_m4(&self) -> f64 {
+        PI / 64.0 * (self.body_od_m.powi(4) - self.id_m.powi(4))
+    }
+    /// Axial stiffness EA, N.
+    pub fn ea_n(&self) -> f64 {
+        self.material.youngs_modulus_pa * self.area_m2()
+    }
+    /// Bending stiffness EI, N.m2.
+    pub fn ei_nm2(&self) -> f64 {
+        self.material.youngs_modulus_pa * self.inertia_m4()
+    }
+    /// Torsional stiffness GJ (J = 2I), N.m2.
+    pub fn gj_nm2(&self) -> f64 {
+        self.material.shear_modulus_pa * 2.0 * self.inertia_m4()
+    }
+    /// Buoyed weight per length for mud of `mud_density_kg_m3` inside and outside (interface.md):
+    /// `w_air (1 - rho_mud / rho_material)`, N/m.
+    pub fn buoyed_weight_n_per_m(&self, mud_density_kg_m3: f64) -> f64 {
+        self.weight_air_n_per_m * (1.0 - mud_density_kg_m3 / self.material.density_kg_m3)
+    }
+    /// Weight in air per length of the plain body, N/m.
+    pub fn body_weight_n_per_m(&self) -> f64 {
+        self.area_m2() * self.material.density_kg_m3 * G
+    }
+    /// True for components meshed as part of the stiff bottom-hole assembly (not pipe/HWDP).
+    pub fn is_bha(&self) -> bool {
+        !matches!(self.kind, ComponentKind::Pipe | ComponentKind::Hwdp)
+    }
+}

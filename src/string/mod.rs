@@ -1,0 +1,45 @@
+//! The drill string: components from the bit upward, materials, section properties.
+
+pub mod component;
+pub mod material;
+
+pub use component::{Component, ComponentKind};
+pub use material::Material;
+
+/// Components from the bit upward, contiguous (`components[k+1].bottom_m == components[k].top_m()`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrillString {
+    /// Components from the bit upward.
+    pub components: Vec<Component>,
+}
+
+impl DrillString {
+    /// Total length from the bit face to the top, m.
+    pub fn length_m(&self) -> f64 {
+        self.components.last().map(|c| c.top_m()).unwrap_or(0.0)
+    }
+    /// The component at distance `x_m` from the bit face (the upper one at a boundary's top side).
+    pub fn component_at(&self, x_m: f64) -> &Component {
+        self.components
+            .iter()
+            .find(|c| x_m < c.top_m())
+            .unwrap_or_else(|| self.components.last().expect("a string has components"))
+    }
+    /// Length of the bottom-hole assembly: from the bit to the top of the highest component
+    /// that is not pipe or HWDP, m.
+    pub fn bha_length_m(&self) -> f64 {
+        self.components
+            .iter()
+            .filter(|c| c.is_bha())
+            .map(|c| c.top_m())
+            .fold(0.0, f64::max)
+    }
+    /// Distances from the bit of stabilizer contact points (mid-length), m.
+    pub fn stabilizer_contacts_m(&self) -> Vec<f64> {
+        self.components
+            .iter()
+            .filter(|c| c.kind == ComponentKind::Stabilizer)
+            .map(|c| c.bottom_m + c.length_m / 2.0)
+            .collect()
+    }
+}
