@@ -15,6 +15,7 @@
 pub mod analytical;
 pub mod case;
 pub mod cli;
+pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod geometry;

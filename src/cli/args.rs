@@ -25,6 +25,29 @@ pub enum Command {
     ///
     /// Example: drillpath survey wells/j-shape/case.toml --out positions.csv
     Survey(SurveyArgs),
+    /// Static whole-string solve at the bit depth: bit forces and tilt, contacts, hook load, torque.
+    ///
+    /// Example: drillpath solve wells/j-shape/case.toml --out results/
+    Solve(SolveArgs),
+}
+
+/// Arguments of `drillpath solve`.
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// Case file (.toml).
+    pub case: PathBuf,
+    /// Bit measured depth (e.g. "2500 m", 8200ft; bare number = m) [default: the case's bit_md].
+    #[arg(long, value_name = "MD")]
+    pub bit_md: Option<String>,
+    /// Print summary.json on stdout instead of the readable summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Write summary.json and string.csv into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Write results of a non-converged solve, flagged `converged: false`, instead of failing.
+    #[arg(long)]
+    pub allow_unconverged: bool,
 }
 
 /// Arguments of `drillpath survey`.
@@ -32,7 +55,7 @@ pub enum Command {
 pub struct SurveyArgs {
     /// Case file (.toml) or survey CSV.
     pub input: PathBuf,
-    /// Write the positions CSV here (default: print it to stdout after the summary... no: only the summary is printed; use --out for the table).
+    /// Write the positions CSV to this file (stdout shows the summary).
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Unit of a survey MD column whose header has none, e.g. ft [default: m, or the case file's survey_md_unit].

@@ -1,6 +1,7 @@
 //! Command-line layer: clap arguments, one module per subcommand, errors to exit codes.
 
 pub mod args;
+pub mod solve;
 pub mod survey;
 
 use crate::error::InputError;
@@ -11,6 +12,7 @@ use args::{Cli, Command};
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Survey(a) => survey::run(a),
+        Command::Solve(a) => solve::run(a),
     }
 }
 

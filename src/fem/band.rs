@@ -187,7 +187,7 @@ impl BandMatrix {
             .take(self.n)
             .filter(|v| **v != 0.0)
             .fold((0.0, 0usize), |(s, c), v| (s + v.abs(), c + 1));
-        if cnt == 0 || !(sum > 0.0) || !sum.is_finite() {
+        if cnt == 0 || !sum.is_finite() || sum <= 0.0 {
             1.0
         } else {
             sum / cnt as f64
@@ -412,30 +412,21 @@ impl BandLdlt {
         let mut neg = self.neg[start];
         let mut min_abs = self.min_abs[start];
         let adata = &a.data[..n * ld];
+        // Columns with a full window of `hb` previous columns use a kernel specialized for the
+        // drill-string half-bandwidth; the choice depends only on `j`, never on `start`, so a
+        // tail refactor repeats exactly the operations of a full factorization.
+        let fixed_from = if hb == CHAIN_HB { hb.min(n) } else { n };
         for j in start..n {
             let (head, tail) = self.data.split_at_mut(j * ld);
             let col = &mut tail[..ld];
             col.copy_from_slice(&adata[j * ld..(j + 1) * ld]);
-            let k0 = j.saturating_sub(hb);
-            let head = &head[k0 * ld..];
-            // Contributions of columns k0..j, oldest first (the newest, on the critical path,
-            // is applied last).
-            for (kk, lk) in head.chunks_exact(ld).enumerate() {
-                let off = j - (k0 + kk);
-                let ljk = lk[off];
-                if ljk == 0.0 {
-                    // Structural zero (node staircase): nothing to subtract.
-                    continue;
-                }
-                let t = ljk * lk[0];
-                let src = &lk[off..];
-                let dst = &mut col[..ld - off];
-                for (c, &l) in dst.iter_mut().zip(src) {
-                    *c -= t * l;
-                }
+            if j >= fixed_from {
+                update_col_fixed::<CHAIN_HB, { CHAIN_HB + 1 }>(&head[(j - hb) * ld..], col);
+            } else {
+                update_col_dyn(&head[j.saturating_sub(hb) * ld..], col, j.min(hb));
             }
             let d = col[0];
-            if !(d.abs() > tol) {
+            if is_zero_pivot(d, tol) {
                 return Err(FactorError::ZeroPivot { column: j, pivot: d });
             }
             for c in col[1..].iter_mut() {
@@ -495,6 +486,50 @@ impl BandLdlt {
     pub fn min_abs_pivot(&self) -> f64 {
         self.min_abs[self.valid]
     }
+}
+
+/// `|d| <= tol`, or `d` is NaN (never divided by).
+#[inline]
+pub(crate) fn is_zero_pivot(d: f64, tol: f64) -> bool {
+    d.is_nan() || d.abs() <= tol
+}
+
+/// Half-bandwidth of a 6-DOF node chain (two nodes per element), for which the factor kernel
+/// is specialized at compile time.
+const CHAIN_HB: usize = 11;
+
+/// Subtracts from `col` (column `j` of A, `ld` values) the contributions of the `w` previous
+/// factor columns stored in `win` (`w * ld` values, oldest first): `col[i] -= L[j,k] d_k L[j+i,k]`.
+/// The newest column, on the critical path, is applied last.
+#[inline]
+fn update_col_dyn(win: &[f64], col: &mut [f64], w: usize) {
+    let ld = col.len();
+    for (kk, lk) in win.chunks_exact(ld).take(w).enumerate() {
+        let off = w - kk;
+        let t = lk[off] * lk[0];
+        let dst = &mut col[..ld - off];
+        for (c, &l) in dst.iter_mut().zip(&lk[off..]) {
+            *c -= t * l;
+        }
+    }
+}
+
+/// [`update_col_dyn`] with a full window of `HB` columns and compile-time lengths (`LD = HB + 1`),
+/// so every loop is fully unrolled.
+#[inline]
+fn update_col_fixed<const HB: usize, const LD: usize>(win: &[f64], col: &mut [f64]) {
+    let win = &win[..HB * LD];
+    let col: &mut [f64; LD] = col.try_into().unwrap();
+    let mut c = *col;
+    for kk in 0..HB {
+        let lk: &[f64; LD] = win[kk * LD..kk * LD + LD].try_into().unwrap();
+        let off = HB - kk;
+        let t = lk[off] * lk[0];
+        for i in 0..LD - off {
+            c[i] -= t * lk[off + i];
+        }
+    }
+    *col = c;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -810,12 +845,18 @@ mod tests {
         for j in 60usize.saturating_sub(11)..(60 + 12).min(n) {
             a.set(60, j, 0.0);
         }
-        let err = f.refactor_from(&a, 60).unwrap_err();
+        let err = f.refactor_from(&a, 60 - 11).unwrap_err();
         assert!(matches!(err, FactorError::ZeroPivot { column: 60, .. }), "{err:?}");
         assert!(!f.is_factored());
-        // Restore; claim only the tail from 100 changed: must restart from column 60.
+        // Change only column 100: the refactor must still restart at the failed column 60
+        // (columns 60.. were never computed), and fail there again.
+        a.add(100, 100, 1.0);
+        let err = f.refactor_from(&a, 100).unwrap_err();
+        assert!(matches!(err, FactorError::ZeroPivot { column: 60, .. }), "{err:?}");
+        // Restore: entries of columns 49.. changed since the last call.
         a.copy_from(&saved);
-        f.refactor_from(&a, 100).unwrap();
+        f.refactor_from(&a, 60 - 11).unwrap();
+        assert!(f.is_factored());
         let mut full = BandLdlt::new(n, 11);
         full.factor(&a).unwrap();
         assert!(f.data == full.data);

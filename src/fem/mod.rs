@@ -1,4 +1,11 @@
 //! Finite element model of the whole string.
 
 pub mod band;
+pub mod beam;
+pub mod corotational;
+pub mod mesh;
+pub mod model;
+pub mod results;
+pub mod rotation;
+pub mod solve;
 pub mod sparse_faer;

@@ -25,7 +25,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
-use crate::fem::band::{BandMatrix, FactorError, PIVOT_TOL};
+use crate::fem::band::{is_zero_pivot, BandMatrix, FactorError, PIVOT_TOL};
 
 /// Sparse LDLᵀ (faer, simplicial, natural ordering) with the pattern of a [`BandMatrix`].
 pub struct FaerLdlt {
@@ -134,9 +134,11 @@ impl FaerLdlt {
             Default::default(),
         );
         if let Err(LdltError::ZeroPivot { index }) = res {
+            // faer's simplicial kernel reports the pivot 1-based (LAPACK-style `info`) and
+            // does not store it; it only fails for an exactly zero or non-finite pivot.
             return Err(FactorError::ZeroPivot {
-                column: index,
-                pivot: self.l_values[self.diag_pos[index]],
+                column: index.saturating_sub(1),
+                pivot: 0.0,
             });
         }
         let tol = PIVOT_TOL * a.diag_abs_max();
@@ -144,7 +146,7 @@ impl FaerLdlt {
         let mut min_abs = f64::INFINITY;
         for (j, &p) in self.diag_pos.iter().enumerate() {
             let d = self.l_values[p];
-            if !(d.abs() > tol) {
+            if is_zero_pivot(d, tol) {
                 return Err(FactorError::ZeroPivot { column: j, pivot: d });
             }
             negative += (d < 0.0) as usize;
@@ -211,7 +213,8 @@ mod tests {
         g.factor(&a).unwrap();
         let mut y = b.clone();
         g.solve_in_place(&mut y);
-        assert!(rel_diff(&x, &y) < 1e-12, "{}", rel_diff(&x, &y));
+        // cond(K) ~ 1e10 (1e3 N/m springs next to EA/L ~ 2e9 N/m): agreement ~ cond * eps.
+        assert!(rel_diff(&x, &y) < 1e-9, "{}", rel_diff(&x, &y));
         assert_eq!(f.negative_pivots(), 0);
         assert!((f.min_abs_pivot() - g.min_abs_pivot()).abs() <= 1e-10 * g.min_abs_pivot());
         // refactor with changed values reuses the symbolic analysis
@@ -222,7 +225,7 @@ mod tests {
         let (mut x2, mut y2) = (b.clone(), b.clone());
         f.solve_in_place(&mut x2);
         g.solve_in_place(&mut y2);
-        assert!(rel_diff(&x2, &y2) < 1e-12);
+        assert!(rel_diff(&x2, &y2) < 1e-9);
     }
 
     #[test]
@@ -255,6 +258,7 @@ mod tests {
         s.set(3, 3, 1.0);
         s.set(3, 2, 1.0);
         let mut f = FaerLdlt::new(&s);
-        assert!(matches!(f.factor(&s), Err(FactorError::ZeroPivot { column: 3, .. })));
+        let r = f.factor(&s);
+        assert!(matches!(r, Err(FactorError::ZeroPivot { column: 3, .. })), "{r:?}");
     }
 }

@@ -46,6 +46,16 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         }
     })?;
     let top = Section::new(path, "", &table);
+    top.check_known(&[
+        "name",
+        "description",
+        "well",
+        "mud",
+        "operation",
+        "string",
+        "bit_rock",
+        "solver",
+    ])?;
     let name = top.string("name")?.unwrap_or_else(|| {
         path.file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -131,6 +141,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
 }
 
 fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
+    s.check_known(&["survey", "survey_md_unit", "origin", "hole", "caliper"])?;
     let rel = s
         .string("survey")?
         .ok_or_else(|| s.error("survey", "missing the survey CSV path"))?;
@@ -147,10 +158,10 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
         angle: None,
     };
     let survey = read_survey_csv(&survey_path, &units)?;
-    let origin = match s.quantity_array3("origin")? {
-        Some(o) => o,
-        None => Vec3::zeros(),
-    };
+    let origin = s
+        .length_triple("origin")?
+        .map(|o| Vec3::new(o[0], o[1], o[2]))
+        .unwrap_or_else(Vec3::zeros);
     let secs = s.tables("hole")?.ok_or_else(|| {
         s.error(
             "hole",
@@ -162,6 +173,7 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
     }
     let mut sections = Vec::new();
     for h in &secs {
+        h.check_known(&["to_md", "diameter", "friction"])?;
         let to_md = h.req_quantity("to_md", D::Length, "m")?;
         let diameter = h
             .positive("diameter", D::Length, "in", false)?
@@ -197,26 +209,6 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
     };
     s.finish(&["survey", "survey_md_unit", "origin", "hole", "caliper"])?;
     Ok((survey, survey_path, origin, HoleSize::new(sections, caliper)))
-}
-
-impl Section<'_> {
-    /// Optional array of three lengths (m), e.g. `origin = [0, 0, 0]`.
-    fn quantity_array3(&self, key: &str) -> InputResult<Option<Vec3>> {
-        if !self.has(key) {
-            return Ok(None);
-        }
-        let raw = self.raw(key);
-        let parts: Vec<f64> = raw
-            .trim_matches(|c| c == '[' || c == ']')
-            .split(',')
-            .map(|p| crate::units::parse_quantity(p.trim().trim_matches('"'), D::Length, "m"))
-            .collect::<Result<_, _>>()
-            .map_err(|m| self.error(key, m))?;
-        if parts.len() != 3 {
-            return Err(self.error(key, "expected [north, east, tvd] in m"));
-        }
-        Ok(Some(Vec3::new(parts[0], parts[1], parts[2])))
-    }
 }
 
 fn read_caliper(path: &Path, s: &Section) -> InputResult<Vec<(f64, f64)>> {
@@ -267,6 +259,18 @@ fn read_caliper(path: &Path, s: &Section) -> InputResult<Vec<(f64, f64)>> {
 }
 
 fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverrides) -> InputResult<Operation> {
+    s.check_known(&[
+        "mode",
+        "bit_md",
+        "wob",
+        "hook_load",
+        "rpm",
+        "rop",
+        "trip_speed",
+        "friction",
+        "bit_torque",
+        "viscous_torque",
+    ])?;
     let mode = match s.string("mode")? {
         Some(m) => {
             Mode::parse(&m).ok_or_else(|| s.error("mode", format!("unknown mode `{m}` (expected {})", Mode::NAMES)))?
@@ -369,6 +373,7 @@ fn read_string(
     let mut comps: Vec<Component> = Vec::new();
     let mut missing_length: Option<usize> = None;
     for (k, c) in secs.iter().enumerate() {
+        c.check_known(COMPONENT_KEYS)?;
         let kind_name = c
             .string("type")?
             .ok_or_else(|| c.error("type", format!("missing component type ({})", ComponentKind::NAMES)))?;
@@ -566,6 +571,7 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
     let mut formations = Vec::new();
     if let Some(fs) = s.tables("formations")? {
         for f in fs {
+            f.check_known(&["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"])?;
             let from = f.req_quantity("from_md", D::Length, "m")?;
             let to = f.req_quantity("to_md", D::Length, "m")?;
             if to <= from {

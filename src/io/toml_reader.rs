@@ -168,6 +168,44 @@ impl<'a> Section<'a> {
         }
     }
 
+    /// Reject, before anything is read, keys that are not in `known` (so a misspelt required
+    /// key is named as unknown rather than reported as missing).
+    pub fn check_known(&self, known: &[&str]) -> InputResult<()> {
+        for key in self.table.keys() {
+            if !known.contains(&key.as_str()) {
+                let hint = closest(key, known)
+                    .map(|k| format!(" (did you mean `{k}`?)"))
+                    .unwrap_or_default();
+                return Err(self.error(
+                    key,
+                    format!("unknown key{hint}; accepted keys here: {}", known.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Optional array of exactly three lengths in m (numbers or strings with units).
+    pub fn length_triple(&self, key: &str) -> InputResult<Option<[f64; 3]>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::Array(items)) if items.len() == 3 => {
+                let mut out = [0.0; 3];
+                for (i, v) in items.iter().enumerate() {
+                    let parsed = match v {
+                        Value::Integer(x) => parse_quantity(&x.to_string(), Dimension::Length, "m"),
+                        Value::Float(x) if x.is_finite() => parse_quantity(&format!("{x:e}"), Dimension::Length, "m"),
+                        Value::String(t) => parse_quantity(t, Dimension::Length, "m"),
+                        other => Err(format!("expected a length, found {}", type_name(other))),
+                    };
+                    out[i] = parsed.map_err(|m| self.error(&format!("{key}[{i}]"), m))?;
+                }
+                Ok(Some(out))
+            }
+            Some(_) => Err(self.error(key, "expected [north, east, tvd] in m")),
+        }
+    }
+
     /// Reject keys that were never asked for, suggesting the closest known key.
     pub fn finish(&self, known: &[&str]) -> InputResult<()> {
         let used = self.used.borrow();

@@ -1,0 +1,166 @@
+//! The spatial multi-directional contact-friction gap element (the paper's Table 1, physics.md 4).
+//!
+//! A node at position `x` whose nearest hole-axis point is `p` with tangent `t` has the lateral
+//! offset `d = x - p` (perpendicular to `t`), radial distance `s = |d|` and outward normal
+//! `n = d/s`. With radial clearance `EO`, the gap is open while `s < EO`. The wall reaction on
+//! the string is `-R n` with `R >= 0`; here `R = max(0, lambda + k_n (s - EO))`, a penalty
+//! regularized by the augmented-Lagrangian multiplier `lambda` (updated by the solver so that the
+//! penetration `s - EO` falls below the tolerance). Friction `-f R v/|v|` opposes the sliding
+//! velocity of the string surface at the contact point, `v = v_a t + Omega R_c (t x n)`
+//! (axial speed `v_a`, positive down; spin `Omega` about `t`, positive clockwise from above),
+//! and acts at the contact point `x + R_c n`, so it also applies the moment
+//! `R_c n x F_friction` (its `t` component is the friction torque `-f R R_c` when rotating).
+
+use crate::geometry::Vec3;
+use nalgebra::Matrix3;
+
+/// Inputs of one gap evaluation (SI).
+#[derive(Debug, Clone, Copy)]
+pub struct GapInput {
+    /// Lateral offset of the node from the hole axis, perpendicular to `t`, m.
+    pub offset: Vec3,
+    /// Hole tangent at the nearest axis point.
+    pub t: Vec3,
+    /// Radial clearance EO, m (>= 0).
+    pub clearance: f64,
+    /// Contact radius R_c (half the contact OD), m.
+    pub contact_radius: f64,
+    /// Augmented-Lagrangian multiplier, N (>= 0).
+    pub lambda: f64,
+    /// Penalty stiffness, N/m.
+    pub k_n: f64,
+    /// Friction coefficient.
+    pub friction: f64,
+    /// Axial speed of the string, m/s (positive down the hole).
+    pub axial_speed: f64,
+    /// Spin of the string about `t`, rad/s.
+    pub omega: f64,
+    /// Normal to use when the offset is ~0 (previous contact direction).
+    pub fallback_normal: Vec3,
+    /// Distance (m) within which a node just off the wall keeps its penalty spring in the
+    /// tangent (not in the force): damps open/close cycling at the edge of line contacts.
+    pub sticky_m: f64,
+}
+
+/// Result of one gap evaluation, global frame.
+#[derive(Debug, Clone, Copy)]
+pub struct GapResponse {
+    /// Wall normal reaction R >= 0, N.
+    pub normal_force: f64,
+    /// Outward unit normal n (from the axis toward the contact).
+    pub normal: Vec3,
+    /// Total wall force on the string (normal + friction), N.
+    pub force: Vec3,
+    /// Moment of the friction force about the node, N.m.
+    pub moment: Vec3,
+    /// Stiffness `-dF/dx` of the normal force (friction is not linearized), N/m.
+    pub stiffness: Matrix3<f64>,
+    /// Penalty active (`lambda + k_n (s - EO) > 0`).
+    pub active: bool,
+    /// Radial distance minus clearance, m (> 0: penetration).
+    pub penetration: f64,
+}
+
+/// Evaluate the gap element.
+pub fn evaluate(g: &GapInput) -> GapResponse {
+    let t = g.t;
+    let d = g.offset - t * t.dot(&g.offset);
+    let s = d.norm();
+    let tiny = 1e-12;
+    let n = if s > tiny { d / s } else { g.fallback_normal };
+    let trial = g.lambda + g.k_n * (s - g.clearance);
+    let active = trial > 0.0;
+    let r = trial.max(0.0);
+    let in_tangent = trial > -g.k_n * g.sticky_m;
+    let ptt = Matrix3::identity() - t * t.transpose();
+    let mut k = Matrix3::zeros();
+    if in_tangent {
+        if s > tiny {
+            let nn = n * n.transpose();
+            k += nn * g.k_n + (ptt - nn) * (r / s);
+        } else {
+            k += ptt * g.k_n;
+        }
+    }
+    let mut force = -n * r;
+    let mut moment = Vec3::zeros();
+    if r > 0.0 && g.friction > 0.0 {
+        let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
+        let vn = v.norm();
+        if vn > 1e-12 {
+            let ff = -v * (g.friction * r / vn);
+            force += ff;
+            moment = (n * g.contact_radius).cross(&ff);
+        }
+    }
+    GapResponse {
+        normal_force: r,
+        normal: n,
+        force,
+        moment,
+        stiffness: k,
+        active,
+        penetration: s - g.clearance,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn input() -> GapInput {
+        GapInput {
+            offset: Vec3::new(0.0, 0.0201, 0.0),
+            t: Vec3::new(1.0, 0.0, 0.0),
+            clearance: 0.02,
+            contact_radius: 0.08,
+            lambda: 0.0,
+            k_n: 1e8,
+            friction: 0.3,
+            axial_speed: 0.0,
+            omega: 6.0,
+            fallback_normal: Vec3::new(0.0, 1.0, 0.0),
+            sticky_m: 0.0,
+        }
+    }
+
+    #[test]
+    fn open_gap_carries_nothing() {
+        let mut g = input();
+        g.offset = Vec3::new(0.0, 0.01, 0.0);
+        let r = evaluate(&g);
+        assert_eq!(r.normal_force, 0.0);
+        assert_eq!(r.force, Vec3::zeros());
+        assert!(!r.active);
+    }
+
+    #[test]
+    fn rotating_contact_gives_paper_friction_torque() {
+        // Table 1: T = f R, m = (D/2) T, opposing the rotation; no axial drag without axial motion.
+        let r = evaluate(&input());
+        let rn = 1e8 * 1e-4;
+        assert!((r.normal_force - rn).abs() < 1e-6);
+        let torque = r.moment.dot(&Vec3::new(1.0, 0.0, 0.0));
+        assert!((torque + 0.3 * rn * 0.08).abs() < 1e-9);
+        assert!(r.force.x.abs() < 1e-12);
+    }
+
+    #[test]
+    fn stiffness_matches_finite_differences_of_normal_force() {
+        let mut g = input();
+        g.friction = 0.0;
+        g.offset = Vec3::new(0.0, 0.0203, -0.004);
+        let r = evaluate(&g);
+        let h = 1e-9;
+        for j in 0..3 {
+            let mut gp = g;
+            let mut gm = g;
+            gp.offset[j] += h;
+            gm.offset[j] -= h;
+            let col = -(evaluate(&gp).force - evaluate(&gm).force) / (2.0 * h);
+            for i in 0..3 {
+                assert!((col[i] - r.stiffness[(i, j)]).abs() < 1e-4 * 1e8, "{i}{j}");
+            }
+        }
+    }
+}

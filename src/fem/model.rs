@@ -1,0 +1,374 @@
+//! The assembled whole-string model: mesh on the hole, loads, boundary conditions, and the
+//! evaluation of residual and tangent for a given state.
+//!
+//! DOFs: 6 per node (3 displacements, 3 spins) in the node's fixed basis `Q = [t, b1, b2]`
+//! (hole tangent and Bishop normals at the node's reference MD). Nodes are numbered from the
+//! bit (node 0) upward, but DOFs are ordered from the surface down so that the bottom-hole
+//! assembly, where contacts change most, sits at the end of the band (tail refactoring).
+
+use super::band::BandMatrix;
+use super::beam::BeamSection;
+use super::corotational::{element_response, ElementResponse, ElementState};
+use super::mesh::{build_mesh, Mesh};
+use crate::case::{Case, Mode};
+use crate::contact::gap::{evaluate, GapInput, GapResponse};
+use crate::geometry::{HoleSize, Vec3, WellPath};
+use nalgebra::Matrix3;
+
+/// Half bandwidth of the node-chain stiffness (6 DOF per node, neighbours only).
+pub const HALF_BANDWIDTH: usize = 11;
+
+/// Penalty stiffness of a gap element as a multiple of EI/l^3 of its element; the
+/// augmented-Lagrangian updates remove the penetration it leaves.
+pub const PENALTY_FACTOR: f64 = 10.0;
+
+/// Loads and kinematics of the operation, SI.
+#[derive(Debug, Clone, Copy)]
+pub struct Loads {
+    /// Weight on bit, N (the solver finds the hook load that gives it).
+    pub wob_n: f64,
+    /// Hook load given instead (N): then the bit reaction is the output.
+    pub hook_load_n: Option<f64>,
+    /// Bit torque, N.m (applied about -t at the bit).
+    pub bit_torque_nm: f64,
+    /// String spin, rad/s.
+    pub omega_rad_s: f64,
+    /// Axial speed, m/s, positive down.
+    pub axial_speed_m_s: f64,
+    /// Mud plastic viscosity for the drag torque, Pa.s (0: off).
+    pub mud_viscosity_pa_s: f64,
+}
+
+/// Static description of the discretized problem.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// Hole axis.
+    pub path: WellPath,
+    /// Hole diameter along the well.
+    pub hole: HoleSize,
+    /// Mesh.
+    pub mesh: Mesh,
+    /// Bit MD, m.
+    pub bit_md_m: f64,
+    /// Reference MD of each node, m.
+    pub md_ref: Vec<f64>,
+    /// DOF basis per node.
+    pub basis: Vec<Matrix3<f64>>,
+    /// Element sections (with stress-free chord length).
+    pub sections: Vec<BeamSection>,
+    /// Friction coefficient per node.
+    pub friction: Vec<f64>,
+    /// Penalty stiffness per node, N/m.
+    pub k_n: Vec<f64>,
+    /// Loads.
+    pub loads: Loads,
+    /// Whether the axial-force/bending coupling is on (off only to demonstrate its effect).
+    pub geometric_stiffness: bool,
+}
+
+/// Mutable solution state.
+#[derive(Debug, Clone)]
+pub struct State {
+    /// Node positions, m.
+    pub x: Vec<Vec3>,
+    /// Node material triads.
+    pub lam: Vec<Matrix3<f64>>,
+    /// MD of each node's nearest axis point, m.
+    pub md: Vec<f64>,
+    /// Augmented-Lagrangian multipliers, N.
+    pub lambda: Vec<f64>,
+    /// Last contact normal per node.
+    pub normal: Vec<Vec3>,
+    /// Hook load (top axial force), N.
+    pub hook_load_n: f64,
+}
+
+/// Everything evaluated at a state.
+pub struct Evaluation {
+    /// Residual `f_int - f_ext`, DOF order (surface first), node bases.
+    pub residual: Vec<f64>,
+    /// Element responses, bit upward (`elements[e]` joins nodes e+1 = end A and e = end B).
+    pub elements: Vec<ElementResponse>,
+    /// Gap responses per node (None: no gap or open far from the wall).
+    pub gaps: Vec<Option<GapResponse>>,
+    /// Radial clearance per node, m.
+    pub clearance: Vec<f64>,
+}
+
+impl Model {
+    /// Build the model of `case` with the bit at `case.operation.bit_md_m`.
+    pub fn from_case(case: &Case) -> Model {
+        let op = &case.operation;
+        let mesh = build_mesh(&case.string, &case.solver, case.mud.density_kg_m3);
+        let bit_md = op.bit_md_m;
+        let omega = op.omega_rad_s();
+        let bit_torque = if op.mode == Mode::Drilling && omega > 0.0 {
+            op.bit_torque_nm.unwrap_or_else(|| {
+                let d_bit = case.string.components[0].contact_od_m;
+                case.bit_rock.bit_friction * op.wob_n * d_bit / 3.0
+            })
+        } else {
+            0.0
+        };
+        let loads = Loads {
+            wob_n: op.wob_n,
+            hook_load_n: op.hook_load_n,
+            bit_torque_nm: bit_torque,
+            omega_rad_s: omega,
+            axial_speed_m_s: op.axial_speed_m_s(),
+            mud_viscosity_pa_s: if op.viscous_torque {
+                case.mud.plastic_viscosity_pa_s
+            } else {
+                0.0
+            },
+        };
+        Model::new(
+            case.well.path.clone(),
+            case.well.hole.clone(),
+            mesh,
+            bit_md,
+            loads,
+            |md| case.well.hole.friction_at(md).unwrap_or(op.friction),
+        )
+    }
+
+    /// Build from parts; `friction_at(md)` gives the wall friction coefficient.
+    pub fn new(
+        path: WellPath,
+        hole: HoleSize,
+        mesh: Mesh,
+        bit_md_m: f64,
+        loads: Loads,
+        friction_at: impl Fn(f64) -> f64,
+    ) -> Model {
+        let md_ref: Vec<f64> = mesh.nodes.iter().map(|n| bit_md_m - n.s_m).collect();
+        let basis: Vec<Matrix3<f64>> = md_ref
+            .iter()
+            .map(|&md| {
+                let (t, b1, b2) = path.bishop_at(md);
+                Matrix3::from_columns(&[t, b1, b2])
+            })
+            .collect();
+        let sections = mesh
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(e, el)| {
+                let l0 = (path.point_at(md_ref[e + 1]).position - path.point_at(md_ref[e]).position).norm();
+                BeamSection {
+                    l0,
+                    ea: el.ea,
+                    ei: el.ei,
+                    gj: el.gj,
+                }
+            })
+            .collect::<Vec<_>>();
+        let nn = mesh.nodes.len();
+        let k_n = (0..nn)
+            .map(|i| {
+                let e = if i == 0 { 0 } else { i - 1 };
+                let s = &sections[e.min(sections.len() - 1)];
+                PENALTY_FACTOR * s.ei / s.l0.powi(3)
+            })
+            .collect();
+        let friction = md_ref.iter().map(|&m| friction_at(m)).collect();
+        Model {
+            path,
+            hole,
+            mesh,
+            bit_md_m,
+            md_ref,
+            basis,
+            sections,
+            friction,
+            k_n,
+            loads,
+            geometric_stiffness: true,
+        }
+    }
+
+    /// Number of nodes.
+    pub fn nodes(&self) -> usize {
+        self.mesh.nodes.len()
+    }
+
+    /// Number of DOFs.
+    pub fn dofs(&self) -> usize {
+        6 * self.nodes()
+    }
+
+    /// Global DOF index of local DOF `k` (0..6) of node `i` (bit = 0): surface first.
+    pub fn dof(&self, i: usize, k: usize) -> usize {
+        6 * (self.nodes() - 1 - i) + k
+    }
+
+    /// DOFs held fixed: the bit's three translations (the axial one through the hook-load
+    /// equation), the top's two lateral translations and its twist.
+    pub fn constrained_dofs(&self) -> Vec<usize> {
+        let top = self.nodes() - 1;
+        vec![
+            self.dof(0, 0),
+            self.dof(0, 1),
+            self.dof(0, 2),
+            self.dof(top, 1),
+            self.dof(top, 2),
+            self.dof(top, 3),
+        ]
+    }
+
+    /// Initial state: nodes on the hole axis, triads = node bases.
+    pub fn initial_state(&self) -> State {
+        let nn = self.nodes();
+        State {
+            x: self.md_ref.iter().map(|&m| self.path.point_at(m).position).collect(),
+            lam: self.basis.clone(),
+            md: self.md_ref.clone(),
+            lambda: vec![0.0; nn],
+            normal: self.md_ref.iter().map(|&m| -self.path.frame_at(m).h).collect(),
+            hook_load_n: self.loads.hook_load_n.unwrap_or(0.0),
+        }
+    }
+
+    /// Radial clearance at node `i` when its nearest axis point is at `md`, m (>= 0).
+    pub fn clearance(&self, i: usize, md: f64) -> f64 {
+        ((self.hole.diameter_at(md) - self.mesh.nodes[i].contact_od_m) / 2.0).max(0.0)
+    }
+
+    /// Mud drag torque per length on element `e`, N.m/m (laminar Couette, physics.md 2.4).
+    pub fn mud_torque(&self, e: usize, md: f64) -> f64 {
+        let mu = self.loads.mud_viscosity_pa_s;
+        let w = self.loads.omega_rad_s;
+        if mu <= 0.0 || w <= 0.0 {
+            return 0.0;
+        }
+        let r1 = self.mesh.elements[e].od_m / 2.0;
+        let r2 = self.hole.diameter_at(md) / 2.0;
+        if r2 <= r1 * 1.0001 {
+            return 0.0;
+        }
+        4.0 * std::f64::consts::PI * mu * w * r1 * r1 * r2 * r2 / (r2 * r2 - r1 * r1)
+    }
+
+    /// Evaluate residual (and, if `k` is given, assemble the tangent into it) at `state`.
+    /// Updates each node's nearest-axis MD in `state.md`.
+    pub fn evaluate(&self, state: &mut State, k: Option<&mut BandMatrix>) -> Evaluation {
+        let nn = self.nodes();
+        let mut r = vec![0.0; self.dofs()];
+        let mut kmat = k;
+        if let Some(km) = kmat.as_deref_mut() {
+            km.fill_zero();
+        }
+        let mut elements = Vec::with_capacity(nn - 1);
+        let ed = Vec3::new(0.0, 0.0, 1.0);
+        for e in 0..nn - 1 {
+            // Node A is the upper node (e + 1), B the lower (e): the chord points down the hole
+            // like the triads' first axis.
+            let (a, b) = (e + 1, e);
+            let st = ElementState {
+                x_a: &state.x[a],
+                x_b: &state.x[b],
+                lam_a: &state.lam[a],
+                lam_b: &state.lam[b],
+                q_a: &self.basis[a],
+                q_b: &self.basis[b],
+            };
+            let resp = element_response(&st, &self.sections[e], self.geometric_stiffness);
+            // gravity: consistent nodal loads of q = w_b e_D on the current chord
+            let l = self.sections[e].l0;
+            let q = ed * self.mesh.elements[e].buoyed_weight_n_per_m;
+            let e1 = resp.frame.column(0).into_owned();
+            let fa = q * (l / 2.0);
+            let ma = e1.cross(&q) * (l * l / 12.0);
+            // mud drag torque about -t, lumped
+            let mt = -e1 * (self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0);
+            let dofs: Vec<usize> = (0..6)
+                .map(|k| self.dof(a, k))
+                .chain((0..6).map(|k| self.dof(b, k)))
+                .collect();
+            let qa = &self.basis[a];
+            let qb = &self.basis[b];
+            let ext = [
+                qa.transpose() * fa,
+                qa.transpose() * (ma + mt),
+                qb.transpose() * fa,
+                qb.transpose() * (-ma + mt),
+            ];
+            for (j, &d) in dofs.iter().enumerate() {
+                r[d] += resp.force[j] - ext[j / 3][j % 3];
+            }
+            if let Some(km) = kmat.as_deref_mut() {
+                km.add_block(&dofs, resp.tangent.transpose().as_slice(), 12);
+            }
+            elements.push(resp);
+        }
+        // bit torque: moment -T_b t at the bit node
+        let tb = self.basis[0].column(0).into_owned() * (-self.loads.bit_torque_nm);
+        let tb_loc = self.basis[0].transpose() * tb;
+        for k in 0..3 {
+            r[self.dof(0, 3 + k)] -= tb_loc[k];
+        }
+        // hook load: force -H t_top at the top node
+        let top = nn - 1;
+        r[self.dof(top, 0)] += state.hook_load_n;
+        // gaps
+        let mut gaps = vec![None; nn];
+        let mut clearance = vec![0.0; nn];
+        for i in 0..nn {
+            if !self.mesh.nodes[i].has_gap {
+                continue;
+            }
+            let md = self.path.nearest_md(&state.x[i], state.md[i]);
+            state.md[i] = md;
+            let p = self.path.point_at(md);
+            let eo = self.clearance(i, md);
+            clearance[i] = eo;
+            let g = evaluate(&GapInput {
+                offset: state.x[i] - p.position,
+                t: p.tangent,
+                clearance: eo,
+                contact_radius: self.mesh.nodes[i].contact_od_m / 2.0,
+                lambda: state.lambda[i],
+                k_n: self.k_n[i],
+                friction: self.friction[i],
+                axial_speed: self.loads.axial_speed_m_s,
+                omega: self.loads.omega_rad_s,
+                fallback_normal: state.normal[i],
+                sticky_m: 0.01 * eo.max(1e-3),
+            });
+            if g.normal_force > 0.0 || g.active {
+                let qb = &self.basis[i];
+                let f = qb.transpose() * g.force;
+                let m = qb.transpose() * g.moment;
+                for k in 0..3 {
+                    r[self.dof(i, k)] -= f[k];
+                    r[self.dof(i, 3 + k)] -= m[k];
+                }
+                if let Some(km) = kmat.as_deref_mut() {
+                    let kl = qb.transpose() * g.stiffness * qb;
+                    let d: Vec<usize> = (0..3).map(|k| self.dof(i, k)).collect();
+                    km.add_block(&d, kl.transpose().as_slice(), 3);
+                }
+                state.normal[i] = g.normal;
+            }
+            gaps[i] = Some(g);
+        }
+        Evaluation {
+            residual: r,
+            elements,
+            gaps,
+            clearance,
+        }
+    }
+
+    /// Apply the increment `du` (DOF order, node bases) to `state`, scaled by `alpha`.
+    pub fn update(&self, state: &mut State, du: &[f64], alpha: f64) {
+        for i in 0..self.nodes() {
+            let q = &self.basis[i];
+            let dx = Vec3::new(du[self.dof(i, 0)], du[self.dof(i, 1)], du[self.dof(i, 2)]) * alpha;
+            let dw = Vec3::new(du[self.dof(i, 3)], du[self.dof(i, 4)], du[self.dof(i, 5)]) * alpha;
+            state.x[i] += q * dx;
+            let w = q * dw;
+            state.lam[i] = super::rotation::orthonormalize(&(super::rotation::exp_so3(&w) * state.lam[i]));
+        }
+    }
+}

@@ -1,0 +1,232 @@
+//! Post-processing: bit forces and tilt, top reactions, and per-node results along the string
+//! (interface.md `summary.json` and `string.csv`), all SI.
+
+use super::model::Model;
+use super::solve::Solution;
+use crate::geometry::Vec3;
+use crate::units::G;
+
+/// Bit results (physics.md 5).
+#[derive(Debug, Clone, Copy)]
+pub struct BitResult {
+    /// Bit MD, m.
+    pub md_m: f64,
+    /// Weight on bit (bit on rock along t), N.
+    pub wob_n: f64,
+    /// Build force (bit on rock along h), N.
+    pub build_force_n: f64,
+    /// Walk force (bit on rock along r), N.
+    pub walk_force_n: f64,
+    /// Tilt toward higher inclination, rad.
+    pub tilt_inc_rad: f64,
+    /// Tilt to the right, rad.
+    pub tilt_azi_rad: f64,
+    /// Bit torque, N.m.
+    pub torque_nm: f64,
+}
+
+/// Per-node results.
+#[derive(Debug, Clone, Copy)]
+pub struct NodeResult {
+    /// Current MD (nearest axis point), m.
+    pub md_m: f64,
+    /// Position (north, east, tvd), m.
+    pub position: Vec3,
+    /// Lateral displacement from the axis toward the high side, m.
+    pub disp_high_m: f64,
+    /// Lateral displacement toward the right side, m.
+    pub disp_right_m: f64,
+    /// Radial clearance, m.
+    pub clearance_m: f64,
+    /// Wall normal force, N.
+    pub contact_force_n: f64,
+    /// Contact angle in the gap plane, deg (0 high side, 90 right), 0 when not in contact.
+    pub contact_angle_deg: f64,
+    /// Effective axial force, N (tension positive).
+    pub axial_force_n: f64,
+    /// Torque, N.m.
+    pub torque_nm: f64,
+    /// Bending moment magnitude, N.m.
+    pub bending_moment_nm: f64,
+    /// Von Mises stress at the outer fibre, Pa.
+    pub von_mises_pa: f64,
+}
+
+/// Summary of a solve.
+#[derive(Debug, Clone)]
+pub struct SolveResults {
+    /// Bit.
+    pub bit: BitResult,
+    /// Hook load (top reaction), N.
+    pub hook_load_n: f64,
+    /// Surface torque (top reaction), N.m.
+    pub surface_torque_nm: f64,
+    /// Nodes from the bit upward.
+    pub nodes: Vec<NodeResult>,
+    /// Net external force on the whole string (should vanish), N.
+    pub force_imbalance_n: Vec3,
+    /// Net external moment about the bit (should vanish), N.m.
+    pub moment_imbalance_nm: Vec3,
+    /// Largest single external force term, N (for relative equilibrium checks).
+    pub largest_force_n: f64,
+}
+
+/// Extract results from a solution.
+pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveResults {
+    let st = &sol.state;
+    let ev = &sol.eval;
+    let nn = model.nodes();
+    let r = &ev.residual;
+    // bit reaction (rock on bit) in global, bit on rock = minus that
+    let qb = &model.basis[0];
+    let react = qb * Vec3::new(r[model.dof(0, 0)], r[model.dof(0, 1)], r[model.dof(0, 2)]);
+    let f_bit = -react;
+    let frame = model.path.frame_at(model.bit_md_m);
+    let eb = st.lam[0].column(0).into_owned();
+    let bit = BitResult {
+        md_m: model.bit_md_m,
+        wob_n: f_bit.dot(&frame.t),
+        build_force_n: f_bit.dot(&frame.h),
+        walk_force_n: f_bit.dot(&frame.r),
+        tilt_inc_rad: eb.dot(&frame.h).atan2(eb.dot(&frame.t)),
+        tilt_azi_rad: eb.dot(&frame.r).atan2(eb.dot(&frame.t)),
+        torque_nm: model.loads.bit_torque_nm,
+    };
+    let top = nn - 1;
+    let surface_torque = r[model.dof(top, 3)];
+    // per-node values from adjacent element ends (element e: A = node e+1 upper, B = node e lower)
+    let mut nodes = Vec::with_capacity(nn);
+    for i in 0..nn {
+        let mut ax = Vec::new();
+        let mut tq = Vec::new();
+        let mut bm = Vec::new();
+        let mut sec: Option<usize> = None;
+        if i > 0 {
+            // element i-1, node i is its upper end A
+            let e = i - 1;
+            let resp = &ev.elements[e];
+            let q = Vec3::new(0.0, 0.0, model.mesh.elements[e].buoyed_weight_n_per_m);
+            let qa = q.dot(&resp.frame.column(0).into_owned());
+            ax.push(resp.axial_force + qa * model.sections[e].l0 / 2.0);
+            tq.push(resp.local_moments[0]);
+            bm.push(resp.local_moments[1].hypot(resp.local_moments[2]));
+            sec = Some(e);
+        }
+        if i < nn - 1 {
+            let e = i;
+            let resp = &ev.elements[e];
+            let q = Vec3::new(0.0, 0.0, model.mesh.elements[e].buoyed_weight_n_per_m);
+            let qa = q.dot(&resp.frame.column(0).into_owned());
+            ax.push(resp.axial_force - qa * model.sections[e].l0 / 2.0);
+            tq.push(-resp.local_moments[3]);
+            bm.push(resp.local_moments[4].hypot(resp.local_moments[5]));
+            sec = sec.or(Some(e));
+        }
+        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+        let (axial, torque, bend) = (mean(&ax), mean(&tq), mean(&bm));
+        let md = if model.mesh.nodes[i].has_gap {
+            st.md[i]
+        } else {
+            model.path.nearest_md(&st.x[i], st.md[i])
+        };
+        let p = model.path.point_at(md);
+        let f = model.path.frame_at(md);
+        let d = st.x[i] - p.position;
+        let (dh, dr) = (d.dot(&f.h), d.dot(&f.r));
+        let (cf, ang) = match &ev.gaps[i] {
+            Some(g) if g.normal_force > 0.0 => {
+                let a = g
+                    .normal
+                    .dot(&f.r)
+                    .atan2(g.normal.dot(&f.h))
+                    .to_degrees()
+                    .rem_euclid(360.0);
+                (g.normal_force, a)
+            }
+            _ => (0.0, 0.0),
+        };
+        let el = &model.mesh.elements[sec.unwrap_or(0)];
+        let (od, id) = (el.od_m, el.id_m);
+        let area = std::f64::consts::PI / 4.0 * (od * od - id * id);
+        let inertia = std::f64::consts::PI / 64.0 * (od.powi(4) - id.powi(4));
+        let pressure = mud_density_kg_m3 * G * p.position.z.max(0.0);
+        let f_true = axial - pressure * area;
+        let sa = f_true / area;
+        let sb = bend * od / (2.0 * inertia);
+        let tau = torque * od / (4.0 * inertia);
+        let vm = ((sa.abs() + sb).powi(2) + 3.0 * tau * tau).sqrt();
+        nodes.push(NodeResult {
+            md_m: md,
+            position: st.x[i],
+            disp_high_m: dh,
+            disp_right_m: dr,
+            clearance_m: ev.clearance[i],
+            contact_force_n: cf,
+            contact_angle_deg: ang,
+            axial_force_n: axial,
+            torque_nm: torque,
+            bending_moment_nm: bend,
+            von_mises_pa: vm,
+        });
+    }
+    // global equilibrium: all external forces (weight, walls, bit and top reactions)
+    let mut fsum = Vec3::zeros();
+    let mut msum = Vec3::zeros();
+    let mut largest: f64 = 0.0;
+    let origin = st.x[0];
+    let mut add = |f: Vec3, m: Vec3, at: Vec3| {
+        fsum += f;
+        msum += m + (at - origin).cross(&f);
+        largest = largest.max(f.norm());
+    };
+    for e in 0..nn - 1 {
+        let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
+        let mid = (st.x[e] + st.x[e + 1]) * 0.5;
+        let e1 = ev.elements[e].frame.column(0).into_owned();
+        let mud = -e1 * (model.mud_torque(e, 0.5 * (st.md[e] + st.md[e + 1])) * model.sections[e].l0);
+        add(Vec3::new(0.0, 0.0, w), mud, mid);
+    }
+    for i in 0..nn {
+        if let Some(g) = &ev.gaps[i] {
+            if g.normal_force > 0.0 {
+                add(g.force, g.moment, st.x[i]);
+            }
+        }
+    }
+    // reactions at constrained DOFs and the hook load (all equal the residual there)
+    for i in [0, nn - 1] {
+        let q = &model.basis[i];
+        let mut fr = Vec3::zeros();
+        let mut mr = Vec3::zeros();
+        for c in 0..3 {
+            // the top's axial DOF is free (loaded by the hook load, added below)
+            if !(i == nn - 1 && c == 0) {
+                fr += q.column(c) * r[model.dof(i, c)];
+            }
+            mr += q.column(c) * r[model.dof(i, 3 + c)];
+        }
+        // reactions act on the string as minus the residual's external counterpart:
+        // f_int = f_ext + reaction, so the reaction force on the string is +residual there
+        add(fr, mr, st.x[i]);
+    }
+    // the applied hook load and bit torque
+    add(
+        -model.basis[nn - 1].column(0) * st.hook_load_n,
+        Vec3::zeros(),
+        st.x[nn - 1],
+    );
+    add(
+        Vec3::zeros(),
+        -model.basis[0].column(0) * model.loads.bit_torque_nm,
+        st.x[0],
+    );
+    SolveResults {
+        bit,
+        hook_load_n: st.hook_load_n,
+        surface_torque_nm: surface_torque,
+        nodes,
+        force_imbalance_n: fsum,
+        moment_imbalance_nm: msum,
+        largest_force_n: largest,
+    }
+}

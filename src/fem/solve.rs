@@ -1,0 +1,343 @@
+//! Static solution with contact: Newton iterations on the co-rotational model with
+//! penalty/augmented-Lagrangian gap elements (`method = "newton"`), or the seed paper's modified
+//! Newton with gradient-updated gap forces (`method = "paper"`, eq. 15).
+//!
+//! The bit is held on the hole axis at the bit MD; the hook load `H` at the top is an extra
+//! unknown found with the equation "axial reaction at the bit = -WOB" (a bordered system solved
+//! with two back-substitutions of the same factor). Friction enters the residual exactly and
+//! is lagged in the tangent.
+
+use super::band::{BandLdlt, BandMatrix};
+use super::model::{Evaluation, Model, State, HALF_BANDWIDTH};
+use crate::case::Method;
+use crate::geometry::Vec3;
+use std::time::Instant;
+
+/// Solver controls.
+#[derive(Debug, Clone, Copy)]
+pub struct SolveControls {
+    /// Iteration limit.
+    pub max_iterations: usize,
+    /// Allowed penetration relative to the clearance (interface `tolerance`).
+    pub gap_tolerance: f64,
+    /// Residual tolerance relative to the load scale.
+    pub residual_tolerance: f64,
+    /// Contact scheme.
+    pub method: Method,
+    /// Paper scheme's alpha.
+    pub alpha: f64,
+}
+
+impl Default for SolveControls {
+    fn default() -> Self {
+        SolveControls {
+            max_iterations: 200,
+            gap_tolerance: 1e-4,
+            residual_tolerance: 1e-7,
+            method: Method::Newton,
+            alpha: 0.7,
+        }
+    }
+}
+
+/// Statistics of a solve.
+#[derive(Debug, Clone, Default)]
+pub struct SolveStats {
+    /// Iterations done.
+    pub iterations: usize,
+    /// Factorizations done.
+    pub factorizations: usize,
+    /// Residual norm (relative to the load scale) per iteration.
+    pub residual_history: Vec<f64>,
+    /// Largest penetration relative to the clearance at the end.
+    pub max_penetration: f64,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+    /// Negative pivots in the last factor (unstable directions).
+    pub negative_pivots: usize,
+    /// Nodes whose contact state changed in the last iterations.
+    pub chattering_nodes: Vec<usize>,
+}
+
+/// A converged (or flagged unconverged) solution.
+pub struct Solution {
+    /// Final state.
+    pub state: State,
+    /// Evaluation at the final state.
+    pub eval: Evaluation,
+    /// Whether all convergence criteria were met.
+    pub converged: bool,
+    /// Statistics.
+    pub stats: SolveStats,
+}
+
+/// Why a solve failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    /// The requested contact scheme is not available yet.
+    #[error("contact scheme `{0}` is not implemented yet; use method = \"newton\"")]
+    NotImplemented(&'static str),
+    /// The factorization met a zero pivot.
+    #[error("singular stiffness at DOF {dof} (node {node} from the bit): {detail}")]
+    Singular {
+        /// DOF index.
+        dof: usize,
+        /// Node index from the bit.
+        node: usize,
+        /// Details.
+        detail: String,
+    },
+}
+
+/// Load scale used for relative residuals: total buoyed weight plus WOB, N.
+pub fn load_scale(model: &Model) -> f64 {
+    let w: f64 = model
+        .mesh
+        .elements
+        .iter()
+        .zip(&model.sections)
+        .map(|(e, s)| e.buoyed_weight_n_per_m.abs() * s.l0)
+        .sum();
+    w + model.loads.wob_n.abs() + model.loads.hook_load_n.unwrap_or(0.0).abs() + 1e3
+}
+
+/// Soft-string start: axial force by integrating weight from the bit, contact side from the
+/// lateral load of each element; nodes put on that side of the wall with the soft-string
+/// normal force as their first multiplier (physics.md 4.5).
+pub fn soft_string_start(model: &Model, state: &mut State) {
+    let nn = model.nodes();
+    let mut tension = -model.loads.wob_n;
+    let mut load = vec![Vec3::zeros(); nn];
+    for e in 0..nn - 1 {
+        let (lo, up) = (model.md_ref[e], model.md_ref[e + 1]);
+        let p_lo = model.path.point_at(lo);
+        let p_up = model.path.point_at(up);
+        let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
+        let tbar = (p_lo.tangent + p_up.tangent).normalize();
+        let g = (p_lo.tangent - p_up.tangent) * tension + Vec3::new(0.0, 0.0, w);
+        let gperp = g - tbar * g.dot(&tbar);
+        load[e] += gperp * 0.5;
+        load[e + 1] += gperp * 0.5;
+        tension += w * tbar.z;
+    }
+    if model.loads.hook_load_n.is_none() {
+        state.hook_load_n = tension.max(0.0);
+    }
+    let bha = model.mesh.nodes.iter().position(|n| n.s_m > 30.0).unwrap_or(nn);
+    for (i, li) in load.iter().enumerate().skip(bha) {
+        if !model.mesh.nodes[i].has_gap || li.norm() < 1e-6 {
+            continue;
+        }
+        let n = li.normalize();
+        let eo = model.clearance(i, model.md_ref[i]);
+        state.x[i] = model.path.point_at(model.md_ref[i]).position + n * eo;
+        state.lambda[i] = li.norm();
+        state.normal[i] = n;
+    }
+}
+
+/// Merit of a state: squared residual over free DOFs plus the WOB equation, forces in N and
+/// moments in N.m (1 m length scale).
+fn merit(model: &Model, r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
+    let _ = model;
+    let mut m = 0.0;
+    for (d, v) in r.iter().enumerate() {
+        if !constrained.contains(&d) {
+            m += v * v;
+        }
+    }
+    if bordered {
+        m += c * c;
+    }
+    m
+}
+
+fn residual_norm(model: &Model, r: &[f64], scale: f64) -> f64 {
+    let mut m: f64 = 0.0;
+    for (d, v) in r.iter().enumerate() {
+        m = m.max(v.abs());
+        let _ = d;
+    }
+    let _ = model;
+    m / scale
+}
+
+/// Solve the static problem from `state`.
+pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    if ctl.method == Method::Paper {
+        return Err(SolveError::NotImplemented("paper"));
+    }
+    let t0 = Instant::now();
+    let n = model.dofs();
+    let mut k = BandMatrix::zeros(n, HALF_BANDWIDTH);
+    let mut ldlt = BandLdlt::new(n, HALF_BANDWIDTH);
+    let constrained = model.constrained_dofs();
+    let top = model.nodes() - 1;
+    let bit_ax = model.dof(0, 0);
+    let top_ax = model.dof(top, 0);
+    let bordered = model.loads.hook_load_n.is_none();
+    let scale = load_scale(model);
+    let mut stats = SolveStats::default();
+    let mut prev_active: Vec<bool> = vec![false; model.nodes()];
+    let mut flips = vec![0usize; model.nodes()];
+    let mut converged = false;
+    let mut ev;
+    let mut since_al = 0usize;
+    loop {
+        ev = model.evaluate(&mut state, Some(&mut k));
+        // row of the bit axial DOF (free columns) before constraining
+        let kb: Vec<(usize, f64)> = (0..6)
+            .map(|c| model.dof(0, c))
+            .chain((0..6).map(|c| model.dof(1, c)))
+            .filter(|d| !constrained.contains(d))
+            .map(|d| (d, k.get(bit_ax, d)))
+            .collect();
+        let c = if bordered {
+            ev.residual[bit_ax] + model.loads.wob_n
+        } else {
+            0.0
+        };
+        let mut r = ev.residual.clone();
+        for &d in &constrained {
+            r[d] = 0.0;
+        }
+        let rn = residual_norm(model, &r, scale).max(c.abs() / scale);
+        stats.residual_history.push(rn);
+        // contact consistency
+        let mut pen: f64 = 0.0;
+        let mut changed = 0usize;
+        for (i, g) in ev.gaps.iter().enumerate() {
+            if let Some(g) = g {
+                let eo = ev.clearance[i].max(1e-3);
+                if g.normal_force > 0.0 {
+                    pen = pen.max(g.penetration / eo);
+                }
+                let act = g.normal_force > 0.0;
+                if act != prev_active[i] {
+                    changed += 1;
+                    flips[i] += 1;
+                }
+                prev_active[i] = act;
+            }
+        }
+        stats.max_penetration = pen;
+        let worst = r
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+            .map(|(d, _)| d)
+            .unwrap_or(0);
+        tracing::debug!(
+            worst_node = model.nodes() - 1 - worst / 6,
+            worst_dof = worst % 6,
+            iteration = stats.iterations,
+            residual = rn,
+            penetration = pen,
+            changed,
+            hook_load = state.hook_load_n,
+            "newton"
+        );
+        if rn < ctl.residual_tolerance && changed == 0 && pen <= ctl.gap_tolerance {
+            converged = true;
+            break;
+        }
+        if stats.iterations >= ctl.max_iterations {
+            break;
+        }
+        // augmented-Lagrangian update once the inner problem is nearly converged
+        if rn < 1e-4 && changed == 0 && pen > ctl.gap_tolerance && since_al > 0 {
+            for (i, g) in ev.gaps.iter().enumerate() {
+                if let Some(g) = g {
+                    state.lambda[i] = g.normal_force;
+                }
+            }
+            since_al = 0;
+            stats.iterations += 1;
+            continue;
+        }
+        since_al += 1;
+        for &d in &constrained {
+            k.constrain_dof(d);
+        }
+        if let Err(e) = ldlt.factor(&k) {
+            let dof = match e {
+                super::band::FactorError::ZeroPivot { column, .. } => column,
+            };
+            return Err(SolveError::Singular {
+                dof,
+                node: model.nodes() - 1 - dof / 6,
+                detail: e.to_string(),
+            });
+        }
+        stats.factorizations += 1;
+        stats.negative_pivots = ldlt.negative_pivots();
+        let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
+        ldlt.solve_in_place(&mut a);
+        let hook_before = state.hook_load_n;
+        let du = if bordered {
+            let mut b = vec![0.0; n];
+            b[top_ax] = 1.0;
+            ldlt.solve_in_place(&mut b);
+            let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
+            let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
+            let dh = if kbb.abs() > 1e-30 { (c + kba) / kbb } else { 0.0 };
+            state.hook_load_n += dh;
+            a.iter().zip(&b).map(|(x, y)| x - dh * y).collect::<Vec<f64>>()
+        } else {
+            a
+        };
+        // cap lateral motion to one clearance per iteration (physics.md 4.5)
+        let mut ratio: f64 = 0.0;
+        for i in 0..model.nodes() {
+            if model.mesh.nodes[i].has_gap {
+                let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
+                ratio = ratio.max(lat / ev.clearance[i].max(2e-3));
+            }
+        }
+        let mut alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
+        // backtracking line search on the residual norm (globalizes the semi-smooth Newton
+        // step across contact switches)
+        let merit0 = merit(model, &ev.residual, &constrained, c, bordered);
+        let h0 = state.hook_load_n;
+        let dh_total = state.hook_load_n - hook_before;
+        let mut accepted = false;
+        for _ in 0..8 {
+            let mut trial = state.clone();
+            trial.hook_load_n = hook_before + alpha * dh_total;
+            model.update(&mut trial, &du, alpha);
+            let tev = model.evaluate(&mut trial, None);
+            let tc = if bordered {
+                tev.residual[bit_ax] + model.loads.wob_n
+            } else {
+                0.0
+            };
+            let m1 = merit(model, &tev.residual, &constrained, tc, bordered);
+            if m1 <= (1.0 - 1e-4 * alpha) * merit0 || merit0 < 1e-30 {
+                state = trial;
+                accepted = true;
+                break;
+            }
+            alpha *= 0.5;
+        }
+        if !accepted {
+            // take the (small) last step anyway so iterations can leave a stalled point
+            state.hook_load_n = h0;
+            state.hook_load_n = hook_before + alpha * dh_total;
+            model.update(&mut state, &du, alpha);
+        }
+        stats.iterations += 1;
+    }
+    stats.chattering_nodes = flips
+        .iter()
+        .enumerate()
+        .filter(|(_, &f)| f > 3)
+        .map(|(i, _)| i)
+        .collect();
+    stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(Solution {
+        state,
+        eval: ev,
+        converged,
+        stats,
+    })
+}

@@ -1,0 +1,766 @@
+//! Command-line input handling of `drillpath survey`: every malformed input exits non-zero with
+//! exactly one `error: ...` line on stderr that names the place (file and line / column, or the
+//! dotted case-file key), never panics, and never leaves an output file behind. Plus the
+//! positive paths on the example wells.
+//!
+//! Each test runs the built binary in a fresh temporary directory holding a small valid case
+//! (`case.toml` + `survey.csv`), then breaks exactly one thing.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use tempfile::TempDir;
+
+/// The valid survey. Line 1 is a comment, so the header is line 2 and the stations are lines
+/// 3 to 6 (errors must count lines of the original file).
+const SURVEY: &str = "\
+# test survey: vertical to 300 m, then building at azimuth 45 deg
+md [m],inc [deg],azi [deg]
+0,0,0
+300,0,0
+600,10,45
+1000,20,45
+";
+
+/// The valid case. Components: string[0] bit, string[1] stabilizer, string[2] collar,
+/// string[3] pipe (no length: fills to surface).
+const CASE: &str = r#"name = "input test"
+
+[well]
+survey = "survey.csv"
+hole = [
+  { to_md = "500 m", diameter = "12.25 in", friction = 0.2 },
+  { to_md = "1000 m", diameter = "8.5 in" },
+]
+
+[mud]
+density = "1.2 sg"
+
+[operation]
+mode = "drilling"
+bit_md = "1000 m"
+wob = "100 kN"
+rpm = 60
+
+[[string]]
+type = "bit"
+od = "8.5 in"
+length = "0.3 m"
+
+[[string]]
+type = "stabilizer"
+od = "8.5 in"
+body_od = "6.5 in"
+id = "2.8125 in"
+length = "1.5 m"
+
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "50 m"
+
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "29 kg/m"
+tool_joint_od = "6.625 in"
+
+[solver]
+element_length = "1 m"
+"#;
+
+/// The exact header of `survey --out` (interface.md).
+const SURVEY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,dls_deg_per_30m";
+
+/// Output of one run of the binary.
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+impl Run {
+    fn describe(&self) -> String {
+        format!(
+            "exit code {:?}\n--- stdout ---\n{}\n--- stderr ---\n{}",
+            self.code, self.stdout, self.stderr
+        )
+    }
+}
+
+/// Run `drillpath` with `args` in `dir`, with a clean logging environment.
+fn run_in(dir: &Path, args: &[&str]) -> Run {
+    let out = Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("DRILLPATH_LOG")
+        .env_remove("RUST_LOG")
+        .env("RUST_BACKTRACE", "1") // a panic would print a backtrace: make it visible to the checks
+        .output()
+        .expect("cannot start the drillpath binary");
+    Run {
+        code: out.status.code(),
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+    }
+}
+
+/// The example wells of the repository.
+fn wells() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("wells")
+}
+
+/// A temporary directory with the valid case and survey.
+struct Fixture {
+    dir: TempDir,
+}
+
+impl Fixture {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().expect("cannot create a temporary directory");
+        let fx = Fixture { dir };
+        fx.write("survey.csv", SURVEY);
+        fx.write("case.toml", CASE);
+        fx
+    }
+
+    fn path(&self) -> &Path {
+        self.dir.path()
+    }
+
+    fn write(&self, name: &str, text: &str) {
+        std::fs::write(self.path().join(name), text).expect("cannot write a test file");
+    }
+
+    fn remove(&self, name: &str) {
+        std::fs::remove_file(self.path().join(name)).expect("cannot remove a test file");
+    }
+
+    /// Replace the one occurrence of `old` in the valid `base` text and write it as `name`
+    /// (the test fails if `old` is not there exactly once, so it cannot silently test nothing).
+    fn edit(&self, name: &str, base: &str, old: &str, new: &str) {
+        assert_eq!(
+            base.matches(old).count(),
+            1,
+            "`{old}` must occur exactly once in the base {name}"
+        );
+        self.write(name, &base.replacen(old, new, 1));
+    }
+
+    fn edit_case(&self, old: &str, new: &str) {
+        self.edit("case.toml", CASE, old, new);
+    }
+
+    fn edit_survey(&self, old: &str, new: &str) {
+        self.edit("survey.csv", SURVEY, old, new);
+    }
+
+    fn run(&self, args: &[&str]) -> Run {
+        run_in(self.path(), args)
+    }
+
+    /// Run `args` plus `--out out.csv`, expect a clean failure whose message contains every
+    /// string of `must_name` (the place and what is wrong); no output file may be left behind.
+    fn expect_error(&self, args: &[&str], must_name: &[&str]) -> String {
+        let mut all: Vec<&str> = args.to_vec();
+        all.extend(["--out", "out.csv"]);
+        let r = self.run(&all);
+        check_error(&r, must_name);
+        assert!(
+            !self.path().join("out.csv").exists(),
+            "an output file was written despite the error\n{}",
+            r.describe()
+        );
+        let leftovers: Vec<String> = std::fs::read_dir(self.path())
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains("out.csv"))
+            .collect();
+        assert!(leftovers.is_empty(), "temporary output left behind: {leftovers:?}");
+        r.stderr.trim_end().to_string()
+    }
+}
+
+/// A user error: non-zero exit (not a signal), exactly one stderr line `error: ...` naming
+/// every string of `must_name`, nothing on stdout, no panic or backtrace.
+fn check_error(r: &Run, must_name: &[&str]) {
+    let ctx = r.describe();
+    assert!(r.code.is_some(), "killed by a signal\n{ctx}");
+    assert_ne!(r.code, Some(0), "bad input accepted\n{ctx}");
+    for bad in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
+        assert!(!r.stderr.contains(bad), "`{bad}` on stderr\n{ctx}");
+    }
+    let lines: Vec<&str> = r.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "expected exactly one line on stderr\n{ctx}");
+    assert!(
+        lines[0].starts_with("error: "),
+        "stderr must start with `error: `\n{ctx}"
+    );
+    for s in must_name {
+        assert!(lines[0].contains(s), "the message does not name `{s}`\n{ctx}");
+    }
+    assert!(
+        r.stdout.trim().is_empty(),
+        "nothing should be printed on stdout on error\n{ctx}"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// The fixture itself is valid (otherwise every error test below proves nothing).
+
+#[test]
+fn fixture_case_and_survey_are_valid() {
+    let fx = Fixture::new();
+    let r = fx.run(&["survey", "case.toml", "--out", "out.csv"]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert!(r.stderr.trim().is_empty(), "{}", r.describe());
+    assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
+    let csv = std::fs::read_to_string(fx.path().join("out.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 5, "{csv}");
+
+    let r = fx.run(&["survey", "survey.csv"]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Survey CSV errors: file, line of the original file (comments counted) and column.
+
+#[test]
+fn empty_survey_file() {
+    let fx = Fixture::new();
+    fx.write("survey.csv", "");
+    fx.expect_error(&["survey", "case.toml"], &["survey.csv", "empty"]);
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv", "empty"]);
+}
+
+#[test]
+fn survey_with_header_only() {
+    let fx = Fixture::new();
+    fx.write("survey.csv", "# nothing measured yet\nmd [m],inc [deg],azi [deg]\n");
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv", "line 2", "no data rows"]);
+    fx.expect_error(&["survey", "case.toml"], &["survey.csv", "line 2"]);
+}
+
+#[test]
+fn survey_missing_inc_column() {
+    let fx = Fixture::new();
+    fx.write(
+        "survey.csv",
+        "# no inclination\nmd [m],azi [deg]\n0,0\n300,0\n600,45\n1000,45\n",
+    );
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv", "line 2", "inclination"]);
+}
+
+#[test]
+fn survey_non_numeric_value() {
+    let fx = Fixture::new();
+    fx.edit_survey("600,10,45", "600,ten,45");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["survey.csv", "line 5", "column `inc [deg]`", "`ten`", "not a number"],
+    );
+}
+
+#[test]
+fn survey_nan_value() {
+    let fx = Fixture::new();
+    fx.edit_survey("300,0,0", "300,0,NaN");
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &["survey.csv", "line 4", "column `azi [deg]`", "NaN"],
+    );
+}
+
+#[test]
+fn survey_infinite_md() {
+    let fx = Fixture::new();
+    fx.edit_survey("1000,20,45", "inf,20,45");
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv", "line 6", "column `md [m]`"]);
+}
+
+#[test]
+fn survey_decreasing_md() {
+    let fx = Fixture::new();
+    fx.edit_survey("600,10,45", "200,10,45");
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &["survey.csv", "line 5", "column `md [m]`", "line 4", "strictly increase"],
+    );
+}
+
+#[test]
+fn survey_repeated_md() {
+    let fx = Fixture::new();
+    fx.edit_survey("600,10,45", "300,10,45");
+    fx.expect_error(&["survey", "case.toml"], &["survey.csv", "line 5", "column `md [m]`"]);
+}
+
+#[test]
+fn survey_inclination_200() {
+    let fx = Fixture::new();
+    fx.edit_survey("1000,20,45", "1000,200,45");
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &["survey.csv", "line 6", "column `inc [deg]`", "200", "[0, 180]"],
+    );
+}
+
+#[test]
+fn survey_negative_inclination() {
+    let fx = Fixture::new();
+    fx.edit_survey("600,10,45", "600,-10,45");
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &["survey.csv", "line 5", "column `inc [deg]`"],
+    );
+}
+
+#[test]
+fn survey_unknown_unit_in_header() {
+    let fx = Fixture::new();
+    fx.edit_survey("md [m]", "md [furlong]");
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &["survey.csv", "line 2", "column `md [furlong]`", "furlong"],
+    );
+}
+
+#[test]
+fn survey_row_with_too_few_fields() {
+    let fx = Fixture::new();
+    fx.edit_survey("600,10,45", "600,10");
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &["survey.csv", "line 5", "column `azi [deg]`"],
+    );
+}
+
+#[test]
+fn survey_with_two_inclination_columns() {
+    let fx = Fixture::new();
+    fx.write("survey.csv", "md,inc,inclination,azi\n0,0,0,0\n10,1,1,0\n");
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv", "line 1", "inclination"]);
+}
+
+#[test]
+fn survey_md_unit_in_case_contradicts_header() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "survey = \"survey.csv\"",
+        "survey = \"survey.csv\"\nsurvey_md_unit = \"ft\"",
+    );
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["survey.csv", "line 2", "column `md [m]`", "ft"],
+    );
+}
+
+#[test]
+fn missing_survey_file_named_by_the_case() {
+    let fx = Fixture::new();
+    fx.remove("survey.csv");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`well.survey`", "survey.csv"]);
+}
+
+#[test]
+fn missing_survey_file_on_the_command_line() {
+    let fx = Fixture::new();
+    fx.expect_error(&["survey", "nowhere.csv"], &["nowhere.csv"]);
+}
+
+#[test]
+fn missing_case_file() {
+    let fx = Fixture::new();
+    fx.expect_error(&["survey", "nowhere.toml"], &["nowhere.toml", "cannot read"]);
+}
+
+#[test]
+fn md_unit_option_furlong() {
+    let fx = Fixture::new();
+    fx.expect_error(
+        &["survey", "case.toml", "--md-unit", "furlong"],
+        &["--md-unit", "furlong"],
+    );
+    fx.expect_error(
+        &["survey", "survey.csv", "--md-unit", "furlong"],
+        &["--md-unit", "furlong"],
+    );
+}
+
+#[test]
+fn md_unit_option_of_the_wrong_dimension() {
+    let fx = Fixture::new();
+    fx.expect_error(&["survey", "survey.csv", "--md-unit", "kN"], &["--md-unit", "kN"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Case-file errors: the file and the dotted key.
+
+#[test]
+fn empty_case_file() {
+    let fx = Fixture::new();
+    fx.write("case.toml", "  \n");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "empty"]);
+}
+
+#[test]
+fn unknown_key_typo_od_odd() {
+    // The collar's `od` is misspelt: the key is then missing, and the message must point at
+    // the collar (see also the ignored `typo_of_a_required_key_is_named` below).
+    let fx = Fixture::new();
+    fx.edit_case("type = \"collar\"\nod = ", "type = \"collar\"\nodd = ");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[2].od"]);
+}
+
+#[test]
+fn unknown_key_typo_in_an_optional_key() {
+    let fx = Fixture::new();
+    fx.edit_case("weight = \"29 kg/m\"", "wieght = \"29 kg/m\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[3].wieght`", "unknown key", "`weight`"],
+    );
+}
+
+#[test]
+fn unknown_key_in_operation() {
+    let fx = Fixture::new();
+    fx.edit_case("wob = \"100 kN\"", "wob = \"100 kN\"\nweight_on_bit = \"100 kN\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`operation.weight_on_bit`", "unknown key"],
+    );
+}
+
+#[test]
+fn unknown_top_level_table() {
+    let fx = Fixture::new();
+    fx.edit_case("[solver]\n", "[solverr]\n");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`solverr`", "unknown key", "`solver`"],
+    );
+}
+
+#[test]
+fn negative_length() {
+    let fx = Fixture::new();
+    fx.edit_case("length = \"50 m\"", "length = \"-50 m\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[2].length`", "-50"]);
+}
+
+#[test]
+fn id_not_smaller_than_od() {
+    let fx = Fixture::new();
+    fx.edit_case("od = \"5 in\"\nid = \"4.276 in\"", "od = \"5 in\"\nid = \"5 in\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[3].id`"]);
+}
+
+#[test]
+fn component_wider_than_the_hole() {
+    let fx = Fixture::new();
+    fx.edit_case("type = \"collar\"\nod = \"6.5 in\"", "type = \"collar\"\nod = \"9 in\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[2].od`", "wider than the hole"],
+    );
+}
+
+#[test]
+fn bit_wider_than_the_hole() {
+    let fx = Fixture::new();
+    fx.edit_case("type = \"bit\"\nod = \"8.5 in\"", "type = \"bit\"\nod = \"8.75 in\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[0].od`", "wider than the hole"],
+    );
+}
+
+#[test]
+fn string_longer_than_the_hole() {
+    // Every length given: 0.3 + 1.5 + 50 + 2000 m > 1000 m to the bit.
+    let fx = Fixture::new();
+    fx.edit_case("weight = \"29 kg/m\"", "weight = \"29 kg/m\"\nlength = \"2000 m\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string`", "longer than the hole"],
+    );
+}
+
+#[test]
+fn bha_longer_than_the_hole_with_fill_to_surface() {
+    // The topmost component fills to surface but the components below already exceed the hole.
+    let fx = Fixture::new();
+    fx.edit_case("length = \"50 m\"", "length = \"1200 m\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[3].length`", "longer than the hole"],
+    );
+}
+
+#[test]
+fn toml_syntax_error_names_the_line() {
+    let fx = Fixture::new();
+    fx.edit_case("rpm = 60", "rpm = = 60");
+    let line = CASE.lines().position(|l| l == "rpm = 60").unwrap() + 1;
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", &format!("line {line}"), "TOML"],
+    );
+}
+
+#[test]
+fn toml_unterminated_string_names_the_line() {
+    let fx = Fixture::new();
+    fx.edit_case("mode = \"drilling\"", "mode = \"drilling");
+    let line = CASE.lines().position(|l| l == "mode = \"drilling\"").unwrap() + 1;
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", &format!("line {line}")]);
+}
+
+#[test]
+fn force_unit_for_a_diameter() {
+    let fx = Fixture::new();
+    fx.edit_case("type = \"bit\"\nod = \"8.5 in\"", "type = \"bit\"\nod = \"8.5 kN\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[0].od`", "kN"]);
+}
+
+#[test]
+fn unknown_unit_in_a_hole_diameter() {
+    let fx = Fixture::new();
+    fx.edit_case("diameter = \"8.5 in\"", "diameter = \"8.5 furlong\"");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`well.hole[1].diameter`", "furlong"],
+    );
+}
+
+#[test]
+fn wrong_type_for_a_quantity() {
+    let fx = Fixture::new();
+    fx.edit_case("rpm = 60", "rpm = true");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.rpm`"]);
+}
+
+#[test]
+fn unknown_mode() {
+    let fx = Fixture::new();
+    fx.edit_case("mode = \"drilling\"", "mode = \"reaming\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.mode`", "reaming"]);
+}
+
+#[test]
+fn unknown_component_type() {
+    let fx = Fixture::new();
+    fx.edit_case("type = \"collar\"", "type = \"colar\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[2].type`", "colar"]);
+}
+
+#[test]
+fn stabilizer_without_body_od() {
+    let fx = Fixture::new();
+    fx.edit_case("body_od = \"6.5 in\"\n", "");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[1].body_od`"]);
+}
+
+#[test]
+fn wob_and_hook_load_both_given() {
+    let fx = Fixture::new();
+    fx.edit_case("wob = \"100 kN\"", "wob = \"100 kN\"\nhook_load = \"900 kN\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.hook_load`", "wob"]);
+}
+
+#[test]
+fn bit_md_below_the_survey() {
+    let fx = Fixture::new();
+    fx.edit_case("bit_md = \"1000 m\"", "bit_md = \"1200 m\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.bit_md`", "1200"]);
+}
+
+#[test]
+fn bit_md_below_the_deepest_hole_section() {
+    let fx = Fixture::new();
+    fx.edit_case("to_md = \"1000 m\"", "to_md = \"900 m\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.bit_md`", "900"]);
+}
+
+#[test]
+fn hole_sections_not_top_down() {
+    let fx = Fixture::new();
+    fx.edit_case("to_md = \"1000 m\"", "to_md = \"400 m\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`well.hole[1].to_md`"]);
+}
+
+#[test]
+fn friction_out_of_range() {
+    let fx = Fixture::new();
+    fx.edit_case("friction = 0.2", "friction = 2.5");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`well.hole[0].friction`", "2.5"],
+    );
+}
+
+#[test]
+fn missing_well_table() {
+    let fx = Fixture::new();
+    fx.write("case.toml", "name = \"no well\"\n[mud]\ndensity = 1.2\n");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`well`"]);
+}
+
+#[test]
+fn origin_with_two_values() {
+    let fx = Fixture::new();
+    fx.edit_case("survey = \"survey.csv\"", "survey = \"survey.csv\"\norigin = [1, 2]");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`well.origin`"]);
+}
+
+#[test]
+fn out_is_a_directory() {
+    let fx = Fixture::new();
+    std::fs::create_dir(fx.path().join("outdir")).unwrap();
+    let r = fx.run(&["survey", "case.toml", "--out", "outdir"]);
+    check_error(&r, &["outdir"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Known problems, kept as ignored tests (run with `--ignored`); see the test report.
+
+#[test]
+fn typo_of_a_required_key_is_named() {
+    let fx = Fixture::new();
+    fx.edit_case("type = \"collar\"\nod = ", "type = \"collar\"\nodd = ");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[2].odd`"]);
+}
+
+#[test]
+#[ignore = "known issue: minimum-curvature errors name the station number, not the file line and column"]
+fn survey_reversal_names_the_line() {
+    let fx = Fixture::new();
+    fx.write("survey.csv", "md,inc,azi\n0,0,0\n10,180,0\n20,0,0\n");
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv", "line 3"]);
+}
+
+#[test]
+fn origin_with_a_comma_inside_a_string_is_rejected() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "survey = \"survey.csv\"",
+        "survey = \"survey.csv\"\norigin = [\"1,2\", 3]",
+    );
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`well.origin`"]);
+}
+
+#[test]
+fn survey_reversal_is_rejected() {
+    // A 180 deg dogleg between two stations has no minimum-curvature arc.
+    let fx = Fixture::new();
+    fx.write("survey.csv", "md,inc,azi\n0,0,0\n10,180,0\n20,0,0\n");
+    fx.expect_error(&["survey", "survey.csv"], &["survey.csv"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Positive paths on the example wells.
+
+#[test]
+fn survey_of_the_j_shape_case_prints_the_summary() {
+    let tmp = tempfile::tempdir().unwrap();
+    let case = wells().join("j-shape/case.toml");
+    let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert!(r.stderr.trim().is_empty(), "{}", r.describe());
+    for s in [
+        "survey: J-shape, 8.5 in section, fulcrum BHA",
+        "stations: 88, MD 0.00 m to 2600.00 m",
+        "total depth: 2600.00 m MD",
+        "max DLS: 2.50 deg/30m",
+        "final position: north",
+    ] {
+        assert!(r.stdout.contains(s), "missing `{s}`\n{}", r.describe());
+    }
+}
+
+#[test]
+fn survey_out_writes_the_interface_csv() {
+    let tmp = tempfile::tempdir().unwrap();
+    let case = wells().join("j-shape/case.toml");
+    let r = run_in(
+        tmp.path(),
+        &["survey", case.to_str().unwrap(), "--out", "positions.csv"],
+    );
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert!(r.stdout.contains("wrote positions.csv"), "{}", r.describe());
+    let csv = std::fs::read_to_string(tmp.path().join("positions.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some(SURVEY_HEADER));
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|f| f.parse::<f64>().expect(l)).collect())
+        .collect();
+    assert_eq!(rows.len(), 88);
+    assert!(rows.iter().all(|r| r.len() == 7));
+    assert_eq!(rows[0][0], 0.0);
+    assert!((rows[87][0] - 2600.0).abs() < 1e-9);
+    assert!(rows.windows(2).all(|w| w[1][0] > w[0][0]), "MD must increase");
+    // no stray temporary files next to the output
+    let names: Vec<String> = std::fs::read_dir(tmp.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, vec!["positions.csv".to_string()]);
+}
+
+#[test]
+fn survey_of_the_forge_case_notes_the_assumed_feet() {
+    let tmp = tempfile::tempdir().unwrap();
+    let case = wells().join("forge-16a/case.toml");
+    let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let note = r
+        .stdout
+        .lines()
+        .find(|l| l.contains("note:") && l.contains("assumed ft"))
+        .unwrap_or_else(|| panic!("no `assumed ft` note\n{}", r.describe()));
+    assert!(note.contains("Measured depth"), "{note}");
+    // 10,955 ft = 3339.08 m
+    assert!(r.stdout.contains("3339.08 m"), "{}", r.describe());
+}
+
+#[test]
+fn survey_directly_on_a_csv_matches_the_case() {
+    let tmp = tempfile::tempdir().unwrap();
+    let csv = wells().join("j-shape/survey.csv");
+    let case = wells().join("j-shape/case.toml");
+    let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--out", "from_csv.csv"]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert!(r.stdout.contains("stations: 88"), "{}", r.describe());
+    let r = run_in(
+        tmp.path(),
+        &["survey", case.to_str().unwrap(), "--out", "from_case.csv"],
+    );
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let a = std::fs::read_to_string(tmp.path().join("from_csv.csv")).unwrap();
+    let b = std::fs::read_to_string(tmp.path().join("from_case.csv")).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
+fn survey_csv_flag_prints_the_table() {
+    let tmp = tempfile::tempdir().unwrap();
+    let csv = wells().join("j-shape/survey.csv");
+    let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--csv"]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.stdout.lines().next(), Some(SURVEY_HEADER));
+    assert_eq!(r.stdout.lines().count(), 89);
+}
+
+#[test]
+fn survey_md_unit_option_reads_feet() {
+    let fx = Fixture::new();
+    fx.write("survey.csv", "md,inc,azi\n0,0,0\n1000,0,0\n");
+    let r = fx.run(&["survey", "survey.csv", "--md-unit", "ft", "--csv"]);
+    assert_eq!(r.code, Some(0), "{}", r.describe());
+    let last = r.stdout.lines().last().unwrap();
+    assert!(last.starts_with("304.800,"), "{last}");
+}
