@@ -636,7 +636,6 @@ fn typo_of_a_required_key_is_named() {
 }
 
 #[test]
-#[ignore = "known issue: minimum-curvature errors name the station number, not the file line and column"]
 fn survey_reversal_names_the_line() {
     let fx = Fixture::new();
     fx.write("survey.csv", "md,inc,azi\n0,0,0\n10,180,0\n20,0,0\n");

@@ -84,7 +84,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         "  mode {}, bit at {:.2} m MD, WOB {:.1} kN, {:.0} rpm",
         case.operation.mode.name(),
         b.md_m,
-        b.wob_n / 1e3,
+        b.wob_n / 1e3 + 0.0,
         case.operation.rpm
     );
     println!("  bit: build force {:+.3} kN, walk force {:+.3} kN, tilt inc {:+.4} deg, tilt azi {:+.4} deg, torque {:.2} kN.m",
@@ -98,6 +98,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         let near: Vec<String> = contacts
             .iter()
             .filter(|n| b.md_m - n.md_m < 60.0)
+            .take(6)
             .map(|n| {
                 format!(
                     "{:.1} m: {:.2} kN at {:.0} deg",

@@ -34,8 +34,10 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
                 angle: None,
             },
         )?;
-        let wp = WellPath::new(&sf.survey, Vec3::zeros())
-            .map_err(|p| crate::InputError::file(&a.input, format!("station {}: {}", p.index + 1, p.message)))?;
+        let wp = WellPath::new(&sf.survey, Vec3::zeros()).map_err(|p| {
+            let line = sf.station_lines.get(p.index).copied().unwrap_or(0);
+            crate::InputError::line(&a.input, line, Some("inc/azi"), p.message)
+        })?;
         (wp, sf.notes, a.input.display().to_string())
     };
     let table = survey_csv(&path).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;

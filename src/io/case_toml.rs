@@ -68,8 +68,10 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         .table("well")?
         .ok_or_else(|| top.error("well", "missing the [well] table (survey and hole sizes)"))?;
     let (survey_file, survey_path, origin, hole) = read_well(&well_sec, &dir, overrides)?;
-    let wellpath = WellPath::new(&survey_file.survey, origin)
-        .map_err(|p| InputError::file(&survey_path, format!("station {}: {}", p.index + 1, p.message)))?;
+    let wellpath = WellPath::new(&survey_file.survey, origin).map_err(|p| {
+        let line = survey_file.station_lines.get(p.index).copied().unwrap_or(0);
+        InputError::line(&survey_path, line, Some("inc/azi"), p.message)
+    })?;
 
     let mud = match top.table("mud")? {
         Some(s) => {

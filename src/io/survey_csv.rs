@@ -39,6 +39,8 @@ pub struct SurveyFile {
     pub azi_unit: String,
     /// Human notes, e.g. "md column `Measured depth` has no unit in its header: assumed ft (from the case file)".
     pub notes: Vec<String>,
+    /// 1-based line number of each station in the file (for errors found after reading).
+    pub station_lines: Vec<usize>,
 }
 
 /// Read and validate the survey CSV file at `path` (see the module documentation).
@@ -185,6 +187,7 @@ pub fn parse_survey_csv(text: &str, path: &Path, units: &SurveyUnits) -> InputRe
         inc_unit: inc_unit.name.to_string(),
         azi_unit: azi_unit.name.to_string(),
         notes,
+        station_lines: rows.iter().map(|r| r.line).collect(),
     })
 }
 
