@@ -37,9 +37,15 @@ pub struct GapInput {
     pub omega: f64,
     /// Normal to use when the offset is ~0 (previous contact direction).
     pub fallback_normal: Vec3,
-    /// Distance (m) within which a node just off the wall keeps its penalty spring in the
-    /// tangent (not in the force): damps open/close cycling at the edge of line contacts.
-    pub sticky_m: f64,
+    /// Smoothing width delta of the contact law, m (0: the sharp law `max(0, .)`). The normal
+    /// force is `R = k_n delta softplus((lambda + k_n g)/(k_n delta))`: a node within about delta
+    /// of the wall carries a small force that fades smoothly, the tolerance band of the
+    /// paper's Table 1, which lets Newton converge quadratically along line contacts.
+    pub smoothing_m: f64,
+    /// Contact status imposed by an active-set solver: `Some(true)` makes the gap bilateral
+    /// (the force `lambda + k_n g` may turn negative, telling the solver to release it),
+    /// `Some(false)` makes it carry nothing; `None` uses the unilateral law.
+    pub status: Option<bool>,
 }
 
 /// Result of one gap evaluation, global frame.
@@ -55,7 +61,7 @@ pub struct GapResponse {
     pub moment: Vec3,
     /// Stiffness `-dF/dx` of the normal force (friction is not linearized), N/m.
     pub stiffness: Matrix3<f64>,
-    /// Penalty active (`lambda + k_n (s - EO) > 0`).
+    /// Contact carries a force above a negligible level.
     pub active: bool,
     /// Radial distance minus clearance, m (> 0: penetration).
     pub penetration: f64,
@@ -69,17 +75,46 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
     let tiny = 1e-12;
     let n = if s > tiny { d / s } else { g.fallback_normal };
     let trial = g.lambda + g.k_n * (s - g.clearance);
-    let active = trial > 0.0;
-    let r = trial.max(0.0);
-    let in_tangent = trial > -g.k_n * g.sticky_m;
+    let (r, dr) = if let Some(closed) = g.status {
+        if closed {
+            (trial, g.k_n)
+        } else {
+            (0.0, 0.0)
+        }
+    } else if g.smoothing_m > 0.0 {
+        let f0 = g.k_n * g.smoothing_m;
+        let z = trial / f0;
+        // softplus and its derivative (logistic), evaluated without overflow
+        let sp = if z > 30.0 {
+            z
+        } else if z < -40.0 {
+            0.0
+        } else {
+            z.exp().ln_1p()
+        };
+        let sig = if z > 30.0 {
+            1.0
+        } else if z < -40.0 {
+            0.0
+        } else {
+            1.0 / (1.0 + (-z).exp())
+        };
+        (f0 * sp, g.k_n * sig)
+    } else if trial > 0.0 {
+        (trial, g.k_n)
+    } else {
+        (0.0, 0.0)
+    };
+    let active = r > 1e-3 * (g.k_n * g.smoothing_m).max(1e-9);
+    let in_tangent = dr > 0.0;
     let ptt = Matrix3::identity() - t * t.transpose();
     let mut k = Matrix3::zeros();
     if in_tangent {
         if s > tiny {
             let nn = n * n.transpose();
-            k += nn * g.k_n + (ptt - nn) * (r / s);
+            k += nn * dr + (ptt - nn) * (r / s);
         } else {
-            k += ptt * g.k_n;
+            k += ptt * dr;
         }
     }
     let mut force = -n * r;
@@ -88,7 +123,7 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
         let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
         let vn = v.norm();
         if vn > 1e-12 {
-            let ff = -v * (g.friction * r / vn);
+            let ff = -v * (g.friction * r.max(0.0) / vn);
             force += ff;
             moment = (n * g.contact_radius).cross(&ff);
         }
@@ -120,7 +155,8 @@ mod tests {
             axial_speed: 0.0,
             omega: 6.0,
             fallback_normal: Vec3::new(0.0, 1.0, 0.0),
-            sticky_m: 0.0,
+            smoothing_m: 0.0,
+            status: None,
         }
     }
 

@@ -64,6 +64,8 @@ pub struct Model {
     pub loads: Loads,
     /// Whether the axial-force/bending coupling is on (off only to demonstrate its effect).
     pub geometric_stiffness: bool,
+    /// Contact smoothing width relative to the clearance (the gap tolerance).
+    pub smoothing: f64,
 }
 
 /// Mutable solution state.
@@ -81,6 +83,8 @@ pub struct State {
     pub normal: Vec<Vec3>,
     /// Hook load (top axial force), N.
     pub hook_load_n: f64,
+    /// Contact status per node imposed by the active-set solver (None: unilateral law).
+    pub closed: Option<Vec<bool>>,
 }
 
 /// Everything evaluated at a state.
@@ -184,6 +188,7 @@ impl Model {
             k_n,
             loads,
             geometric_stiffness: true,
+            smoothing: 0.0,
         }
     }
 
@@ -226,6 +231,7 @@ impl Model {
             lambda: vec![0.0; nn],
             normal: self.md_ref.iter().map(|&m| -self.path.frame_at(m).h).collect(),
             hook_load_n: self.loads.hook_load_n.unwrap_or(0.0),
+            closed: None,
         }
     }
 
@@ -333,9 +339,10 @@ impl Model {
                 axial_speed: self.loads.axial_speed_m_s,
                 omega: self.loads.omega_rad_s,
                 fallback_normal: state.normal[i],
-                sticky_m: 0.01 * eo.max(1e-3),
+                smoothing_m: self.smoothing * eo.max(1e-3),
+                status: state.closed.as_ref().map(|c| c[i]),
             });
-            if g.normal_force > 0.0 || g.active {
+            if g.normal_force != 0.0 || g.active {
                 let qb = &self.basis[i];
                 let f = qb.transpose() * g.force;
                 let m = qb.transpose() * g.moment;

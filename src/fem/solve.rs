@@ -89,6 +89,12 @@ pub enum SolveError {
     },
 }
 
+/// Nodes closer than this to the bit start on the hole axis (not on the wall), m.
+pub const START_OFF_WALL_M: f64 = 5.0;
+
+/// Largest bending rotation increment allowed per iteration, rad.
+pub const MAX_BENDING_ROTATION_STEP: f64 = 0.02;
+
 /// Load scale used for relative residuals: total buoyed weight plus WOB, N.
 pub fn load_scale(model: &Model) -> f64 {
     let w: f64 = model
@@ -123,9 +129,9 @@ pub fn soft_string_start(model: &Model, state: &mut State) {
     if model.loads.hook_load_n.is_none() {
         state.hook_load_n = tension.max(0.0);
     }
-    let bha = model.mesh.nodes.iter().position(|n| n.s_m > 30.0).unwrap_or(nn);
-    for (i, li) in load.iter().enumerate().skip(bha) {
-        if !model.mesh.nodes[i].has_gap || li.norm() < 1e-6 {
+    for (i, li) in load.iter().enumerate() {
+        // near the bit the stiff assembly lifts off the wall: leave those nodes on the axis
+        if !model.mesh.nodes[i].has_gap || li.norm() < 1e-6 || model.mesh.nodes[i].s_m < START_OFF_WALL_M {
             continue;
         }
         let n = li.normalize();
@@ -178,11 +184,21 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
     let bordered = model.loads.hook_load_n.is_none();
     let scale = load_scale(model);
     let mut stats = SolveStats::default();
-    let mut prev_active: Vec<bool> = vec![false; model.nodes()];
     let mut flips = vec![0usize; model.nodes()];
     let mut converged = false;
     let mut ev;
-    let mut since_al = 0usize;
+    // Active-set strategy: the contact status of every gap is held fixed while Newton solves
+    // the (then smooth) problem, closed gaps acting as bilateral penalty springs; then gaps
+    // whose force turned negative open and open gaps that penetrate close (primal-dual active
+    // set, Hintermueller-Ito-Kunisch 2002), and the augmented-Lagrangian multipliers of closed
+    // gaps are updated until the penetration is within tolerance.
+    let mut newton_steps = 0usize;
+    if state.closed.is_none() {
+        let closed: Vec<bool> = (0..model.nodes())
+            .map(|i| model.mesh.nodes[i].has_gap && state.lambda[i] > 0.0)
+            .collect();
+        state.closed = Some(closed);
+    }
     loop {
         ev = model.evaluate(&mut state, Some(&mut k));
         // row of the bit axial DOF (free columns) before constraining
@@ -203,21 +219,14 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
         }
         let rn = residual_norm(model, &r, scale).max(c.abs() / scale);
         stats.residual_history.push(rn);
-        // contact consistency
         let mut pen: f64 = 0.0;
-        let mut changed = 0usize;
         for (i, g) in ev.gaps.iter().enumerate() {
             if let Some(g) = g {
                 let eo = ev.clearance[i].max(1e-3);
-                if g.normal_force > 0.0 {
-                    pen = pen.max(g.penetration / eo);
+                let closed = state.closed.as_ref().is_some_and(|cl| cl[i]);
+                if closed || g.penetration > 0.0 {
+                    pen = pen.max(g.penetration.abs() / eo);
                 }
-                let act = g.normal_force > 0.0;
-                if act != prev_active[i] {
-                    changed += 1;
-                    flips[i] += 1;
-                }
-                prev_active[i] = act;
             }
         }
         stats.max_penetration = pen;
@@ -233,29 +242,51 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
             iteration = stats.iterations,
             residual = rn,
             penetration = pen,
-            changed,
             hook_load = state.hook_load_n,
             "newton"
         );
-        if rn < ctl.residual_tolerance && changed == 0 && pen <= ctl.gap_tolerance {
-            converged = true;
-            break;
-        }
         if stats.iterations >= ctl.max_iterations {
             break;
         }
-        // augmented-Lagrangian update once the inner problem is nearly converged
-        if rn < 1e-4 && changed == 0 && pen > ctl.gap_tolerance && since_al > 0 {
+        if rn < ctl.residual_tolerance || (rn < 1e-2 && newton_steps >= 1) || newton_steps >= 6 {
+            newton_steps = 0;
+            // status update
+            let mut changes = 0usize;
+            let closed = state.closed.as_mut().expect("status set above");
             for (i, g) in ev.gaps.iter().enumerate() {
                 if let Some(g) = g {
-                    state.lambda[i] = g.normal_force;
+                    let eo = ev.clearance[i].max(1e-3);
+                    if closed[i] && g.normal_force < 0.0 {
+                        tracing::trace!(s = model.mesh.nodes[i].s_m, force = g.normal_force, "open");
+                        closed[i] = false;
+                        changes += 1;
+                        flips[i] += 1;
+                    } else if !closed[i] && g.penetration > ctl.gap_tolerance * eo {
+                        tracing::trace!(s = model.mesh.nodes[i].s_m, pen = g.penetration, "close");
+                        closed[i] = true;
+                        changes += 1;
+                        flips[i] += 1;
+                    }
                 }
             }
-            since_al = 0;
+            tracing::debug!(changes, "contact status update");
+            if changes == 0 {
+                if pen <= ctl.gap_tolerance && rn < ctl.residual_tolerance {
+                    converged = true;
+                    break;
+                }
+                // augmented-Lagrangian update of the closed gaps
+                for (i, g) in ev.gaps.iter().enumerate() {
+                    if let Some(g) = g {
+                        if closed[i] {
+                            state.lambda[i] = g.normal_force.max(0.0);
+                        }
+                    }
+                }
+            }
             stats.iterations += 1;
             continue;
         }
-        since_al += 1;
         for &d in &constrained {
             k.constrain_dof(d);
         }
@@ -294,6 +325,12 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
                 ratio = ratio.max(lat / ev.clearance[i].max(2e-3));
             }
         }
+        // and bending rotations to a few hundredths of a radian (the string stays within the hole,
+        // so large section rotations are never part of the solution)
+        for i in 0..model.nodes() {
+            let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
+            ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
+        }
         let mut alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
         // backtracking line search on the residual norm (globalizes the semi-smooth Newton
         // step across contact switches)
@@ -325,6 +362,8 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
             state.hook_load_n = hook_before + alpha * dh_total;
             model.update(&mut state, &du, alpha);
         }
+        tracing::debug!(alpha, cap = ratio, accepted, "step");
+        newton_steps += 1;
         stats.iterations += 1;
     }
     stats.chattering_nodes = flips
