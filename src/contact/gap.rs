@@ -46,6 +46,14 @@ pub struct GapInput {
     /// (the force `lambda + k_n g` may turn negative, telling the solver to release it),
     /// `Some(false)` makes it carry nothing; `None` uses the unilateral law.
     pub status: Option<bool>,
+    /// Vector multiplier (N) of a zero-clearance gap (full-gauge stabilizer or bit), which acts
+    /// as a frictional pin: force `-(lambda_vec + k_n d)`, smooth through `d = 0`.
+    pub lambda_vec: Vec3,
+    /// Normal force used for friction, N: the multiplier of the previous outer iteration, so
+    /// friction is constant while Newton converges (physics.md 4.4: "lag the friction"), and
+    /// exact at convergence where the multiplier equals the normal force. `None`: use the
+    /// current normal force.
+    pub friction_load: Option<f64>,
 }
 
 /// Result of one gap evaluation, global frame.
@@ -67,12 +75,55 @@ pub struct GapResponse {
     pub penetration: f64,
 }
 
+impl GapResponse {
+    /// The normal (wall) part of the force on the string, N: `-R n`.
+    pub fn force_normal(&self) -> Vec3 {
+        -self.normal * self.normal_force
+    }
+}
+
+/// Clearances at or below this (m) make the gap a pin (vector augmented Lagrangian).
+pub const ZERO_CLEARANCE_M: f64 = 1e-6;
+
+/// Zero-clearance gap: a lateral pin with vector multiplier, plus friction.
+fn pin(g: &GapInput, d: &Vec3, s: f64) -> GapResponse {
+    let t = g.t;
+    let ptt = Matrix3::identity() - t * t.transpose();
+    let fn_vec = -(g.lambda_vec - t * t.dot(&g.lambda_vec) + d * g.k_n);
+    let r = fn_vec.norm();
+    let n = if r > 1e-12 { -fn_vec / r } else { g.fallback_normal };
+    let mut force = fn_vec;
+    let mut moment = Vec3::zeros();
+    let rf = g.friction_load.unwrap_or(r).max(0.0);
+    if rf > 0.0 && g.friction > 0.0 {
+        let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
+        let vn = v.norm();
+        if vn > 1e-12 {
+            let ff = -v * (g.friction * rf / vn);
+            force += ff;
+            moment = (n * g.contact_radius).cross(&ff);
+        }
+    }
+    GapResponse {
+        normal_force: r,
+        normal: n,
+        force,
+        moment,
+        stiffness: ptt * g.k_n,
+        active: true,
+        penetration: s - g.clearance,
+    }
+}
+
 /// Evaluate the gap element.
 pub fn evaluate(g: &GapInput) -> GapResponse {
     let t = g.t;
     let d = g.offset - t * t.dot(&g.offset);
     let s = d.norm();
     let tiny = 1e-12;
+    if g.clearance <= ZERO_CLEARANCE_M {
+        return pin(g, &d, s);
+    }
     let n = if s > tiny { d / s } else { g.fallback_normal };
     let trial = g.lambda + g.k_n * (s - g.clearance);
     let (r, dr) = if let Some(closed) = g.status {
@@ -119,11 +170,16 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
     }
     let mut force = -n * r;
     let mut moment = Vec3::zeros();
-    if r > 0.0 && g.friction > 0.0 {
+    let rf = if r > 0.0 {
+        g.friction_load.unwrap_or(r).max(0.0)
+    } else {
+        0.0
+    };
+    if rf > 0.0 && g.friction > 0.0 {
         let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
         let vn = v.norm();
         if vn > 1e-12 {
-            let ff = -v * (g.friction * r.max(0.0) / vn);
+            let ff = -v * (g.friction * rf / vn);
             force += ff;
             moment = (n * g.contact_radius).cross(&ff);
         }
@@ -157,6 +213,8 @@ mod tests {
             fallback_normal: Vec3::new(0.0, 1.0, 0.0),
             smoothing_m: 0.0,
             status: None,
+            lambda_vec: Vec3::zeros(),
+            friction_load: None,
         }
     }
 

@@ -85,6 +85,10 @@ pub struct State {
     pub hook_load_n: f64,
     /// Contact status per node imposed by the active-set solver (None: unilateral law).
     pub closed: Option<Vec<bool>>,
+    /// Nodes that cycled between open and closed: they use the unilateral law instead.
+    pub free_law: Option<Vec<bool>>,
+    /// Vector multipliers of zero-clearance gaps, N.
+    pub lambda_vec: Vec<Vec3>,
 }
 
 /// Everything evaluated at a state.
@@ -232,6 +236,8 @@ impl Model {
             normal: self.md_ref.iter().map(|&m| -self.path.frame_at(m).h).collect(),
             hook_load_n: self.loads.hook_load_n.unwrap_or(0.0),
             closed: None,
+            free_law: None,
+            lambda_vec: vec![Vec3::zeros(); nn],
         }
     }
 
@@ -340,7 +346,17 @@ impl Model {
                 omega: self.loads.omega_rad_s,
                 fallback_normal: state.normal[i],
                 smoothing_m: self.smoothing * eo.max(1e-3),
-                status: state.closed.as_ref().map(|c| c[i]),
+                status: match (&state.closed, &state.free_law) {
+                    (_, Some(f)) if f[i] => None,
+                    (Some(c), _) => Some(c[i]),
+                    (None, _) => None,
+                },
+                lambda_vec: state.lambda_vec[i],
+                friction_load: Some(if eo <= crate::contact::gap::ZERO_CLEARANCE_M {
+                    state.lambda_vec[i].norm()
+                } else {
+                    state.lambda[i]
+                }),
             });
             if g.normal_force != 0.0 || g.active {
                 let qb = &self.basis[i];

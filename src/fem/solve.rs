@@ -92,6 +92,9 @@ pub enum SolveError {
 /// Nodes closer than this to the bit start on the hole axis (not on the wall), m.
 pub const START_OFF_WALL_M: f64 = 5.0;
 
+/// Status changes after which a gap leaves the active-set logic for the unilateral law.
+pub const MAX_STATUS_FLIPS: usize = 2;
+
 /// Largest bending rotation increment allowed per iteration, rad.
 pub const MAX_BENDING_ROTATION_STEP: f64 = 0.02;
 
@@ -224,7 +227,8 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
             if let Some(g) = g {
                 let eo = ev.clearance[i].max(1e-3);
                 let closed = state.closed.as_ref().is_some_and(|cl| cl[i]);
-                if closed || g.penetration > 0.0 {
+                let free = state.free_law.as_ref().is_some_and(|f| f[i]);
+                if (closed && !free) || g.penetration > 0.0 {
                     pen = pen.max(g.penetration.abs() / eo);
                 }
             }
@@ -253,8 +257,18 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
             // status update
             let mut changes = 0usize;
             let closed = state.closed.as_mut().expect("status set above");
+            let free = state.free_law.get_or_insert_with(|| vec![false; model.nodes()]);
             for (i, g) in ev.gaps.iter().enumerate() {
                 if let Some(g) = g {
+                    if free[i] {
+                        continue;
+                    }
+                    if flips[i] >= MAX_STATUS_FLIPS {
+                        // a cycling gap: let Newton treat it with the unilateral law
+                        free[i] = true;
+                        changes += 1;
+                        continue;
+                    }
                     let eo = ev.clearance[i].max(1e-3);
                     if closed[i] && g.normal_force < 0.0 {
                         tracing::trace!(s = model.mesh.nodes[i].s_m, force = g.normal_force, "open");
@@ -275,10 +289,15 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
                     converged = true;
                     break;
                 }
-                // augmented-Lagrangian update of the closed gaps
+                // augmented-Lagrangian update of the closed (and freely switching) gaps
                 for (i, g) in ev.gaps.iter().enumerate() {
                     if let Some(g) = g {
-                        if closed[i] {
+                        if ev.clearance[i] <= crate::contact::gap::ZERO_CLEARANCE_M {
+                            // pin: vector multiplier takes the whole current force
+                            state.lambda_vec[i] = -g.force_normal();
+                            continue;
+                        }
+                        if closed[i] || free[i] {
                             state.lambda[i] = g.normal_force.max(0.0);
                         }
                     }
