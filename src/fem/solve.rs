@@ -92,6 +92,10 @@ pub enum SolveError {
 /// Nodes closer than this to the bit start on the hole axis (not on the wall), m.
 pub const START_OFF_WALL_M: f64 = 5.0;
 
+/// A closed gap opens when its force is below minus this fraction of the load scale: a gap
+/// that is just touching (force and gap both ~0) is accepted either way instead of cycling.
+pub const RELEASE_FORCE_FRACTION: f64 = 1e-5;
+
 /// Status changes after which a gap leaves the active-set logic for the unilateral law.
 pub const MAX_STATUS_FLIPS: usize = 2;
 
@@ -270,7 +274,7 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
                         continue;
                     }
                     let eo = ev.clearance[i].max(1e-3);
-                    if closed[i] && g.normal_force < 0.0 {
+                    if closed[i] && g.normal_force < -RELEASE_FORCE_FRACTION * scale {
                         tracing::trace!(s = model.mesh.nodes[i].s_m, force = g.normal_force, "open");
                         closed[i] = false;
                         changes += 1;
