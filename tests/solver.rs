@@ -1,0 +1,238 @@
+//! Verification of the whole-string FEM (`drillpath solve`) against independent references.
+//!
+//! Each test states its reference and tolerance. The closed forms come from
+//! `drillpath::analytical` (written and tested separately from the FEM, physics.md 6).
+
+use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
+use drillpath::analytical::section::Tube;
+use drillpath::fem::model::Model;
+use drillpath::fem::results::{extract, SolveResults};
+use drillpath::fem::solve::{soft_string_start, solve, SolveControls};
+use drillpath::io::case_toml::{load_case, CaseOverrides};
+use std::path::Path;
+
+/// 6.5 in x 2-13/16 in steel collar, 8.5 in hole, 1.2 sg mud (physics.md 6.2).
+const OD: f64 = 6.5 * 0.0254;
+const ID: f64 = 2.8125 * 0.0254;
+const HOLE: f64 = 8.5 * 0.0254;
+
+struct Run {
+    res: SolveResults,
+    model: Model,
+}
+
+/// Solve a slick collar string in a straight hole of inclination `inc_deg`, azimuth `azi_deg`,
+/// `length_m` long, with `wob_kn` and BHA element length `el_m`.
+fn slick_collar(inc_deg: f64, azi_deg: f64, length_m: f64, wob_kn: f64, el_m: f64, geometric: bool) -> Run {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("survey.csv"),
+        format!("md_m,inc_deg,azi_deg\n0,{inc_deg},{azi_deg}\n{length_m},{inc_deg},{azi_deg}\n"),
+    )
+    .unwrap();
+    let case = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+wob = "{wob_kn} kN"
+rop = "0 m/h"
+friction = 0.0
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+[solver]
+element_length = "{el_m} m"
+bha_element_length = "{el_m} m"
+max_iterations = 1000
+"#
+    );
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    let mut model = Model::from_case(&case);
+    model.geometric_stiffness = geometric;
+    let mut state = model.initial_state();
+    soft_string_start(&model, &mut state);
+    let sol = solve(
+        &model,
+        state,
+        &SolveControls {
+            max_iterations: 1000,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        sol.converged,
+        "solve did not converge: {:?}",
+        sol.stats.residual_history.last()
+    );
+    let res = extract(&model, &sol, case.mud.density_kg_m3);
+    let _ = Path::new(".");
+    Run { res, model }
+}
+
+fn collar_properties() -> (f64, f64, f64) {
+    let tube = Tube::new(OD, ID).unwrap();
+    let ei = 207e9 * tube.second_moment();
+    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
+    (ei, w_b, (HOLE - OD) / 2.0)
+}
+
+#[test]
+fn pendulum_bha_matches_lubinski_with_variable_axial_force() {
+    // Reference: Lubinski (1953) pendulum, beam-column with the axial force varying with the
+    // axial weight, P(x) = WOB - w_b cos(I) x (physics.md 6.2, analytical::pendulum).
+    // Tolerance: 0.5% on side force and tilt (the issue asks 2%, aiming at 0.5%); measured
+    // agreement is better than 0.05% with 0.25 m elements.
+    let (ei, w_b, r) = collar_properties();
+    for &inc in &[3.0_f64, 10.0, 30.0, 60.0] {
+        for &wob_kn in &[0.0, 100.0] {
+            let run = slick_collar(inc, 45.0, 80.0, wob_kn, 0.25, true);
+            let i = inc.to_radians();
+            let reference =
+                variable_compression(ei, lateral_load(w_b, i), axial_gradient(w_b, i), wob_kn * 1e3, r).unwrap();
+            let fem_side = -run.res.bit.build_force_n; // bit pushes the rock to the low side
+            let fem_tilt = run.res.bit.tilt_inc_rad;
+            let e_f = (fem_side - reference.side_force) / reference.side_force;
+            let e_t = (fem_tilt - reference.tilt) / reference.tilt;
+            println!(
+                "inc {inc:>4} WOB {wob_kn:>5} kN: side force FEM {:.4} kN ref {:.4} kN ({:+.3}%), tilt FEM {:.5} deg ref {:.5} deg ({:+.3}%)",
+                fem_side / 1e3,
+                reference.side_force / 1e3,
+                100.0 * e_f,
+                fem_tilt.to_degrees(),
+                reference.tilt.to_degrees(),
+                100.0 * e_t
+            );
+            assert!(
+                e_f.abs() < 0.005,
+                "side force off by {:.2}% at {inc} deg, WOB {wob_kn} kN",
+                100.0 * e_f
+            );
+            assert!(
+                e_t.abs() < 0.005,
+                "tilt off by {:.2}% at {inc} deg, WOB {wob_kn} kN",
+                100.0 * e_t
+            );
+            assert!(
+                run.res.bit.walk_force_n.abs() < 1e-3,
+                "no walk force in a plane problem"
+            );
+            let scale = w_b * 80.0 + wob_kn * 1e3;
+            assert!(
+                (run.res.bit.wob_n - wob_kn * 1e3).abs() < 1e-5 * scale,
+                "WOB enforced: {}",
+                run.res.bit.wob_n
+            );
+        }
+    }
+}
+
+#[test]
+fn global_equilibrium_holds() {
+    // Reference: statics of the whole string (physics.md 6.7). The sum of all external forces
+    // (weight, wall, bit and top reactions, hook load) vanishes to 1e-6 of the largest term.
+    let run = slick_collar(30.0, 120.0, 80.0, 100.0, 0.25, true);
+    let rel = run.res.force_imbalance_n.norm() / run.res.largest_force_n;
+    println!("force imbalance {rel:.2e} of the largest force");
+    assert!(rel < 1e-6, "force imbalance {rel:e}");
+    let mrel = run.res.moment_imbalance_nm.norm() / (run.res.largest_force_n * 80.0);
+    println!("moment imbalance {mrel:.2e} of largest force x length");
+    assert!(mrel < 1e-6, "moment imbalance {mrel:e}");
+}
+
+#[test]
+fn mesh_convergence_of_bit_side_force() {
+    // Reference: the FEM itself under refinement; halving the element length at the default
+    // BHA mesh (0.25-0.5 m) changes the bit side force by less than 0.5%.
+    let sides: Vec<f64> = [1.0, 0.5, 0.25, 0.125]
+        .iter()
+        .map(|&el| {
+            let run = slick_collar(10.0, 0.0, 80.0, 100.0, el, true);
+            println!(
+                "element {el} m: side force {:.5} kN, tilt {:.5} deg",
+                -run.res.bit.build_force_n / 1e3,
+                run.res.bit.tilt_inc_rad.to_degrees()
+            );
+            -run.res.bit.build_force_n
+        })
+        .collect();
+    for k in 1..sides.len() {
+        println!("change {:.4}%", 100.0 * (sides[k] - sides[k - 1]) / sides[k]);
+    }
+    let change = ((sides[2] - sides[1]) / sides[2]).abs();
+    assert!(
+        change < 0.005,
+        "0.5 -> 0.25 m changes side force by {:.3}%",
+        100.0 * change
+    );
+    let change = ((sides[3] - sides[2]) / sides[3]).abs();
+    assert!(
+        change < 0.005,
+        "0.25 -> 0.125 m changes side force by {:.3}%",
+        100.0 * change
+    );
+}
+
+#[test]
+fn vertical_hole_has_no_side_force_or_tilt() {
+    // Reference: symmetry (physics.md 6.7): vertical hole, no rotation -> zero build and walk
+    // force and tilt (< 1e-6 kN); hook load = buoyed weight - WOB exactly.
+    let run = slick_collar(0.0, 0.0, 80.0, 50.0, 0.5, true);
+    assert!(run.res.bit.build_force_n.abs() < 1e-3 && run.res.bit.walk_force_n.abs() < 1e-3);
+    assert!(run.res.bit.tilt_inc_rad.abs() < 1e-9 && run.res.bit.tilt_azi_rad.abs() < 1e-9);
+    let (_, w_b, _) = collar_properties();
+    let weight = w_b * 80.0;
+    assert!(
+        (run.res.hook_load_n - (weight - 50e3)).abs() < 1e-6 * weight,
+        "hook load {}",
+        run.res.hook_load_n
+    );
+    let _ = &run.model;
+}
+
+#[test]
+fn azimuth_rotation_leaves_bit_forces_unchanged() {
+    // Reference: frame invariance (physics.md 6.7): rotating the whole well in azimuth leaves
+    // build force, walk force and tilts unchanged (tolerance 1e-6 relative).
+    let a = slick_collar(25.0, 10.0, 80.0, 80.0, 0.5, true);
+    let b = slick_collar(25.0, 247.0, 80.0, 80.0, 0.5, true);
+    let rel = |x: f64, y: f64| (x - y).abs() / x.abs().max(1.0);
+    assert!(rel(a.res.bit.build_force_n, b.res.bit.build_force_n) < 1e-6);
+    assert!((a.res.bit.walk_force_n - b.res.bit.walk_force_n).abs() < 1e-3);
+    assert!(rel(a.res.bit.tilt_inc_rad, b.res.bit.tilt_inc_rad) < 1e-6);
+    assert!(rel(a.res.hook_load_n, b.res.hook_load_n) < 1e-9);
+}
+
+#[test]
+fn axial_force_effect_on_side_force_matches_beam_column() {
+    // The axial force's effect on bending (geometric stiffness) is what makes WOB change BHA
+    // side forces: a model without it gives the same side force at any WOB. Reference: the
+    // change of the Lubinski side force from WOB 0 to 100 kN at 10 and 30 deg
+    // (analytical::pendulum, variable axial force); tolerance 2% of that change.
+    let (ei, w_b, r) = collar_properties();
+    for &inc in &[10.0_f64, 30.0] {
+        let i = inc.to_radians();
+        let r0 = variable_compression(ei, lateral_load(w_b, i), axial_gradient(w_b, i), 0.0, r).unwrap();
+        let r1 = variable_compression(ei, lateral_load(w_b, i), axial_gradient(w_b, i), 100e3, r).unwrap();
+        let f0 = -slick_collar(inc, 0.0, 80.0, 0.0, 0.25, true).res.bit.build_force_n;
+        let f1 = -slick_collar(inc, 0.0, 80.0, 100.0, 0.25, true).res.bit.build_force_n;
+        let (d_fem, d_ref) = (f1 - f0, r1.side_force - r0.side_force);
+        println!(
+            "inc {inc}: side force change with 100 kN WOB: FEM {:.4} kN, reference {:.4} kN",
+            d_fem / 1e3,
+            d_ref / 1e3
+        );
+        assert!(d_ref.abs() > 0.1 * r0.side_force, "the reference effect is significant");
+        assert!(
+            ((d_fem - d_ref) / d_ref).abs() < 0.02,
+            "WOB effect off: {d_fem} vs {d_ref}"
+        );
+    }
+}
