@@ -21,6 +21,7 @@ pub mod fem;
 pub mod geometry;
 pub mod io;
 pub mod report;
+pub mod softstring;
 pub mod string;
 pub mod units;
 

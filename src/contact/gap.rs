@@ -59,7 +59,8 @@ pub struct GapInput {
 /// Result of one gap evaluation, global frame.
 #[derive(Debug, Clone, Copy)]
 pub struct GapResponse {
-    /// Wall normal reaction R >= 0, N.
+    /// Wall normal reaction R (N; >= 0 except for a closed gap held by an active-set solver,
+    /// where a negative value means the gap wants to open).
     pub normal_force: f64,
     /// Outward unit normal n (from the axis toward the contact).
     pub normal: Vec3,
@@ -67,8 +68,11 @@ pub struct GapResponse {
     pub force: Vec3,
     /// Moment of the friction force about the node, N.m.
     pub moment: Vec3,
-    /// Stiffness `-dF/dx` of the normal force (friction is not linearized), N/m.
+    /// Stiffness `-dF/dx` of the total wall force (normal and friction), N/m; unsymmetric
+    /// when friction acts.
     pub stiffness: Matrix3<f64>,
+    /// `-dM/dx` of the friction moment with respect to the node position, N.
+    pub moment_stiffness: Matrix3<f64>,
     /// Contact carries a force above a negligible level.
     pub active: bool,
     /// Radial distance minus clearance, m (> 0: penetration).
@@ -85,114 +89,93 @@ impl GapResponse {
 /// Clearances at or below this (m) make the gap a pin (vector augmented Lagrangian).
 pub const ZERO_CLEARANCE_M: f64 = 1e-6;
 
-/// Zero-clearance gap: a lateral pin with vector multiplier, plus friction.
-fn pin(g: &GapInput, d: &Vec3, s: f64) -> GapResponse {
-    let t = g.t;
-    let ptt = Matrix3::identity() - t * t.transpose();
-    let fn_vec = -(g.lambda_vec - t * t.dot(&g.lambda_vec) + d * g.k_n);
-    let r = fn_vec.norm();
-    let n = if r > 1e-12 { -fn_vec / r } else { g.fallback_normal };
-    let mut force = fn_vec;
-    let mut moment = Vec3::zeros();
-    let rf = g.friction_load.unwrap_or(r).max(0.0);
-    if rf > 0.0 && g.friction > 0.0 {
-        let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
-        let vn = v.norm();
-        if vn > 1e-12 {
-            let ff = -v * (g.friction * rf / vn);
-            force += ff;
-            moment = (n * g.contact_radius).cross(&ff);
-        }
-    }
-    GapResponse {
-        normal_force: r,
-        normal: n,
-        force,
-        moment,
-        stiffness: ptt * g.k_n,
-        active: true,
-        penetration: s - g.clearance,
-    }
-}
-
-/// Evaluate the gap element.
+/// Evaluate the gap element: normal force law, friction, and their consistent derivatives.
 pub fn evaluate(g: &GapInput) -> GapResponse {
     let t = g.t;
-    let d = g.offset - t * t.dot(&g.offset);
+    let ptt = Matrix3::identity() - t * t.transpose();
+    let d = ptt * g.offset;
     let s = d.norm();
     let tiny = 1e-12;
-    if g.clearance <= ZERO_CLEARANCE_M {
-        return pin(g, &d, s);
-    }
-    let n = if s > tiny { d / s } else { g.fallback_normal };
-    let trial = g.lambda + g.k_n * (s - g.clearance);
-    let (r, dr) = if let Some(closed) = g.status {
-        if closed {
+    // Normal law: R, n, dR/dx (as a vector) and dn/dx.
+    let (r, n, dr_dx, dn_dx, active) = if g.clearance <= ZERO_CLEARANCE_M {
+        // pin: p = lambda_perp + k_n d, R = |p|, n = p / R
+        let p = ptt * g.lambda_vec + d * g.k_n;
+        let r = p.norm();
+        if r > tiny {
+            let n = p / r;
+            (r, n, n * g.k_n, (ptt - n * n.transpose()) * (g.k_n / r), true)
+        } else {
+            (0.0, g.fallback_normal, Vec3::zeros(), ptt * 0.0, true)
+        }
+    } else {
+        let n = if s > tiny { d / s } else { g.fallback_normal };
+        let dn = if s > tiny { (ptt - n * n.transpose()) / s } else { Matrix3::zeros() };
+        let trial = g.lambda + g.k_n * (s - g.clearance);
+        let (r, dr) = if let Some(closed) = g.status {
+            if closed {
+                (trial, g.k_n)
+            } else {
+                (0.0, 0.0)
+            }
+        } else if g.smoothing_m > 0.0 {
+            let f0 = g.k_n * g.smoothing_m;
+            let z = trial / f0;
+            let sp = if z > 30.0 {
+                z
+            } else if z < -40.0 {
+                0.0
+            } else {
+                z.exp().ln_1p()
+            };
+            let sig = if z > 30.0 {
+                1.0
+            } else if z < -40.0 {
+                0.0
+            } else {
+                1.0 / (1.0 + (-z).exp())
+            };
+            (f0 * sp, g.k_n * sig)
+        } else if trial > 0.0 {
             (trial, g.k_n)
         } else {
             (0.0, 0.0)
-        }
-    } else if g.smoothing_m > 0.0 {
-        let f0 = g.k_n * g.smoothing_m;
-        let z = trial / f0;
-        // softplus and its derivative (logistic), evaluated without overflow
-        let sp = if z > 30.0 {
-            z
-        } else if z < -40.0 {
-            0.0
-        } else {
-            z.exp().ln_1p()
         };
-        let sig = if z > 30.0 {
-            1.0
-        } else if z < -40.0 {
-            0.0
-        } else {
-            1.0 / (1.0 + (-z).exp())
-        };
-        (f0 * sp, g.k_n * sig)
-    } else if trial > 0.0 {
-        (trial, g.k_n)
-    } else {
-        (0.0, 0.0)
+        let active = r > 1e-3 * (g.k_n * g.smoothing_m).max(1e-9);
+        (r, n, n * dr, dn, active)
     };
-    let active = r > 1e-3 * (g.k_n * g.smoothing_m).max(1e-9);
-    let in_tangent = dr > 0.0;
-    let ptt = Matrix3::identity() - t * t.transpose();
-    let mut k = Matrix3::zeros();
-    if in_tangent {
-        if s > tiny {
-            let nn = n * n.transpose();
-            k += nn * dr + (ptt - nn) * (r / s);
-        } else {
-            k += ptt * dr;
-        }
+    let mut stiffness = n * dr_dx.transpose() + dn_dx * r;
+    if g.clearance > ZERO_CLEARANCE_M && s <= tiny && dr_dx.norm() > 0.0 {
+        // closed gap sitting on the axis: isotropic lateral spring
+        stiffness = ptt * dr_dx.norm();
     }
     let mut force = -n * r;
     let mut moment = Vec3::zeros();
-    let rf = if r > 0.0 {
-        g.friction_load.unwrap_or(r).max(0.0)
-    } else {
-        0.0
-    };
+    let mut moment_stiffness = Matrix3::zeros();
+    let rf = r.max(0.0);
     if rf > 0.0 && g.friction > 0.0 {
         let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
         let vn = v.norm();
         if vn > 1e-12 {
-            let ff = -v * (g.friction * rf / vn);
+            let vh = v / vn;
+            let dv = skew(&t) * dn_dx * (g.omega * g.contact_radius);
+            let dvh = (Matrix3::identity() - vh * vh.transpose()) * dv / vn;
+            let ff = -vh * (g.friction * rf);
+            // dF_f/dx = -f (vh dR^T + R dvh)
+            let dff = -(vh * dr_dx.transpose() + dvh * rf) * g.friction;
             force += ff;
-            moment = (n * g.contact_radius).cross(&ff);
+            stiffness -= dff;
+            let rn = n * g.contact_radius;
+            moment = rn.cross(&ff);
+            // dM/dx = R_c ([n]x dF_f - [F_f]x dn)
+            let dm = (skew(&n) * dff - skew(&ff) * dn_dx) * g.contact_radius;
+            moment_stiffness = -dm;
         }
     }
-    GapResponse {
-        normal_force: r,
-        normal: n,
-        force,
-        moment,
-        stiffness: k,
-        active,
-        penetration: s - g.clearance,
-    }
+    GapResponse { normal_force: r, normal: n, force, moment, stiffness, moment_stiffness, active, penetration: s - g.clearance }
+}
+
+fn skew(v: &Vec3) -> Matrix3<f64> {
+    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
 }
 
 #[cfg(test)]

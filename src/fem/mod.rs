@@ -1,6 +1,7 @@
 //! Finite element model of the whole string.
 
 pub mod band;
+pub mod band_lu;
 pub mod beam;
 pub mod corotational;
 pub mod mesh;

@@ -7,6 +7,7 @@
 //! assembly, where contacts change most, sits at the end of the band (tail refactoring).
 
 use super::band::BandMatrix;
+use super::band_lu::GeneralBand;
 use super::beam::BeamSection;
 use super::corotational::{element_response, ElementResponse, ElementState};
 use super::mesh::{build_mesh, Mesh};
@@ -21,6 +22,33 @@ pub const HALF_BANDWIDTH: usize = 11;
 /// Penalty stiffness of a gap element as a multiple of EI/l^3 of its element; the
 /// augmented-Lagrangian updates remove the penetration it leaves.
 pub const PENALTY_FACTOR: f64 = 10.0;
+
+/// Where assembled stiffness blocks go: the symmetric band (lower triangle read) or the
+/// general band (all entries read).
+pub trait StiffnessSink {
+    /// Zero all entries.
+    fn clear(&mut self);
+    /// `A[dofs[r], dofs[c]] += k[r * ld + c]`.
+    fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize);
+}
+
+impl StiffnessSink for BandMatrix {
+    fn clear(&mut self) {
+        self.fill_zero();
+    }
+    fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
+        BandMatrix::add_block(self, dofs, k, ld);
+    }
+}
+
+impl StiffnessSink for GeneralBand {
+    fn clear(&mut self) {
+        self.fill_zero();
+    }
+    fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
+        GeneralBand::add_block(self, dofs, k, ld);
+    }
+}
 
 /// Loads and kinematics of the operation, SI.
 #[derive(Debug, Clone, Copy)]
@@ -196,6 +224,11 @@ impl Model {
         }
     }
 
+    /// True when friction acts on a moving string: the consistent tangent is then unsymmetric.
+    pub fn needs_unsymmetric(&self) -> bool {
+        self.friction.iter().any(|&f| f > 0.0) && (self.loads.omega_rad_s > 0.0 || self.loads.axial_speed_m_s != 0.0)
+    }
+
     /// Number of nodes.
     pub fn nodes(&self) -> usize {
         self.mesh.nodes.len()
@@ -263,12 +296,12 @@ impl Model {
 
     /// Evaluate residual (and, if `k` is given, assemble the tangent into it) at `state`.
     /// Updates each node's nearest-axis MD in `state.md`.
-    pub fn evaluate(&self, state: &mut State, k: Option<&mut BandMatrix>) -> Evaluation {
+    pub fn evaluate(&self, state: &mut State, k: Option<&mut dyn StiffnessSink>) -> Evaluation {
         let nn = self.nodes();
         let mut r = vec![0.0; self.dofs()];
         let mut kmat = k;
         if let Some(km) = kmat.as_deref_mut() {
-            km.fill_zero();
+            km.clear();
         }
         let mut elements = Vec::with_capacity(nn - 1);
         let ed = Vec3::new(0.0, 0.0, 1.0);
@@ -352,11 +385,7 @@ impl Model {
                     (None, _) => None,
                 },
                 lambda_vec: state.lambda_vec[i],
-                friction_load: Some(if eo <= crate::contact::gap::ZERO_CLEARANCE_M {
-                    state.lambda_vec[i].norm()
-                } else {
-                    state.lambda[i]
-                }),
+                friction_load: None,
             });
             if g.normal_force != 0.0 || g.active {
                 let qb = &self.basis[i];
@@ -367,9 +396,19 @@ impl Model {
                     r[self.dof(i, 3 + k)] -= m[k];
                 }
                 if let Some(km) = kmat.as_deref_mut() {
-                    let kl = qb.transpose() * g.stiffness * qb;
-                    let d: Vec<usize> = (0..3).map(|k| self.dof(i, k)).collect();
-                    km.add_block(&d, kl.transpose().as_slice(), 3);
+                    // 6x6 block of the node: translations <- translations (wall force) and
+                    // rotations <- translations (friction moment); row-major
+                    let kt = qb.transpose() * g.stiffness * qb;
+                    let kr = qb.transpose() * g.moment_stiffness * qb;
+                    let mut blk = [0.0; 36];
+                    for r in 0..3 {
+                        for c in 0..3 {
+                            blk[r * 6 + c] = kt[(r, c)];
+                            blk[(r + 3) * 6 + c] = kr[(r, c)];
+                        }
+                    }
+                    let d: Vec<usize> = (0..6).map(|k| self.dof(i, k)).collect();
+                    km.add_block(&d, &blk, 6);
                 }
                 state.normal[i] = g.normal;
             }

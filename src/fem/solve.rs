@@ -7,7 +7,9 @@
 //! with two back-substitutions of the same factor). Friction enters the residual exactly and
 //! is lagged in the tangent.
 
-use super::band::{BandLdlt, BandMatrix};
+use super::band::{BandLdlt, BandMatrix, FactorError};
+use super::band_lu::{BandLu, GeneralBand};
+use super::model::StiffnessSink;
 use super::model::{Evaluation, Model, State, HALF_BANDWIDTH};
 use crate::case::Method;
 use crate::geometry::Vec3;
@@ -175,6 +177,52 @@ fn residual_norm(model: &Model, r: &[f64], scale: f64) -> f64 {
     m / scale
 }
 
+/// The global tangent and its factor: symmetric LDL^T, or LU when friction makes the
+/// consistent tangent unsymmetric.
+enum Linear {
+    Symmetric(BandMatrix, BandLdlt),
+    General(GeneralBand, BandLu),
+}
+
+impl Linear {
+    fn sink(&mut self) -> &mut dyn StiffnessSink {
+        match self {
+            Linear::Symmetric(k, _) => k,
+            Linear::General(k, _) => k,
+        }
+    }
+    fn get(&self, i: usize, j: usize) -> f64 {
+        match self {
+            Linear::Symmetric(k, _) => k.get(i, j),
+            Linear::General(k, _) => k.get(i, j),
+        }
+    }
+    fn constrain(&mut self, d: usize) {
+        match self {
+            Linear::Symmetric(k, _) => k.constrain_dof(d),
+            Linear::General(k, _) => k.constrain_dof(d),
+        }
+    }
+    fn factor(&mut self) -> Result<(), FactorError> {
+        match self {
+            Linear::Symmetric(k, f) => f.factor(k),
+            Linear::General(k, f) => f.factor(k),
+        }
+    }
+    fn solve(&self, x: &mut [f64]) {
+        match self {
+            Linear::Symmetric(_, f) => f.solve_in_place(x),
+            Linear::General(_, f) => f.solve_in_place(x),
+        }
+    }
+    fn negative_pivots(&self) -> usize {
+        match self {
+            Linear::Symmetric(_, f) => f.negative_pivots(),
+            Linear::General(..) => 0,
+        }
+    }
+}
+
 /// Solve the static problem from `state`.
 pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
     if ctl.method == Method::Paper {
@@ -182,8 +230,11 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
     }
     let t0 = Instant::now();
     let n = model.dofs();
-    let mut k = BandMatrix::zeros(n, HALF_BANDWIDTH);
-    let mut ldlt = BandLdlt::new(n, HALF_BANDWIDTH);
+    let mut lin = if model.needs_unsymmetric() {
+        Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
+    } else {
+        Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
+    };
     let constrained = model.constrained_dofs();
     let top = model.nodes() - 1;
     let bit_ax = model.dof(0, 0);
@@ -207,13 +258,13 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
         state.closed = Some(closed);
     }
     loop {
-        ev = model.evaluate(&mut state, Some(&mut k));
+        ev = model.evaluate(&mut state, Some(lin.sink()));
         // row of the bit axial DOF (free columns) before constraining
         let kb: Vec<(usize, f64)> = (0..6)
             .map(|c| model.dof(0, c))
             .chain((0..6).map(|c| model.dof(1, c)))
             .filter(|d| !constrained.contains(d))
-            .map(|d| (d, k.get(bit_ax, d)))
+            .map(|d| (d, lin.get(bit_ax, d)))
             .collect();
         let c = if bordered {
             ev.residual[bit_ax] + model.loads.wob_n
@@ -311,27 +362,24 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
             continue;
         }
         for &d in &constrained {
-            k.constrain_dof(d);
+            lin.constrain(d);
         }
-        if let Err(e) = ldlt.factor(&k) {
-            let dof = match e {
-                super::band::FactorError::ZeroPivot { column, .. } => column,
-            };
+        if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
             return Err(SolveError::Singular {
                 dof,
                 node: model.nodes() - 1 - dof / 6,
-                detail: e.to_string(),
+                detail: format!("zero pivot {pivot:e}"),
             });
         }
         stats.factorizations += 1;
-        stats.negative_pivots = ldlt.negative_pivots();
+        stats.negative_pivots = lin.negative_pivots();
         let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
-        ldlt.solve_in_place(&mut a);
+        lin.solve(&mut a);
         let hook_before = state.hook_load_n;
         let du = if bordered {
             let mut b = vec![0.0; n];
             b[top_ax] = 1.0;
-            ldlt.solve_in_place(&mut b);
+            lin.solve(&mut b);
             let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
             let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
             let dh = if kbb.abs() > 1e-30 { (c + kba) / kbb } else { 0.0 };

@@ -1,0 +1,201 @@
+//! General (unsymmetric) band matrix and its LU factorization without pivoting.
+//!
+//! Friction makes the consistent tangent unsymmetric (the friction force is proportional to
+//! the normal force and follows the contact normal), so the contact solver factors it with
+//! this LU when friction acts on a moving string; the symmetric [`super::band::BandLdlt`] is
+//! used otherwise. Storage: row-major band, row `i` holds columns `i - b ..= i + b` at offsets
+//! `0 ..= 2b`. No pivoting: the stiffness is dominated by its symmetric part (elastic, penalty
+//! springs), and a zero or non-finite pivot is reported, never divided by.
+
+use super::band::FactorError;
+
+/// Square band matrix with half-bandwidth `b` (entries with `|i - j| <= b`).
+#[derive(Debug, Clone)]
+pub struct GeneralBand {
+    n: usize,
+    b: usize,
+    w: usize,
+    data: Vec<f64>,
+    constraint_scale: Option<f64>,
+}
+
+impl GeneralBand {
+    /// Zero matrix of order `n`, half-bandwidth `b`.
+    pub fn zeros(n: usize, b: usize) -> Self {
+        let w = 2 * b + 1;
+        GeneralBand { n, b, w, data: vec![0.0; n * w], constraint_scale: None }
+    }
+    /// Order.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+    #[inline]
+    fn idx(&self, i: usize, j: usize) -> usize {
+        debug_assert!(i.abs_diff(j) <= self.b);
+        i * self.w + (j + self.b - i)
+    }
+    /// Entry (i, j), 0 outside the band.
+    pub fn get(&self, i: usize, j: usize) -> f64 {
+        if i.abs_diff(j) > self.b {
+            0.0
+        } else {
+            self.data[self.idx(i, j)]
+        }
+    }
+    /// Add `v` to entry (i, j) (must be inside the band).
+    pub fn add(&mut self, i: usize, j: usize, v: f64) {
+        assert!(i.abs_diff(j) <= self.b && i < self.n && j < self.n, "GeneralBand::add outside the band");
+        let k = self.idx(i, j);
+        self.data[k] += v;
+    }
+    /// Set all entries to zero (keeps the constraint scale).
+    pub fn fill_zero(&mut self) {
+        self.data.fill(0.0);
+    }
+    /// Scatter a dense block (row-major, leading dimension `ld`): `A[dofs[r], dofs[c]] += k[r*ld + c]`.
+    pub fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
+        for (r, &gr) in dofs.iter().enumerate() {
+            for (c, &gc) in dofs.iter().enumerate() {
+                self.add(gr, gc, k[r * ld + c]);
+            }
+        }
+    }
+    /// Homogeneous Dirichlet condition on DOF `i`: zero row and column, diagonal = a fixed
+    /// scale (mean |diagonal| at the first call), as [`super::band::BandMatrix::constrain_dof`].
+    pub fn constrain_dof(&mut self, i: usize) {
+        let s = match self.constraint_scale {
+            Some(s) => s,
+            None => {
+                let (sum, cnt) =
+                    (0..self.n).map(|j| self.get(j, j).abs()).filter(|v| *v > 0.0).fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+                let s = if cnt > 0 && sum.is_finite() { sum / cnt as f64 } else { 1.0 };
+                self.constraint_scale = Some(s);
+                s
+            }
+        };
+        let lo = i.saturating_sub(self.b);
+        let hi = (i + self.b).min(self.n - 1);
+        for j in lo..=hi {
+            let a = self.idx(i, j);
+            self.data[a] = 0.0;
+            let a = self.idx(j, i);
+            self.data[a] = 0.0;
+        }
+        let d = self.idx(i, i);
+        self.data[d] = s;
+    }
+    /// `y = A x`.
+    pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
+        for i in 0..self.n {
+            let lo = i.saturating_sub(self.b);
+            let hi = (i + self.b).min(self.n - 1);
+            y[i] = (lo..=hi).map(|j| self.data[self.idx(i, j)] * x[j]).sum();
+        }
+    }
+}
+
+/// LU factor (Doolittle, no pivoting) of a [`GeneralBand`], stored in place of a copy.
+#[derive(Debug, Clone)]
+pub struct BandLu {
+    f: GeneralBand,
+    ok: bool,
+}
+
+impl BandLu {
+    /// Allocate for order `n`, half-bandwidth `b`.
+    pub fn new(n: usize, b: usize) -> Self {
+        BandLu { f: GeneralBand::zeros(n, b), ok: false }
+    }
+
+    /// Factor `a` = L U (unit lower L).
+    pub fn factor(&mut self, a: &GeneralBand) -> Result<(), FactorError> {
+        self.f.data.copy_from_slice(&a.data);
+        self.ok = false;
+        let (n, b, w) = (self.f.n, self.f.b, self.f.w);
+        let amax = (0..n).map(|j| a.get(j, j).abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        let data = &mut self.f.data;
+        for k in 0..n {
+            let pivot = data[k * w + b];
+            if !pivot.is_finite() || pivot.abs() <= 1e-14 * amax {
+                return Err(FactorError::ZeroPivot { column: k, pivot });
+            }
+            let hi = (k + b).min(n - 1);
+            for i in k + 1..=hi {
+                // l_ik = a_ik / u_kk
+                let lik = data[i * w + (k + b - i)] / pivot;
+                data[i * w + (k + b - i)] = lik;
+                if lik != 0.0 {
+                    for j in k + 1..=hi {
+                        let ukj = data[k * w + (j + b - k)];
+                        data[i * w + (j + b - i)] -= lik * ukj;
+                    }
+                }
+            }
+        }
+        self.ok = true;
+        Ok(())
+    }
+
+    /// Solve `A x = rhs` in place.
+    pub fn solve_in_place(&self, x: &mut [f64]) {
+        assert!(self.ok, "BandLu::solve_in_place without a valid factor");
+        let (n, b, w) = (self.f.n, self.f.b, self.f.w);
+        let data = &self.f.data;
+        for i in 0..n {
+            let lo = i.saturating_sub(b);
+            let mut acc = x[i];
+            for j in lo..i {
+                acc -= data[i * w + (j + b - i)] * x[j];
+            }
+            x[i] = acc;
+        }
+        for i in (0..n).rev() {
+            let hi = (i + b).min(n - 1);
+            let mut acc = x[i];
+            for j in i + 1..=hi {
+                acc -= data[i * w + (j + b - i)] * x[j];
+            }
+            x[i] = acc / data[i * w + b];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{DMatrix, DVector};
+
+    #[test]
+    fn lu_matches_dense_solve_on_unsymmetric_band() {
+        let (n, b) = (40, 5);
+        let mut a = GeneralBand::zeros(n, b);
+        let mut dense = DMatrix::<f64>::zeros(n, n);
+        for i in 0..n {
+            for j in i.saturating_sub(b)..=(i + b).min(n - 1) {
+                let v = if i == j { 20.0 + i as f64 } else { ((i * 7 + j * 3) % 11) as f64 / 11.0 - 0.4 };
+                a.add(i, j, v);
+                dense[(i, j)] = v;
+            }
+        }
+        let rhs: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+        let mut x = rhs.clone();
+        let mut lu = BandLu::new(n, b);
+        lu.factor(&a).unwrap();
+        lu.solve_in_place(&mut x);
+        let xd = dense.lu().solve(&DVector::from_vec(rhs)).unwrap();
+        for i in 0..n {
+            assert!((x[i] - xd[i]).abs() < 1e-12, "{i}");
+        }
+        let mut y = vec![0.0; n];
+        a.mul_vec(&x, &mut y);
+    }
+
+    #[test]
+    fn zero_pivot_is_reported() {
+        let mut a = GeneralBand::zeros(3, 1);
+        a.add(0, 0, 1.0);
+        a.add(1, 1, 0.0);
+        a.add(2, 2, 1.0);
+        assert!(BandLu::new(3, 1).factor(&a).is_err());
+    }
+}

@@ -1,0 +1,404 @@
+//! Soft-string torque and drag (Johancsik, Friesen & Dawson 1984; physics.md 6.5).
+//!
+//! The string is a cable lying on the hole axis: no bending stiffness, no clearance. It is
+//! integrated element by element from the bit up. For an element with lower (deeper) end
+//! `s_lo` and upper end `s_up`, length `dL`, buoyed weight `W = w_b dL`, unit tangents `t_lo`,
+//! `t_up` (down the hole, from [`WellPath::point_at`]) and `tbar = (t_lo + t_up)/|t_lo + t_up|`:
+//!
+//! ```text
+//! lateral load  G = F_lo (t_lo - t_up) + W e_D            e_D = (0, 0, 1), gravity
+//! normal force  N = |G - (G.tbar) tbar|                  (force on the wall, N)
+//! axial         F_up = F_lo + w_b (TVD_lo - TVD_up) - f N v_a / |v|
+//! torque        M_up = M_lo + f N R_c (Omega R_c) / |v|
+//!               |v| = sqrt(v_a^2 + (Omega R_c)^2)
+//! ```
+//!
+//! The weight term `w_b (TVD_lo - TVD_up)` is the exact integral of the axial weight
+//! component `w_b cos I` over the element's arc; it equals `W cos(I_bar) = W (tbar.e_D)` times
+//! `sin(beta/2)/(beta/2)` (beta the element's dogleg), i.e. the two agree to `beta^2/24`
+//! (1.3e-7 for 1 m elements at 3 deg/30 m). With it the hook load without axial motion is
+//! `sum w_b dTVD` to round-off on any path (physics.md 6.5 exact check (a)).
+//!
+//! Sign conventions: tension positive (effective force, physics.md 2.2); `v_a > 0` is the
+//! string moving down the hole (running in, drilling ahead), so wall friction acts up-hole and
+//! reduces the tension increase going up; pulling out (`v_a < 0`) increases the hook load.
+//! Torque is positive in the sense of rotation (`Omega > 0`, clockwise seen from above).
+//! At the bit, `F = -WOB` (compression) and `M = T_b`.
+//!
+//! When there is no motion at all (`v_a = 0` and `Omega = 0`) the direction of friction is
+//! undetermined; the string is then treated as frictionless and the result says so
+//! ([`SoftStringResult::frictionless`]).
+//!
+//! Not included: mud drag torque (physics.md 2.4, ~10 N.m per 1000 m, negligible), the
+//! hole diameter (the cable lies on the axis), bending stiffness. See physics.md 6.6 for how
+//! the stiff FEM torque differs in straight sections (factor `1/sqrt(1 + f^2)`).
+
+use crate::case::{Case, Mode};
+use crate::geometry::{HoleSize, Vec3, WellPath};
+use crate::string::{Component, ComponentKind, DrillString};
+
+/// Inputs of a soft-string pass, SI units.
+#[derive(Debug, Clone, Copy)]
+pub struct SoftStringInput<'a> {
+    /// Hole axis (minimum curvature).
+    pub path: &'a WellPath,
+    /// Hole sizes; only the per-section friction coefficients are used (they override
+    /// [`SoftStringInput::friction`] where given).
+    pub hole: &'a HoleSize,
+    /// The string, components from the bit upward; its top is at `bit_md_m - length`.
+    pub string: &'a DrillString,
+    /// Mud density inside and outside the string, kg/m3 (buoyed weight per physics.md 2.2).
+    pub mud_density_kg_m3: f64,
+    /// Measured depth of the bit face, m.
+    pub bit_md_m: f64,
+    /// Weight on bit, N (>= 0 on bottom; 0 off bottom). The bit boundary is `F = -WOB`.
+    pub wob_n: f64,
+    /// Bit torque, N.m, in the sense of rotation (0 off bottom). The bit boundary is `M = T_b`.
+    pub bit_torque_nm: f64,
+    /// Axial speed of the string, m/s, positive down the hole (running in / drilling),
+    /// negative pulling out. Only the direction of the velocity matters (with `omega_rad_s`).
+    pub axial_speed_m_s: f64,
+    /// Rotary speed, rad/s (positive clockwise seen from above; 0 = not rotating).
+    pub omega_rad_s: f64,
+    /// Wall friction coefficient where the hole section gives none.
+    pub friction: f64,
+    /// Longest element, m (> 0). Nodes are also placed at component boundaries and hole
+    /// section boundaries.
+    pub max_element_m: f64,
+}
+
+/// State of the string at one node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SoftStringPoint {
+    /// Measured depth of the node, m.
+    pub md_m: f64,
+    /// Effective axial force, N (positive = tension, negative = compression).
+    pub tension_n: f64,
+    /// Torque carried by the string, N.m (positive in the sense of rotation).
+    pub torque_nm: f64,
+    /// Wall contact force per length, N/m, of the element just below this node (for the bit
+    /// node, of the element just above it).
+    pub normal_force_per_m: f64,
+    /// Unit vector (global north, east, down) of the direction in which the pipe presses the
+    /// wall, for the same element as `normal_force_per_m`; zero where that force is zero.
+    pub normal_dir: Vec3,
+}
+
+/// Result of a soft-string pass.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SoftStringResult {
+    /// Effective tension at the top of the string (hook load, no block weight), N.
+    pub hook_load_n: f64,
+    /// Torque at the top of the string, N.m (positive in the sense of rotation).
+    pub surface_torque_nm: f64,
+    /// Nodes from the bit (index 0) up to the top of the string.
+    pub points: Vec<SoftStringPoint>,
+    /// True when there was no motion (`v_a = 0` and `Omega = 0`) and friction was therefore
+    /// left out (hook load = buoyed weight along the axis minus WOB, torque = bit torque).
+    pub frictionless: bool,
+}
+
+const E_D: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
+/// Contact radius of a component for the soft-string torque, m: half the tool-joint OD if
+/// the component has tool joints, else half its contact OD (physics.md 1.4 / 2.3).
+pub fn contact_radius_m(c: &Component) -> f64 {
+    c.tool_joint_od_m.unwrap_or(c.contact_od_m) / 2.0
+}
+
+/// Breakpoints (distance from the bit face, m, ascending, from 0 to the string length): the
+/// component boundaries and the hole section boundaries inside the string.
+fn breakpoints(input: &SoftStringInput) -> Vec<f64> {
+    let len = input.string.length_m();
+    let mut x: Vec<f64> = Vec::with_capacity(input.string.components.len() + input.hole.sections().len() + 1);
+    x.push(0.0);
+    for c in &input.string.components {
+        x.push(c.top_m());
+    }
+    for s in input.hole.sections() {
+        let d = input.bit_md_m - s.to_md_m;
+        if d.is_finite() && d > 0.0 && d < len {
+            x.push(d);
+        }
+    }
+    x.retain(|v| *v >= 0.0 && *v <= len);
+    x.sort_by(|a, b| a.total_cmp(b));
+    x.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    x
+}
+
+/// Number of elements in a segment of length `l`.
+fn n_elements(l: f64, max_el: f64) -> usize {
+    ((l / max_el) - 1e-9).ceil().max(1.0) as usize
+}
+
+/// Soft-string torque and drag, integrated from the bit up (see the module documentation for
+/// the equations and sign conventions).
+///
+/// An empty string gives a result with the bit boundary values and the bit node only.
+///
+/// # Panics
+/// If `max_element_m` is not positive.
+pub fn soft_string(input: &SoftStringInput) -> SoftStringResult {
+    assert!(input.max_element_m > 0.0, "max_element_m must be positive");
+    let v_a = input.axial_speed_m_s;
+    let omega = input.omega_rad_s;
+    let frictionless = v_a == 0.0 && omega == 0.0;
+    let bit = input.path.point_at(input.bit_md_m);
+    let mut f = -input.wob_n;
+    let mut m = input.bit_torque_nm;
+
+    let xs = breakpoints(input);
+    let n_total: usize = xs
+        .windows(2)
+        .map(|w| n_elements(w[1] - w[0], input.max_element_m))
+        .sum();
+    let mut points = Vec::with_capacity(n_total + 1);
+    points.push(SoftStringPoint {
+        md_m: input.bit_md_m,
+        tension_n: f,
+        torque_nm: m,
+        normal_force_per_m: 0.0,
+        normal_dir: Vec3::zeros(),
+    });
+
+    let mut p_lo = bit;
+    for seg in xs.windows(2) {
+        let (xa, xb) = (seg[0], seg[1]);
+        let comp = input.string.component_at(0.5 * (xa + xb));
+        let w_b = comp.buoyed_weight_n_per_m(input.mud_density_kg_m3);
+        let r_c = contact_radius_m(comp);
+        // velocity split for this component (the contact radius sets the sliding speed)
+        let v_t = omega * r_c;
+        let speed = v_a.hypot(v_t);
+        let (ax_share, rot_share) = if frictionless || speed == 0.0 {
+            (0.0, 0.0)
+        } else {
+            (v_a / speed, v_t / speed)
+        };
+        let n = n_elements(xb - xa, input.max_element_m);
+        let h = (xb - xa) / n as f64;
+        for j in 0..n {
+            let x_up = if j + 1 == n { xb } else { xa + (j + 1) as f64 * h };
+            let md_up = input.bit_md_m - x_up;
+            let p_up = input.path.point_at(md_up);
+            let dl = p_lo.md_m - md_up;
+            let (t_lo, t_up) = (p_lo.tangent, p_up.tangent);
+            let sum = t_lo + t_up;
+            let sn = sum.norm();
+            let tbar = if sn > 1e-12 { sum / sn } else { t_lo };
+            let g = (t_lo - t_up) * f + E_D * (w_b * dl);
+            let lat = g - tbar * g.dot(&tbar);
+            let normal = lat.norm();
+            let dir = if normal > 0.0 { lat / normal } else { Vec3::zeros() };
+            let mu = input
+                .hole
+                .friction_at(0.5 * (p_lo.md_m + md_up))
+                .unwrap_or(input.friction);
+            let fric = mu * normal;
+            f += w_b * (p_lo.position.z - p_up.position.z) - fric * ax_share;
+            m += fric * r_c * rot_share;
+            let q = if dl > 0.0 { normal / dl } else { 0.0 };
+            if points.len() == 1 {
+                points[0].normal_force_per_m = q;
+                points[0].normal_dir = dir;
+            }
+            points.push(SoftStringPoint {
+                md_m: md_up,
+                tension_n: f,
+                torque_nm: m,
+                normal_force_per_m: q,
+                normal_dir: dir,
+            });
+            p_lo = p_up;
+        }
+    }
+    SoftStringResult {
+        hook_load_n: f,
+        surface_torque_nm: m,
+        points,
+        frictionless,
+    }
+}
+
+/// Bit diameter of a string, m: the contact OD of its bit component, if it starts with one.
+fn bit_diameter_m(string: &DrillString) -> Option<f64> {
+    string
+        .components
+        .first()
+        .filter(|c| c.kind == ComponentKind::Bit)
+        .map(|c| c.contact_od_m)
+}
+
+/// Soft-string pass for a case's operation, with elements of at most `max_element_m`.
+///
+/// - Speeds from [`crate::case::Operation::axial_speed_m_s`] and
+///   [`crate::case::Operation::omega_rad_s`]; friction from the operation where the hole
+///   section gives none; mud density from the case.
+/// - WOB: the operation's (0 off bottom). When the case gives the hook load instead of the
+///   WOB (on bottom), the WOB is solved for (secant on the soft-string hook load, clamped at 0:
+///   a hook load above the off-bottom value gives WOB 0).
+/// - Bit torque: drilling: the case's `bit_torque` if given, else Pessier & Fear (1992)
+///   `T_b = mu_b WOB D_b / 3` with `mu_b = case.bit_rock.bit_friction` and `D_b` the bit OD
+///   (the hole diameter at the bit if the string has no bit component); sliding: the case's
+///   `bit_torque` if given (motor reactive torque), else 0; off bottom: 0.
+pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
+    let op = &case.operation;
+    let d_b = bit_diameter_m(&case.string).unwrap_or_else(|| case.well.hole.diameter_at(op.bit_md_m));
+    let bit_torque = |wob: f64| match op.mode {
+        Mode::Drilling => op.bit_torque_nm.unwrap_or(case.bit_rock.bit_friction * wob * d_b / 3.0),
+        Mode::Sliding => op.bit_torque_nm.unwrap_or(0.0),
+        _ => 0.0,
+    };
+    let run = |wob: f64| {
+        soft_string(&SoftStringInput {
+            path: &case.well.path,
+            hole: &case.well.hole,
+            string: &case.string,
+            mud_density_kg_m3: case.mud.density_kg_m3,
+            bit_md_m: op.bit_md_m,
+            wob_n: wob,
+            bit_torque_nm: bit_torque(wob),
+            axial_speed_m_s: op.axial_speed_m_s(),
+            omega_rad_s: op.omega_rad_s(),
+            friction: op.friction,
+            max_element_m,
+        })
+    };
+    let target = match op.hook_load_n {
+        Some(h) if op.mode.on_bottom() => h,
+        _ => return run(if op.mode.on_bottom() { op.wob_n } else { 0.0 }),
+    };
+    // Hook load decreases with WOB (slope about -1): secant iteration.
+    let mut w0 = op.wob_n.max(0.0);
+    let mut r0 = run(w0);
+    if w0 == 0.0 && r0.hook_load_n <= target {
+        return r0;
+    }
+    let mut w1 = (w0 + (r0.hook_load_n - target)).max(0.0);
+    let tol = 1e-9 * target.abs().max(1.0);
+    for _ in 0..60 {
+        let r1 = run(w1);
+        let e1 = r1.hook_load_n - target;
+        if e1.abs() <= tol || (w1 == 0.0 && e1 < 0.0) {
+            return r1;
+        }
+        let e0 = r0.hook_load_n - target;
+        let slope = if w1 != w0 { (e1 - e0) / (w1 - w0) } else { -1.0 };
+        let slope = if slope < -1e-6 { slope } else { -1.0 };
+        let next = (w1 - e1 / slope).max(0.0);
+        w0 = w1;
+        r0 = r1;
+        w1 = next;
+    }
+    run(w1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Station, Survey};
+    use crate::string::material::steel;
+
+    fn pipe(len: f64, w_air: f64, tj: Option<f64>) -> Component {
+        Component {
+            kind: ComponentKind::Pipe,
+            name: "pipe".into(),
+            length_m: len,
+            bottom_m: 0.0,
+            body_od_m: 0.127,
+            contact_od_m: 0.127,
+            id_m: 0.1086,
+            tool_joint_od_m: tj,
+            joint_length_m: 9.144,
+            material: steel(),
+            weight_air_n_per_m: w_air,
+        }
+    }
+
+    #[test]
+    fn softstring_vertical_hanging_weight() {
+        // Vertical well, no friction effects: hook load = w_b L exactly in every mode.
+        let s = Survey::new(vec![
+            Station::from_deg(0.0, 0.0, 0.0),
+            Station::from_deg(1000.0, 0.0, 0.0),
+        ])
+        .unwrap();
+        let path = WellPath::new(&s, Vec3::zeros()).unwrap();
+        let hole = HoleSize::uniform(0.2159);
+        let string = DrillString {
+            components: vec![pipe(1000.0, 300.0, Some(0.168))],
+        };
+        for v in [-0.3, 0.0, 0.3] {
+            let r = soft_string(&SoftStringInput {
+                path: &path,
+                hole: &hole,
+                string: &string,
+                mud_density_kg_m3: 0.0,
+                bit_md_m: 1000.0,
+                wob_n: 0.0,
+                bit_torque_nm: 0.0,
+                axial_speed_m_s: v,
+                omega_rad_s: 0.0,
+                friction: 0.3,
+                max_element_m: 7.0,
+            });
+            assert!((r.hook_load_n - 300_000.0).abs() < 1e-6);
+            assert_eq!(r.points.len(), 144); // ceil(1000/7) = 143 elements
+            assert_eq!(r.frictionless, v == 0.0);
+        }
+    }
+
+    #[test]
+    fn softstring_breakpoints_include_components_and_sections() {
+        let s = Survey::new(vec![
+            Station::from_deg(0.0, 0.0, 0.0),
+            Station::from_deg(1000.0, 30.0, 0.0),
+        ])
+        .unwrap();
+        let path = WellPath::new(&s, Vec3::zeros()).unwrap();
+        let hole = HoleSize::new(
+            vec![
+                crate::geometry::HoleSection {
+                    to_md_m: 333.3,
+                    diameter_m: 0.311,
+                    friction: Some(0.2),
+                },
+                crate::geometry::HoleSection {
+                    to_md_m: 1000.0,
+                    diameter_m: 0.216,
+                    friction: None,
+                },
+            ],
+            vec![],
+        );
+        let mut a = pipe(100.5, 1000.0, None);
+        let mut b = pipe(899.5, 300.0, Some(0.168));
+        a.kind = ComponentKind::Collar;
+        b.bottom_m = 100.5;
+        let string = DrillString { components: vec![a, b] };
+        let input = SoftStringInput {
+            path: &path,
+            hole: &hole,
+            string: &string,
+            mud_density_kg_m3: 1200.0,
+            bit_md_m: 1000.0,
+            wob_n: 0.0,
+            bit_torque_nm: 0.0,
+            axial_speed_m_s: -0.3,
+            omega_rad_s: 0.0,
+            friction: 0.3,
+            max_element_m: 10.0,
+        };
+        let xs = breakpoints(&input);
+        assert_eq!(xs.len(), 4);
+        assert!((xs[1] - 100.5).abs() < 1e-12 && (xs[2] - 666.7).abs() < 1e-9);
+        let r = soft_string(&input);
+        assert!(r.points.iter().any(|p| (p.md_m - 899.5).abs() < 1e-9));
+        assert!(r.points.iter().any(|p| (p.md_m - 333.3).abs() < 1e-9));
+        assert!((r.points.last().unwrap().md_m).abs() < 1e-9);
+        for w in r.points.windows(2) {
+            assert!(w[0].md_m - w[1].md_m <= 10.0 + 1e-9);
+        }
+    }
+}
