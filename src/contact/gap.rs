@@ -109,7 +109,11 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
         }
     } else {
         let n = if s > tiny { d / s } else { g.fallback_normal };
-        let dn = if s > tiny { (ptt - n * n.transpose()) / s } else { Matrix3::zeros() };
+        let dn = if s > tiny {
+            (ptt - n * n.transpose()) / s
+        } else {
+            Matrix3::zeros()
+        };
         let trial = g.lambda + g.k_n * (s - g.clearance);
         let (r, dr) = if let Some(closed) = g.status {
             if closed {
@@ -171,7 +175,16 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
             moment_stiffness = -dm;
         }
     }
-    GapResponse { normal_force: r, normal: n, force, moment, stiffness, moment_stiffness, active, penetration: s - g.clearance }
+    GapResponse {
+        normal_force: r,
+        normal: n,
+        force,
+        moment,
+        stiffness,
+        moment_stiffness,
+        active,
+        penetration: s - g.clearance,
+    }
 }
 
 fn skew(v: &Vec3) -> Matrix3<f64> {

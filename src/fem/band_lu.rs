@@ -23,7 +23,13 @@ impl GeneralBand {
     /// Zero matrix of order `n`, half-bandwidth `b`.
     pub fn zeros(n: usize, b: usize) -> Self {
         let w = 2 * b + 1;
-        GeneralBand { n, b, w, data: vec![0.0; n * w], constraint_scale: None }
+        GeneralBand {
+            n,
+            b,
+            w,
+            data: vec![0.0; n * w],
+            constraint_scale: None,
+        }
     }
     /// Order.
     pub fn n(&self) -> usize {
@@ -44,7 +50,10 @@ impl GeneralBand {
     }
     /// Add `v` to entry (i, j) (must be inside the band).
     pub fn add(&mut self, i: usize, j: usize, v: f64) {
-        assert!(i.abs_diff(j) <= self.b && i < self.n && j < self.n, "GeneralBand::add outside the band");
+        assert!(
+            i.abs_diff(j) <= self.b && i < self.n && j < self.n,
+            "GeneralBand::add outside the band"
+        );
         let k = self.idx(i, j);
         self.data[k] += v;
     }
@@ -66,9 +75,15 @@ impl GeneralBand {
         let s = match self.constraint_scale {
             Some(s) => s,
             None => {
-                let (sum, cnt) =
-                    (0..self.n).map(|j| self.get(j, j).abs()).filter(|v| *v > 0.0).fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
-                let s = if cnt > 0 && sum.is_finite() { sum / cnt as f64 } else { 1.0 };
+                let (sum, cnt) = (0..self.n)
+                    .map(|j| self.get(j, j).abs())
+                    .filter(|v| *v > 0.0)
+                    .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+                let s = if cnt > 0 && sum.is_finite() {
+                    sum / cnt as f64
+                } else {
+                    1.0
+                };
                 self.constraint_scale = Some(s);
                 s
             }
@@ -86,10 +101,10 @@ impl GeneralBand {
     }
     /// `y = A x`.
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
-        for i in 0..self.n {
+        for (i, yi) in y.iter_mut().enumerate().take(self.n) {
             let lo = i.saturating_sub(self.b);
             let hi = (i + self.b).min(self.n - 1);
-            y[i] = (lo..=hi).map(|j| self.data[self.idx(i, j)] * x[j]).sum();
+            *yi = (lo..=hi).map(|j| self.data[self.idx(i, j)] * x[j]).sum();
         }
     }
 }
@@ -104,7 +119,10 @@ pub struct BandLu {
 impl BandLu {
     /// Allocate for order `n`, half-bandwidth `b`.
     pub fn new(n: usize, b: usize) -> Self {
-        BandLu { f: GeneralBand::zeros(n, b), ok: false }
+        BandLu {
+            f: GeneralBand::zeros(n, b),
+            ok: false,
+        }
     }
 
     /// Factor `a` = L U (unit lower L).
@@ -112,7 +130,10 @@ impl BandLu {
         self.f.data.copy_from_slice(&a.data);
         self.ok = false;
         let (n, b, w) = (self.f.n, self.f.b, self.f.w);
-        let amax = (0..n).map(|j| a.get(j, j).abs()).fold(0.0, f64::max).max(f64::MIN_POSITIVE);
+        let amax = (0..n)
+            .map(|j| a.get(j, j).abs())
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
         let data = &mut self.f.data;
         for k in 0..n {
             let pivot = data[k * w + b];
@@ -172,7 +193,11 @@ mod tests {
         let mut dense = DMatrix::<f64>::zeros(n, n);
         for i in 0..n {
             for j in i.saturating_sub(b)..=(i + b).min(n - 1) {
-                let v = if i == j { 20.0 + i as f64 } else { ((i * 7 + j * 3) % 11) as f64 / 11.0 - 0.4 };
+                let v = if i == j {
+                    20.0 + i as f64
+                } else {
+                    ((i * 7 + j * 3) % 11) as f64 / 11.0 - 0.4
+                };
                 a.add(i, j, v);
                 dense[(i, j)] = v;
             }

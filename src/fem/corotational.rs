@@ -119,9 +119,9 @@ pub fn strain_energy(st: &ElementState, s: &BeamSection) -> f64 {
 }
 
 /// Internal force and tangent of the element in node-basis DOFs `[uA, wA, uB, wB]`.
-pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool) -> ElementResponse {
-    let k = kinematics(st, s.l0);
-    let loc = local_response(s, &k.p, with_geometric);
+/// The matrix `B = d p_local / d p_global` (7 x 12, node-basis global DOFs) and the kinematics.
+fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
+    let k = kinematics(st, l0);
     let rr = k.rr;
     let ln = k.ln;
     // Local-component DOFs: p_loc = M p_hat, M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B).
@@ -176,12 +176,44 @@ pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool
             }
         }
     }
+    (b, k)
+}
+
+/// Internal force and tangent of the element in node-basis DOFs `[uA, wA, uB, wB]`.
+///
+/// `consistent = true` adds the full geometric part of the tangent, `(dB^T/dp) f_local`
+/// (moments and torque times the variation of the co-rotational map), by central differences
+/// of `B^T f_local` at fixed `f_local`; otherwise only its axial-force part `N/l (I - r1 r1^T)`.
+/// The consistent form matters when the string carries torque (rotary friction).
+pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool, consistent: bool) -> ElementResponse {
+    let (b, k) = b_matrix(st, s.l0);
+    let loc = local_response(s, &k.p, with_geometric);
+    let rr = k.rr;
+    let ln = k.ln;
     let fl = SVector::<f64, 7>::from_row_slice(&loc.force);
     let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
     let force = b.transpose() * fl;
     let mut tangent = b.transpose() * kl * b;
-    // Geometric term of the elongation: N/l (I - r1 r1^T) on the translations (node bases).
     let n = loc.axial_force;
+    if consistent {
+        tangent += geometric_by_differences(st, s.l0, &fl);
+        return ElementResponse {
+            force,
+            tangent,
+            axial_force: n,
+            local_moments: [
+                loc.force[1],
+                loc.force[2],
+                loc.force[3],
+                loc.force[4],
+                loc.force[5],
+                loc.force[6],
+            ],
+            frame: rr,
+            length: ln,
+        };
+    }
+    // Geometric term of the elongation: N/l (I - r1 r1^T) on the translations (node bases).
     let r1 = rr.column(0).into_owned();
     let proj = (Matrix3::identity() - r1 * r1.transpose()) * (n / ln);
     let blocks = [(0usize, st.q_a), (6usize, st.q_b)];
@@ -211,6 +243,41 @@ pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool
         frame: rr,
         length: ln,
     }
+}
+
+/// `(dB^T/dp_global) f_local` by central differences (f_local fixed).
+fn geometric_by_differences(st: &ElementState, l0: f64, fl: &SVector<f64, 7>) -> Mat12 {
+    let mut kg = Mat12::zeros();
+    let h = 1e-7;
+    for j in 0..12 {
+        let mut col = Vec12::zeros();
+        for (sign, w) in [(1.0, 0.5 / h), (-1.0, -0.5 / h)] {
+            let mut xa = *st.x_a;
+            let mut xb = *st.x_b;
+            let mut la = *st.lam_a;
+            let mut lb = *st.lam_b;
+            let mut e = Vec3::zeros();
+            e[j % 3] = sign * h;
+            match j / 3 {
+                0 => xa += st.q_a * e,
+                1 => la = super::rotation::exp_so3(&(st.q_a * e)) * la,
+                2 => xb += st.q_b * e,
+                _ => lb = super::rotation::exp_so3(&(st.q_b * e)) * lb,
+            }
+            let pst = ElementState {
+                x_a: &xa,
+                x_b: &xb,
+                lam_a: &la,
+                lam_b: &lb,
+                q_a: st.q_a,
+                q_b: st.q_b,
+            };
+            let (bp, _) = b_matrix(&pst, l0);
+            col += bp.transpose() * fl * w;
+        }
+        kg.set_column(j, &col);
+    }
+    kg
 }
 
 #[cfg(test)]
@@ -258,7 +325,7 @@ mod tests {
             q_a: &q_a,
             q_b: &q_b,
         };
-        let r = element_response(&st, &s, true);
+        let r = element_response(&st, &s, true, false);
         let h = 1e-7;
         for j in 0..12 {
             let energy = |sign: f64| {
@@ -305,7 +372,7 @@ mod tests {
             q_a: &q_a,
             q_b: &q_b,
         };
-        let r0 = element_response(&st, &s, true);
+        let r0 = element_response(&st, &s, true, false);
         // Rigid rotation + translation of the whole element leaves the energy unchanged.
         let rot = exp_so3(&Vec3::new(0.7, -0.2, 1.1));
         let c = Vec3::new(5.0, -3.0, 2.0);
@@ -320,7 +387,9 @@ mod tests {
             q_b: &q_b,
         };
         assert!((strain_energy(&st, &s) - strain_energy(&st2, &s)).abs() < 1e-9 * strain_energy(&st, &s));
-        assert!((element_response(&st2, &s, true).axial_force - r0.axial_force).abs() < 1e-6 * r0.axial_force.abs());
+        assert!(
+            (element_response(&st2, &s, true, false).axial_force - r0.axial_force).abs() < 1e-6 * r0.axial_force.abs()
+        );
         // Tangent vs finite differences of the force: approximate tangent within 2% of the largest entry.
         let h = 1e-7;
         let kmax = r0.tangent.abs().max();
@@ -346,7 +415,7 @@ mod tests {
                     q_a: &q_a,
                     q_b: &q_b,
                 };
-                element_response(&st, &s, true).force
+                element_response(&st, &s, true, false).force
             };
             let col = (force(1.0) - force(-1.0)) / (2.0 * h);
             for i in 0..12 {

@@ -94,6 +94,9 @@ pub struct Model {
     pub geometric_stiffness: bool,
     /// Contact smoothing width relative to the clearance (the gap tolerance).
     pub smoothing: f64,
+    /// Full consistent element tangent (needed under torque; slower), see
+    /// [`super::corotational::element_response`].
+    pub consistent_tangent: bool,
 }
 
 /// Mutable solution state.
@@ -221,6 +224,7 @@ impl Model {
             loads,
             geometric_stiffness: true,
             smoothing: 0.0,
+            consistent_tangent: false,
         }
     }
 
@@ -317,7 +321,12 @@ impl Model {
                 q_a: &self.basis[a],
                 q_b: &self.basis[b],
             };
-            let resp = element_response(&st, &self.sections[e], self.geometric_stiffness);
+            let resp = element_response(
+                &st,
+                &self.sections[e],
+                self.geometric_stiffness,
+                self.consistent_tangent,
+            );
             // gravity: consistent nodal loads of q = w_b e_D on the current chord
             let l = self.sections[e].l0;
             let q = ed * self.mesh.elements[e].buoyed_weight_n_per_m;
