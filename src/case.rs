@@ -206,7 +206,7 @@ impl Default for SolverSettings {
             tolerance: 1e-4,
             fidelity: Fidelity::Auto,
             method: Method::Newton,
-            max_iterations: 200,
+            max_iterations: 300,
             alpha: 0.7,
         }
     }

@@ -7,7 +7,7 @@ use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_com
 use drillpath::analytical::section::Tube;
 use drillpath::fem::model::Model;
 use drillpath::fem::results::{extract, SolveResults};
-use drillpath::fem::solve::{soft_string_start, solve, SolveControls};
+use drillpath::fem::solve::{solve, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use std::path::Path;
 
@@ -56,11 +56,8 @@ max_iterations = 1000
     let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
     let mut model = Model::from_case(&case);
     model.geometric_stiffness = geometric;
-    let mut state = model.initial_state();
-    soft_string_start(&model, &mut state);
     let sol = solve(
         &model,
-        state,
         &SolveControls {
             max_iterations: 1000,
             ..Default::default()

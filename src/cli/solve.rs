@@ -4,7 +4,7 @@ use super::args::SolveArgs;
 use super::parse_length_option;
 use crate::fem::model::Model;
 use crate::fem::results::extract;
-use crate::fem::solve::{soft_string_start, solve, SolveControls};
+use crate::fem::solve::{solve, SolveControls};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::report::solve_output::{string_csv, summary_json};
 use crate::report::write_atomic;
@@ -28,8 +28,6 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         bail!("{}: the case has no [[string]] components to solve", a.case.display());
     }
     let model = Model::from_case(&case);
-    let mut state = model.initial_state();
-    soft_string_start(&model, &mut state);
     let ctl = SolveControls {
         max_iterations: case.solver.max_iterations,
         gap_tolerance: case.solver.tolerance,
@@ -37,7 +35,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         alpha: case.solver.alpha,
         ..Default::default()
     };
-    let sol = solve(&model, state, &ctl).with_context(|| format!("{}: solve failed", a.case.display()))?;
+    let sol = solve(&model, &ctl).with_context(|| format!("{}: solve failed", a.case.display()))?;
     let res = extract(&model, &sol, case.mud.density_kg_m3);
     if !sol.converged && !a.allow_unconverged {
         let hist = &sol.stats.residual_history;

@@ -94,6 +94,8 @@ pub struct Model {
     pub geometric_stiffness: bool,
     /// Contact smoothing width relative to the clearance (the gap tolerance).
     pub smoothing: f64,
+    /// Length of the bottom-hole assembly from the bit, m.
+    pub bha_length_m: f64,
     /// Full consistent element tangent (needed under torque; slower), see
     /// [`super::corotational::element_response`].
     pub consistent_tangent: bool,
@@ -120,6 +122,8 @@ pub struct State {
     pub free_law: Option<Vec<bool>>,
     /// Vector multipliers of zero-clearance gaps, N.
     pub lambda_vec: Vec<Vec3>,
+    /// Smoothing width of the unilateral contact law relative to the clearance (0: sharp).
+    pub smoothing: f64,
 }
 
 /// Everything evaluated at a state.
@@ -161,14 +165,16 @@ impl Model {
                 0.0
             },
         };
-        Model::new(
+        let mut model = Model::new(
             case.well.path.clone(),
             case.well.hole.clone(),
             mesh,
             bit_md,
             loads,
             |md| case.well.hole.friction_at(md).unwrap_or(op.friction),
-        )
+        );
+        model.bha_length_m = case.string.bha_length_m();
+        model
     }
 
     /// Build from parts; `friction_at(md)` gives the wall friction coefficient.
@@ -225,6 +231,7 @@ impl Model {
             geometric_stiffness: true,
             smoothing: 0.0,
             consistent_tangent: false,
+            bha_length_m: 0.0,
         }
     }
 
@@ -275,6 +282,7 @@ impl Model {
             closed: None,
             free_law: None,
             lambda_vec: vec![Vec3::zeros(); nn],
+            smoothing: self.smoothing,
         }
     }
 
@@ -387,7 +395,7 @@ impl Model {
                 axial_speed: self.loads.axial_speed_m_s,
                 omega: self.loads.omega_rad_s,
                 fallback_normal: state.normal[i],
-                smoothing_m: self.smoothing * eo.max(1e-3),
+                smoothing_m: state.smoothing * eo.max(1e-3),
                 status: match (&state.closed, &state.free_law) {
                     (_, Some(f)) if f[i] => None,
                     (Some(c), _) => Some(c[i]),

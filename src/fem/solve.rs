@@ -33,7 +33,7 @@ pub struct SolveControls {
 impl Default for SolveControls {
     fn default() -> Self {
         SolveControls {
-            max_iterations: 200,
+            max_iterations: 300,
             gap_tolerance: 1e-4,
             residual_tolerance: 1e-7,
             method: Method::Newton,
@@ -41,6 +41,36 @@ impl Default for SolveControls {
         }
     }
 }
+
+/// Globalization choices of one solve attempt (see [`solve`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Strategy {
+    /// Iterates remembered by the non-monotone line search (1: monotone).
+    pub nonmonotone_memory: usize,
+    /// Start the bottom-hole assembly off the wall instead of on the soft-string contact side.
+    pub bha_open_start: bool,
+}
+
+/// Attempts made by [`solve`], in order, each from a fresh start: the active-set iteration is
+/// sensitive to its start and line search, and no single choice converges on every case.
+pub const STRATEGIES: [Strategy; 4] = [
+    Strategy {
+        nonmonotone_memory: 1,
+        bha_open_start: false,
+    },
+    Strategy {
+        nonmonotone_memory: 8,
+        bha_open_start: true,
+    },
+    Strategy {
+        nonmonotone_memory: 8,
+        bha_open_start: false,
+    },
+    Strategy {
+        nonmonotone_memory: 1,
+        bha_open_start: true,
+    },
+];
 
 /// Statistics of a solve.
 #[derive(Debug, Clone, Default)]
@@ -59,6 +89,8 @@ pub struct SolveStats {
     pub negative_pivots: usize,
     /// Nodes whose contact state changed in the last iterations.
     pub chattering_nodes: Vec<usize>,
+    /// Strategies tried (the last one is the one whose result is returned).
+    pub attempts: usize,
 }
 
 /// A converged (or flagged unconverged) solution.
@@ -101,6 +133,9 @@ pub const RELEASE_FORCE_FRACTION: f64 = 1e-5;
 /// Status changes after which a gap leaves the active-set logic for the unilateral law.
 pub const MAX_STATUS_FLIPS: usize = 2;
 
+/// Halvings tried by the line search.
+pub const LINE_SEARCH_STEPS: usize = 8;
+
 /// Largest bending rotation increment allowed per iteration, rad.
 pub const MAX_BENDING_ROTATION_STEP: f64 = 0.02;
 
@@ -119,7 +154,7 @@ pub fn load_scale(model: &Model) -> f64 {
 /// Soft-string start: axial force by integrating weight from the bit, contact side from the
 /// lateral load of each element; nodes put on that side of the wall with the soft-string
 /// normal force as their first multiplier (physics.md 4.5).
-pub fn soft_string_start(model: &Model, state: &mut State) {
+pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     let nn = model.nodes();
     let mut tension = -model.loads.wob_n;
     let mut load = vec![Vec3::zeros(); nn];
@@ -140,7 +175,14 @@ pub fn soft_string_start(model: &Model, state: &mut State) {
     }
     for (i, li) in load.iter().enumerate() {
         // near the bit the stiff assembly lifts off the wall: leave those nodes on the axis
-        if !model.mesh.nodes[i].has_gap || li.norm() < 1e-6 || model.mesh.nodes[i].s_m < START_OFF_WALL_M {
+        // and the bottom-hole assembly starts off the wall (the active-set strategy closes
+        // penetrating gaps many at a time, but opens them only a few at a time)
+        let in_bha = model.mesh.nodes[i].s_m < model.bha_length_m;
+        if !model.mesh.nodes[i].has_gap
+            || li.norm() < 1e-6
+            || model.mesh.nodes[i].s_m < START_OFF_WALL_M
+            || (in_bha && bha_open)
+        {
             continue;
         }
         let n = li.normalize();
@@ -223,8 +265,38 @@ impl Linear {
     }
 }
 
-/// Solve the static problem from `state`.
-pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
+/// Solve the static problem from the model's initial state, trying the [`STRATEGIES`] in turn
+/// until one converges; returns the last attempt (flagged unconverged) if none does.
+pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    let t0 = Instant::now();
+    let mut total = 0usize;
+    let mut last = None;
+    for (k, strategy) in STRATEGIES.iter().enumerate() {
+        let mut state = model.initial_state();
+        soft_string_start(model, &mut state, strategy.bha_open_start);
+        let mut sol = solve_from(model, state, ctl, strategy)?;
+        total += sol.stats.iterations;
+        sol.stats.attempts = k + 1;
+        let done = sol.converged;
+        last = Some(sol);
+        if done {
+            break;
+        }
+        tracing::info!(attempt = k + 1, "solve did not converge; trying the next strategy");
+    }
+    let mut sol = last.expect("at least one strategy");
+    sol.stats.iterations = total;
+    sol.stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(sol)
+}
+
+/// Solve the static problem from `state` with one globalization `strategy`.
+pub fn solve_from(
+    model: &Model,
+    mut state: State,
+    ctl: &SolveControls,
+    strategy: &Strategy,
+) -> Result<Solution, SolveError> {
     if ctl.method == Method::Paper {
         return Err(SolveError::NotImplemented("paper"));
     }
@@ -251,6 +323,7 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
     // set, Hintermueller-Ito-Kunisch 2002), and the augmented-Lagrangian multipliers of closed
     // gaps are updated until the penetration is within tolerance.
     let mut newton_steps = 0usize;
+    let mut merits: Vec<f64> = Vec::new();
     if state.closed.is_none() {
         let closed: Vec<bool> = (0..model.nodes())
             .map(|i| model.mesh.nodes[i].has_gap && state.lambda[i] > 0.0)
@@ -405,11 +478,19 @@ pub fn solve(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Sol
         let mut alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
         // backtracking line search on the residual norm (globalizes the semi-smooth Newton
         // step across contact switches)
-        let merit0 = merit(model, &ev.residual, &constrained, c, bordered);
+        // non-monotone line search (Grippo et al. 1986): compare with the largest merit of
+        // the last few iterates, so contact switches may raise the merit for a while
+        let merit_now = merit(model, &ev.residual, &constrained, c, bordered);
+        merits.push(merit_now);
+        let merit0 = merits
+            .iter()
+            .rev()
+            .take(strategy.nonmonotone_memory.max(1))
+            .fold(0.0f64, |a, &b| a.max(b));
         let h0 = state.hook_load_n;
         let dh_total = state.hook_load_n - hook_before;
         let mut accepted = false;
-        for _ in 0..8 {
+        for _ in 0..LINE_SEARCH_STEPS {
             let mut trial = state.clone();
             trial.hook_load_n = hook_before + alpha * dh_total;
             model.update(&mut trial, &du, alpha);
