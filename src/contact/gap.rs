@@ -253,4 +253,41 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn frictional_stiffness_and_moment_match_finite_differences() {
+        // Consistent tangent of the frictional gap (normal + friction force and friction
+        // moment), rotating and sliding, unilateral and pin: central differences.
+        for (clearance, axial, omega) in [(0.02, 0.0, 6.0), (0.02, 0.3, 0.0), (0.02, 0.01, 6.0), (0.0, 0.0, 6.0)] {
+            let mut g = input();
+            g.clearance = clearance;
+            g.axial_speed = axial;
+            g.omega = omega;
+            g.offset = Vec3::new(0.01, 0.0203, -0.004);
+            g.lambda_vec = Vec3::new(0.0, 300.0, 100.0);
+            let r = evaluate(&g);
+            let h = 1e-10;
+            for j in 0..3 {
+                let mut gp = g;
+                let mut gm = g;
+                gp.offset[j] += h;
+                gm.offset[j] -= h;
+                let (rp, rm) = (evaluate(&gp), evaluate(&gm));
+                let col_f = -(rp.force - rm.force) / (2.0 * h);
+                let col_m = -(rp.moment - rm.moment) / (2.0 * h);
+                for i in 0..3 {
+                    assert!(
+                        (col_f[i] - r.stiffness[(i, j)]).abs() < 1e-5 * 1e8,
+                        "force {i}{j}: {} vs {}",
+                        col_f[i],
+                        r.stiffness[(i, j)]
+                    );
+                    assert!(
+                        (col_m[i] - r.moment_stiffness[(i, j)]).abs() < 1e-5 * 1e8,
+                        "moment {i}{j}"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -285,9 +285,58 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
         tracing::info!(attempt = k + 1, "solve did not converge; trying the next strategy");
     }
     let mut sol = last.expect("at least one strategy");
+    if !sol.converged {
+        // load continuation: WOB, bit torque and friction ramped from zero, each step warm
+        // started from the last (contact states included)
+        tracing::info!("trying load continuation");
+        if let Some(mut cont) = solve_by_continuation(model, ctl)? {
+            total += cont.stats.iterations;
+            cont.stats.attempts = STRATEGIES.len() + 1;
+            sol = cont;
+        }
+    }
     sol.stats.iterations = total;
     sol.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(sol)
+}
+
+/// Load steps of the continuation fallback (fractions of WOB, bit torque and friction).
+pub const CONTINUATION_STEPS: [f64; 6] = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
+
+/// Ramp WOB, bit torque and friction from zero, warm-starting each step (contact states
+/// included). Returns the final solution if every step converged, `None` otherwise.
+fn solve_by_continuation(model: &Model, ctl: &SolveControls) -> Result<Option<Solution>, SolveError> {
+    let mut m = model.clone();
+    let mut state = model.initial_state();
+    soft_string_start(model, &mut state, false);
+    let mut total = 0usize;
+    let mut last = None;
+    for &frac in &CONTINUATION_STEPS {
+        m.loads.wob_n = model.loads.wob_n * frac;
+        m.loads.bit_torque_nm = model.loads.bit_torque_nm * frac;
+        m.friction = model.friction.iter().map(|f| f * frac).collect();
+        let mut step = None;
+        for strategy in [&STRATEGIES[0], &STRATEGIES[2]] {
+            let sol = solve_from(&m, state.clone(), ctl, strategy)?;
+            total += sol.stats.iterations;
+            if sol.converged {
+                step = Some(sol);
+                break;
+            }
+        }
+        tracing::info!(frac, converged = step.is_some(), "continuation step");
+        match step {
+            Some(sol) => {
+                state = sol.state.clone();
+                last = Some(sol);
+            }
+            None => return Ok(None),
+        }
+    }
+    Ok(last.map(|mut s| {
+        s.stats.iterations = total;
+        s
+    }))
 }
 
 /// Solve the static problem from `state` with one globalization `strategy`.
