@@ -141,14 +141,17 @@ impl BandLu {
                 return Err(FactorError::ZeroPivot { column: k, pivot });
             }
             let hi = (k + b).min(n - 1);
+            let len = hi - k; // columns k+1 ..= hi
+            let (head, tail) = data.split_at_mut((k + 1) * w);
+            let row_k = &head[k * w + b + 1..k * w + b + 1 + len];
             for i in k + 1..=hi {
-                // l_ik = a_ik / u_kk
-                let lik = data[i * w + (k + b - i)] / pivot;
-                data[i * w + (k + b - i)] = lik;
+                let row_i = &mut tail[(i - k - 1) * w..(i - k) * w];
+                let off = k + b - i; // column k in row i
+                let lik = row_i[off] / pivot;
+                row_i[off] = lik;
                 if lik != 0.0 {
-                    for j in k + 1..=hi {
-                        let ukj = data[k * w + (j + b - k)];
-                        data[i * w + (j + b - i)] -= lik * ukj;
+                    for (x, &u) in row_i[off + 1..off + 1 + len].iter_mut().zip(row_k) {
+                        *x -= lik * u;
                     }
                 }
             }

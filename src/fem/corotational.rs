@@ -186,6 +186,21 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
 /// of `B^T f_local` at fixed `f_local`; otherwise only its axial-force part `N/l (I - r1 r1^T)`.
 /// The consistent form matters when the string carries torque (rotary friction).
 pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool, consistent: bool) -> ElementResponse {
+    response(st, s, with_geometric, consistent, true)
+}
+
+/// Internal force only (the tangent is left zero): for residual evaluations in line searches.
+pub fn element_force(st: &ElementState, s: &BeamSection, with_geometric: bool) -> ElementResponse {
+    response(st, s, with_geometric, false, false)
+}
+
+fn response(
+    st: &ElementState,
+    s: &BeamSection,
+    with_geometric: bool,
+    consistent: bool,
+    need_tangent: bool,
+) -> ElementResponse {
     let (b, k) = b_matrix(st, s.l0);
     let loc = local_response(s, &k.p, with_geometric);
     let rr = k.rr;
@@ -193,8 +208,25 @@ pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool
     let fl = SVector::<f64, 7>::from_row_slice(&loc.force);
     let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
     let force = b.transpose() * fl;
-    let mut tangent = b.transpose() * kl * b;
     let n = loc.axial_force;
+    if !need_tangent {
+        return ElementResponse {
+            force,
+            tangent: Mat12::zeros(),
+            axial_force: n,
+            local_moments: [
+                loc.force[1],
+                loc.force[2],
+                loc.force[3],
+                loc.force[4],
+                loc.force[5],
+                loc.force[6],
+            ],
+            frame: rr,
+            length: ln,
+        };
+    }
+    let mut tangent = b.transpose() * kl * b;
     if consistent {
         tangent += geometric_by_differences(st, s.l0, &fl);
         return ElementResponse {

@@ -9,7 +9,7 @@
 use super::band::BandMatrix;
 use super::band_lu::GeneralBand;
 use super::beam::BeamSection;
-use super::corotational::{element_response, ElementResponse, ElementState};
+use super::corotational::{element_force, element_response, ElementResponse, ElementState};
 use super::mesh::{build_mesh, Mesh};
 use crate::case::{Case, Mode};
 use crate::contact::gap::{evaluate, GapInput, GapResponse};
@@ -329,12 +329,16 @@ impl Model {
                 q_a: &self.basis[a],
                 q_b: &self.basis[b],
             };
-            let resp = element_response(
-                &st,
-                &self.sections[e],
-                self.geometric_stiffness,
-                self.consistent_tangent,
-            );
+            let resp = if kmat.is_some() {
+                element_response(
+                    &st,
+                    &self.sections[e],
+                    self.geometric_stiffness,
+                    self.consistent_tangent,
+                )
+            } else {
+                element_force(&st, &self.sections[e], self.geometric_stiffness)
+            };
             // gravity: consistent nodal loads of q = w_b e_D on the current chord
             let l = self.sections[e].l0;
             let q = ed * self.mesh.elements[e].buoyed_weight_n_per_m;
