@@ -1,3 +1,4 @@
 //! Contact between string and wall: the spatial multi-directional gap element with friction.
 
 pub mod gap;
+pub mod lcp;

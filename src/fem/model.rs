@@ -124,6 +124,9 @@ pub struct State {
     pub lambda_vec: Vec<Vec3>,
     /// Smoothing width of the unilateral contact law relative to the clearance (0: sharp).
     pub smoothing: f64,
+    /// Gaps whose normal force is being decided by the complementarity step (they carry only
+    /// their lagged friction during assembly).
+    pub lcp_nodes: Option<Vec<bool>>,
 }
 
 /// Everything evaluated at a state.
@@ -283,6 +286,7 @@ impl Model {
             free_law: None,
             lambda_vec: vec![Vec3::zeros(); nn],
             smoothing: self.smoothing,
+            lcp_nodes: None,
         }
     }
 
@@ -400,13 +404,17 @@ impl Model {
                 omega: self.loads.omega_rad_s,
                 fallback_normal: state.normal[i],
                 smoothing_m: state.smoothing * eo.max(1e-3),
-                status: match (&state.closed, &state.free_law) {
-                    (_, Some(f)) if f[i] => None,
-                    (Some(c), _) => Some(c[i]),
-                    (None, _) => None,
+                status: match (&state.closed, &state.free_law, &state.lcp_nodes) {
+                    (_, _, Some(q)) if q[i] => Some(false),
+                    (_, Some(f), _) if f[i] => None,
+                    (Some(c), _, _) => Some(c[i]),
+                    (None, _, _) => None,
                 },
                 lambda_vec: state.lambda_vec[i],
-                friction_load: None,
+                friction_load: match &state.lcp_nodes {
+                    Some(q) if q[i] => Some(state.lambda[i]),
+                    _ => None,
+                },
             });
             if g.normal_force != 0.0 || g.active {
                 let qb = &self.basis[i];

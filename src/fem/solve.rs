@@ -257,6 +257,12 @@ impl Linear {
             Linear::General(_, f) => f.solve_in_place(x),
         }
     }
+    fn solve_tail(&self, x: &mut [f64], first: usize) {
+        match self {
+            Linear::Symmetric(_, f) => f.solve_tail_in_place(x, first),
+            Linear::General(_, f) => f.solve_tail_in_place(x, first),
+        }
+    }
     fn negative_pivots(&self) -> usize {
         match self {
             Linear::Symmetric(_, f) => f.negative_pivots(),
@@ -573,6 +579,252 @@ pub fn solve_from(
         .filter(|(_, &f)| f > 3)
         .map(|(i, _)| i)
         .collect();
+    stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(Solution {
+        state,
+        eval: ev,
+        converged,
+        stats,
+    })
+}
+
+/// Longest part of the string above the bit (m) whose gaps the complementarity step manages.
+pub const LCP_MAX_LENGTH_M: f64 = 120.0;
+
+/// Extra BHA length (m) above the assembly whose gaps the complementarity step manages.
+pub const LCP_MARGIN_M: f64 = 20.0;
+
+/// Newton iteration whose contact forces near the bit are found, at every step, from the
+/// linear complementarity problem of the linearized structure (all uncertain contacts of the
+/// bottom-hole assembly at once); contacts farther up keep their active-set status. This
+/// settles the contact zone boundaries in one step instead of one node per iteration.
+///
+/// Experimental, not used by [`solve`] yet: it converges in a handful of iterations when
+/// every gap is managed (pendulum BHAs: 5-6 iterations), but its dense complementarity solve
+/// grows as the cube of the managed gaps, and gaps left to the active-set update above the
+/// managed window bring back the slow iteration.
+pub fn solve_lcp_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    let t0 = Instant::now();
+    let n = model.dofs();
+    let nn = model.nodes();
+    let mut lin = if model.needs_unsymmetric() {
+        Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
+    } else {
+        Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
+    };
+    let constrained = model.constrained_dofs();
+    let top = nn - 1;
+    let bit_ax = model.dof(0, 0);
+    let top_ax = model.dof(top, 0);
+    let bordered = model.loads.hook_load_n.is_none();
+    let scale = load_scale(model);
+    let mut stats = SolveStats::default();
+    let mut converged = false;
+    if state.closed.is_none() {
+        state.closed = Some(
+            (0..nn)
+                .map(|i| model.mesh.nodes[i].has_gap && state.lambda[i] > 0.0)
+                .collect(),
+        );
+    }
+    // gaps managed by the complementarity step: the assembly and a margin above it
+    let managed: Vec<bool> = (0..nn)
+        .map(|i| {
+            let nd = &model.mesh.nodes[i];
+            nd.has_gap
+                && nd.s_m < (model.bha_length_m + LCP_MARGIN_M).min(LCP_MAX_LENGTH_M)
+                && model.clearance(i, model.md_ref[i]) > crate::contact::gap::ZERO_CLEARANCE_M
+        })
+        .collect();
+    let qidx: Vec<usize> = (0..nn).filter(|&i| managed[i]).collect();
+    // DOFs are numbered from the surface: the managed nodes (near the bit) form the tail
+    let tail_first = qidx.iter().map(|&i| model.dof(i, 0)).min().unwrap_or(0);
+    let mut ev;
+    loop {
+        // convergence check with the statuses as they stand
+        state.lcp_nodes = None;
+        ev = model.evaluate(&mut state, None);
+        let c_full = if bordered {
+            ev.residual[bit_ax] + model.loads.wob_n
+        } else {
+            0.0
+        };
+        let mut r = ev.residual.clone();
+        for &d in &constrained {
+            r[d] = 0.0;
+        }
+        let rn = residual_norm(model, &r, scale).max(c_full.abs() / scale);
+        stats.residual_history.push(rn);
+        let mut pen: f64 = 0.0;
+        let mut inconsistent = 0usize;
+        let closed = state.closed.as_ref().expect("set above");
+        for (i, g) in ev.gaps.iter().enumerate() {
+            if let Some(g) = g {
+                let eo = ev.clearance[i].max(1e-3);
+                if closed[i] || g.penetration > 0.0 {
+                    pen = pen.max(g.penetration.abs() / eo);
+                }
+                if (closed[i] && g.normal_force < -RELEASE_FORCE_FRACTION * scale)
+                    || (!closed[i] && g.penetration > ctl.gap_tolerance * eo)
+                {
+                    inconsistent += 1;
+                }
+            }
+        }
+        stats.max_penetration = pen;
+        tracing::debug!(
+            iteration = stats.iterations,
+            residual = rn,
+            penetration = pen,
+            inconsistent,
+            "lcp newton"
+        );
+        if rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && inconsistent == 0 {
+            converged = true;
+            break;
+        }
+        if stats.iterations >= ctl.max_iterations {
+            break;
+        }
+        // unmanaged gaps: active-set update and multiplier update once nearly converged
+        if rn < 1e-3 {
+            let closed = state.closed.as_mut().expect("set above");
+            for (i, g) in ev.gaps.iter().enumerate() {
+                if let (Some(g), false) = (g, managed[i]) {
+                    let eo = ev.clearance[i].max(1e-3);
+                    if ev.clearance[i] <= crate::contact::gap::ZERO_CLEARANCE_M {
+                        state.lambda_vec[i] = -g.force_normal();
+                    } else if closed[i] && g.normal_force < -RELEASE_FORCE_FRACTION * scale {
+                        closed[i] = false;
+                        state.lambda[i] = 0.0;
+                    } else if !closed[i] && g.penetration > ctl.gap_tolerance * eo {
+                        closed[i] = true;
+                    } else if closed[i] {
+                        state.lambda[i] = g.normal_force.max(0.0);
+                    }
+                }
+            }
+        }
+        // assemble with the managed gaps carrying only their lagged friction
+        state.lcp_nodes = Some(managed.clone());
+        let ev1 = model.evaluate(&mut state, Some(lin.sink()));
+        let kb: Vec<(usize, f64)> = (0..6)
+            .map(|c| model.dof(0, c))
+            .chain((0..6).map(|c| model.dof(1, c)))
+            .filter(|d| !constrained.contains(d))
+            .map(|d| (d, lin.get(bit_ax, d)))
+            .collect();
+        let c = if bordered {
+            ev1.residual[bit_ax] + model.loads.wob_n
+        } else {
+            0.0
+        };
+        let mut r0 = ev1.residual.clone();
+        for &d in &constrained {
+            r0[d] = 0.0;
+        }
+        for &d in &constrained {
+            lin.constrain(d);
+        }
+        if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
+            return Err(SolveError::Singular {
+                dof,
+                node: nn - 1 - dof / 6,
+                detail: format!("zero pivot {pivot:e}"),
+            });
+        }
+        stats.factorizations += 1;
+        // particular solution and the response to each managed contact force
+        let mut a: Vec<f64> = r0.iter().map(|v| -v).collect();
+        lin.solve(&mut a);
+        let mut b = vec![0.0; n];
+        let (kbb, mut dh_a) = if bordered {
+            b[top_ax] = 1.0;
+            lin.solve(&mut b);
+            let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
+            let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
+            (kbb, if kbb.abs() > 1e-30 { (c + kba) / kbb } else { 0.0 })
+        } else {
+            (1.0, 0.0)
+        };
+        // normals and gaps of the managed nodes
+        let mut normals = Vec::with_capacity(qidx.len());
+        let mut gaps0 = Vec::with_capacity(qidx.len());
+        for &i in &qidx {
+            let md = model.path.nearest_md(&state.x[i], state.md[i]);
+            let p = model.path.point_at(md);
+            let d = state.x[i] - p.position;
+            let d = d - p.tangent * p.tangent.dot(&d);
+            let s = d.norm();
+            let nrm = if s > 1e-9 { d / s } else { state.normal[i] };
+            normals.push(model.basis[i].transpose() * nrm);
+            gaps0.push(s - model.clearance(i, md));
+        }
+        let m = qidx.len();
+        let mut vs: Vec<Vec<f64>> = Vec::with_capacity(m);
+        let mut dh_v = vec![0.0; m];
+        for (j, &i) in qidx.iter().enumerate() {
+            // force -R n on node i: unit R gives rhs = -n (f_ext) -> K dv = -n ; v = response
+            let mut v = vec![0.0; n];
+            for k in 0..3 {
+                v[model.dof(i, k)] = -normals[j][k];
+            }
+            lin.solve_tail(&mut v, tail_first);
+            if bordered {
+                let kbv: f64 = kb.iter().map(|&(d, val)| val * v[d]).sum();
+                dh_v[j] = kbv / kbb;
+            }
+            vs.push(v);
+        }
+        let pa: Vec<f64> = (0..n).map(|k| a[k] - dh_a * b[k]).collect();
+        let mut cm = nalgebra::DMatrix::<f64>::zeros(m, m);
+        let mut dvec = nalgebra::DVector::<f64>::zeros(m);
+        for (ii, &i) in qidx.iter().enumerate() {
+            let radial = |u: &[f64]| -> f64 { (0..3).map(|k| normals[ii][k] * u[model.dof(i, k)]).sum() };
+            dvec[ii] = gaps0[ii] + radial(&pa);
+            for jj in 0..m {
+                let vj: Vec<f64> = Vec::new();
+                let _ = vj;
+                let val = (0..3)
+                    .map(|k| normals[ii][k] * (vs[jj][model.dof(i, k)] - dh_v[jj] * b[model.dof(i, k)]))
+                    .sum::<f64>();
+                cm[(ii, jj)] = -val;
+            }
+        }
+        let forces = crate::contact::lcp::solve_lcp(&cm, &dvec, 1e-10).unwrap_or_else(|| nalgebra::DVector::zeros(m));
+        // assemble the step
+        // full step: one more solve with the managed contact forces as loads
+        let mut rhs = vec![0.0; n];
+        let mut dh_f = 0.0;
+        for (jj, &i) in qidx.iter().enumerate() {
+            for k in 0..3 {
+                rhs[model.dof(i, k)] -= forces[jj] * normals[jj][k];
+            }
+            dh_f += forces[jj] * dh_v[jj];
+        }
+        lin.solve(&mut rhs);
+        let du: Vec<f64> = (0..n).map(|k| pa[k] + rhs[k] - dh_f * b[k]).collect();
+        dh_a += dh_f;
+        let mut ratio: f64 = 0.0;
+        for i in 0..nn {
+            let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
+            ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
+            if model.mesh.nodes[i].has_gap && !managed[i] {
+                let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
+                ratio = ratio.max(lat / ev1.clearance[i].max(2e-3));
+            }
+        }
+        let alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
+        state.hook_load_n += alpha * dh_a;
+        model.update(&mut state, &du, alpha);
+        let closed = state.closed.as_mut().expect("set above");
+        for (jj, &i) in qidx.iter().enumerate() {
+            closed[i] = forces[jj] > 0.0;
+            state.lambda[i] = forces[jj];
+        }
+        stats.iterations += 1;
+    }
+    state.lcp_nodes = None;
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state,
