@@ -277,6 +277,21 @@ fn response(
     }
 }
 
+/// Node positions and triads of `st` moved by `h` along global DOF `j` (0..12, node bases):
+/// translations added, spins applied as `exp(Q e) Lambda`.
+pub fn perturbed(st: &ElementState, j: usize, h: f64) -> (Vec3, Vec3, Matrix3<f64>, Matrix3<f64>) {
+    let (mut xa, mut xb, mut la, mut lb) = (*st.x_a, *st.x_b, *st.lam_a, *st.lam_b);
+    let mut e = Vec3::zeros();
+    e[j % 3] = h;
+    match j / 3 {
+        0 => xa += st.q_a * e,
+        1 => la = super::rotation::exp_so3(&(st.q_a * e)) * la,
+        2 => xb += st.q_b * e,
+        _ => lb = super::rotation::exp_so3(&(st.q_b * e)) * lb,
+    }
+    (xa, xb, la, lb)
+}
+
 /// `(dB^T/dp_global) f_local` by central differences (f_local fixed).
 fn geometric_by_differences(st: &ElementState, l0: f64, fl: &SVector<f64, 7>) -> Mat12 {
     let mut kg = Mat12::zeros();
@@ -284,18 +299,7 @@ fn geometric_by_differences(st: &ElementState, l0: f64, fl: &SVector<f64, 7>) ->
     for j in 0..12 {
         let mut col = Vec12::zeros();
         for (sign, w) in [(1.0, 0.5 / h), (-1.0, -0.5 / h)] {
-            let mut xa = *st.x_a;
-            let mut xb = *st.x_b;
-            let mut la = *st.lam_a;
-            let mut lb = *st.lam_b;
-            let mut e = Vec3::zeros();
-            e[j % 3] = sign * h;
-            match j / 3 {
-                0 => xa += st.q_a * e,
-                1 => la = super::rotation::exp_so3(&(st.q_a * e)) * la,
-                2 => xb += st.q_b * e,
-                _ => lb = super::rotation::exp_so3(&(st.q_b * e)) * lb,
-            }
+            let (xa, xb, la, lb) = perturbed(st, j, sign * h);
             let pst = ElementState {
                 x_a: &xa,
                 x_b: &xb,
@@ -361,18 +365,15 @@ mod tests {
         let h = 1e-7;
         for j in 0..12 {
             let energy = |sign: f64| {
-                let mut xa = x_a;
-                let mut xb = x_b;
-                let mut la = lam_a;
-                let mut lb = lam_b;
-                let mut e = Vec3::zeros();
-                e[j % 3] = sign * h;
-                match j / 3 {
-                    0 => xa += q_a * e,
-                    1 => la = exp_so3(&(q_a * e)) * la,
-                    2 => xb += q_b * e,
-                    _ => lb = exp_so3(&(q_b * e)) * lb,
-                }
+                let base = ElementState {
+                    x_a: &x_a,
+                    x_b: &x_b,
+                    lam_a: &lam_a,
+                    lam_b: &lam_b,
+                    q_a: &q_a,
+                    q_b: &q_b,
+                };
+                let (xa, xb, la, lb) = perturbed(&base, j, sign * h);
                 let st = ElementState {
                     x_a: &xa,
                     x_b: &xb,
@@ -427,18 +428,15 @@ mod tests {
         let kmax = r0.tangent.abs().max();
         for j in 0..12 {
             let force = |sign: f64| {
-                let mut xa = x_a;
-                let mut xb = x_b;
-                let mut la = lam_a;
-                let mut lb = lam_b;
-                let mut e = Vec3::zeros();
-                e[j % 3] = sign * h;
-                match j / 3 {
-                    0 => xa += q_a * e,
-                    1 => la = exp_so3(&(q_a * e)) * la,
-                    2 => xb += q_b * e,
-                    _ => lb = exp_so3(&(q_b * e)) * lb,
-                }
+                let base = ElementState {
+                    x_a: &x_a,
+                    x_b: &x_b,
+                    lam_a: &lam_a,
+                    lam_b: &lam_b,
+                    q_a: &q_a,
+                    q_b: &q_b,
+                };
+                let (xa, xb, la, lb) = perturbed(&base, j, sign * h);
                 let st = ElementState {
                     x_a: &xa,
                     x_b: &xb,

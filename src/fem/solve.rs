@@ -271,6 +271,49 @@ impl Linear {
     }
 }
 
+/// Row of the bit's axial DOF over the free columns (for the hook-load equation), the WOB
+/// equation's residual `c`, and the residual with constrained entries zeroed.
+fn bordered_parts(
+    model: &Model,
+    lin: &Linear,
+    ev: &Evaluation,
+    constrained: &[usize],
+) -> (Vec<(usize, f64)>, f64, Vec<f64>) {
+    let bit_ax = model.dof(0, 0);
+    let kb: Vec<(usize, f64)> = (0..6)
+        .map(|c| model.dof(0, c))
+        .chain((0..6).map(|c| model.dof(1, c)))
+        .filter(|d| !constrained.contains(d))
+        .map(|d| (d, lin.get(bit_ax, d)))
+        .collect();
+    let c = if model.loads.hook_load_n.is_none() {
+        ev.residual[bit_ax] + model.loads.wob_n
+    } else {
+        0.0
+    };
+    let mut r = ev.residual.clone();
+    for &d in constrained {
+        r[d] = 0.0;
+    }
+    (kb, c, r)
+}
+
+/// Apply the boundary conditions to the tangent and factor it; a zero pivot becomes a
+/// [`SolveError::Singular`] naming the node.
+fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) -> Result<(), SolveError> {
+    for &d in constrained {
+        lin.constrain(d);
+    }
+    if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
+        return Err(SolveError::Singular {
+            dof,
+            node: model.nodes() - 1 - dof / 6,
+            detail: format!("zero pivot {pivot:e}"),
+        });
+    }
+    Ok(())
+}
+
 /// Solve the static problem from the model's initial state, trying the [`STRATEGIES`] in turn
 /// until one converges; returns the last attempt (flagged unconverged) if none does.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
@@ -388,21 +431,7 @@ pub fn solve_from(
     loop {
         ev = model.evaluate(&mut state, Some(lin.sink()));
         // row of the bit axial DOF (free columns) before constraining
-        let kb: Vec<(usize, f64)> = (0..6)
-            .map(|c| model.dof(0, c))
-            .chain((0..6).map(|c| model.dof(1, c)))
-            .filter(|d| !constrained.contains(d))
-            .map(|d| (d, lin.get(bit_ax, d)))
-            .collect();
-        let c = if bordered {
-            ev.residual[bit_ax] + model.loads.wob_n
-        } else {
-            0.0
-        };
-        let mut r = ev.residual.clone();
-        for &d in &constrained {
-            r[d] = 0.0;
-        }
+        let (kb, c, r) = bordered_parts(model, &lin, &ev, &constrained);
         let rn = residual_norm(model, &r, scale).max(c.abs() / scale);
         stats.residual_history.push(rn);
         let mut pen: f64 = 0.0;
@@ -489,16 +518,7 @@ pub fn solve_from(
             stats.iterations += 1;
             continue;
         }
-        for &d in &constrained {
-            lin.constrain(d);
-        }
-        if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
-            return Err(SolveError::Singular {
-                dof,
-                node: model.nodes() - 1 - dof / 6,
-                detail: format!("zero pivot {pivot:e}"),
-            });
-        }
+        constrain_and_factor(model, &mut lin, &constrained)?;
         stats.factorizations += 1;
         stats.negative_pivots = lin.negative_pivots();
         let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
@@ -708,31 +728,8 @@ pub fn solve_lcp_from(model: &Model, mut state: State, ctl: &SolveControls) -> R
         // assemble with the managed gaps carrying only their lagged friction
         state.lcp_nodes = Some(managed.clone());
         let ev1 = model.evaluate(&mut state, Some(lin.sink()));
-        let kb: Vec<(usize, f64)> = (0..6)
-            .map(|c| model.dof(0, c))
-            .chain((0..6).map(|c| model.dof(1, c)))
-            .filter(|d| !constrained.contains(d))
-            .map(|d| (d, lin.get(bit_ax, d)))
-            .collect();
-        let c = if bordered {
-            ev1.residual[bit_ax] + model.loads.wob_n
-        } else {
-            0.0
-        };
-        let mut r0 = ev1.residual.clone();
-        for &d in &constrained {
-            r0[d] = 0.0;
-        }
-        for &d in &constrained {
-            lin.constrain(d);
-        }
-        if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
-            return Err(SolveError::Singular {
-                dof,
-                node: nn - 1 - dof / 6,
-                detail: format!("zero pivot {pivot:e}"),
-            });
-        }
+        let (kb, c, r0) = bordered_parts(model, &lin, &ev1, &constrained);
+        constrain_and_factor(model, &mut lin, &constrained)?;
         stats.factorizations += 1;
         // particular solution and the response to each managed contact force
         let mut a: Vec<f64> = r0.iter().map(|v| -v).collect();
