@@ -155,7 +155,15 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
     let mut force = -n * r;
     let mut moment = Vec3::zeros();
     let mut moment_stiffness = Matrix3::zeros();
-    let rf = r.max(0.0);
+    // Friction load: the current normal force, or (status open with a given load) the
+    // multiplier of a contact whose normal force an outer complementarity solve decides.
+    let lagged = g.status == Some(false) && g.friction_load.is_some();
+    let rf = if lagged {
+        g.friction_load.unwrap_or(0.0).max(0.0)
+    } else {
+        r.max(0.0)
+    };
+    let dr_dx = if lagged { Vec3::zeros() } else { dr_dx };
     if rf > 0.0 && g.friction > 0.0 {
         let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
         let vn = v.norm();

@@ -130,14 +130,10 @@ impl BandLu {
         self.f.data.copy_from_slice(&a.data);
         self.ok = false;
         let (n, b, w) = (self.f.n, self.f.b, self.f.w);
-        let amax = (0..n)
-            .map(|j| a.get(j, j).abs())
-            .fold(0.0, f64::max)
-            .max(f64::MIN_POSITIVE);
         let data = &mut self.f.data;
         for k in 0..n {
             let pivot = data[k * w + b];
-            if !pivot.is_finite() || pivot.abs() <= 1e-14 * amax {
+            if !pivot.is_finite() || pivot.abs() <= 1e-14 * a.data[k * w + b].abs().max(f64::MIN_POSITIVE) {
                 return Err(FactorError::ZeroPivot { column: k, pivot });
             }
             let hi = (k + b).min(n - 1);

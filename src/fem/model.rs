@@ -127,6 +127,12 @@ pub struct State {
     /// Gaps whose normal force is being decided by the complementarity step (they carry only
     /// their lagged friction during assembly).
     pub lcp_nodes: Option<Vec<bool>>,
+    /// Closed gaps carry exactly their multiplier (no penalty term): for the final evaluation
+    /// of a solution whose contact forces came from the interior-point step.
+    pub exact_multipliers: bool,
+    /// Managed gaps leave their friction to the solver (proportional to the unknown normal
+    /// force) instead of applying it from the multiplier.
+    pub implicit_friction: bool,
 }
 
 /// Everything evaluated at a state.
@@ -287,6 +293,8 @@ impl Model {
             lambda_vec: vec![Vec3::zeros(); nn],
             smoothing: self.smoothing,
             lcp_nodes: None,
+            exact_multipliers: false,
+            implicit_friction: false,
         }
     }
 
@@ -398,7 +406,11 @@ impl Model {
                 clearance: eo,
                 contact_radius: self.mesh.nodes[i].contact_od_m / 2.0,
                 lambda: state.lambda[i],
-                k_n: self.k_n[i],
+                k_n: if state.exact_multipliers && eo > crate::contact::gap::ZERO_CLEARANCE_M {
+                    0.0
+                } else {
+                    self.k_n[i]
+                },
                 friction: self.friction[i],
                 axial_speed: self.loads.axial_speed_m_s,
                 omega: self.loads.omega_rad_s,
@@ -416,13 +428,18 @@ impl Model {
                     _ => None,
                 },
             });
-            if g.normal_force != 0.0 || g.active {
+            // implicit friction: the solver adds the friction force itself (proportional to the
+            // unknown normal force); only its geometric stiffness comes from here
+            let force_here = !(state.implicit_friction && state.lcp_nodes.as_ref().is_some_and(|q| q[i]));
+            if g.normal_force != 0.0 || g.active || g.force != Vec3::zeros() {
                 let qb = &self.basis[i];
-                let f = qb.transpose() * g.force;
-                let m = qb.transpose() * g.moment;
-                for k in 0..3 {
-                    r[self.dof(i, k)] -= f[k];
-                    r[self.dof(i, 3 + k)] -= m[k];
+                if force_here {
+                    let f = qb.transpose() * g.force;
+                    let m = qb.transpose() * g.moment;
+                    for k in 0..3 {
+                        r[self.dof(i, k)] -= f[k];
+                        r[self.dof(i, 3 + k)] -= m[k];
+                    }
                 }
                 if let Some(km) = kmat.as_deref_mut() {
                     // 6x6 block of the node: translations <- translations (wall force) and

@@ -263,6 +263,32 @@ impl Linear {
             Linear::General(_, f) => f.solve_tail_in_place(x, first),
         }
     }
+    /// A copy of the assembled matrix (before constraints).
+    fn clone_matrix(&self) -> Linear {
+        match self {
+            Linear::Symmetric(k, _) => Linear::Symmetric(k.clone(), BandLdlt::new(1, 1)),
+            Linear::General(k, _) => Linear::General(k.clone(), BandLu::new(1, 1)),
+        }
+    }
+    /// Replace the matrix with a stored copy.
+    fn set_matrix(&mut self, from: &Linear) {
+        match (self, from) {
+            (Linear::Symmetric(k, _), Linear::Symmetric(f, _)) => k.copy_from(f),
+            (Linear::General(k, _), Linear::General(f, _)) => *k = f.clone(),
+            _ => unreachable!("matrix kinds match"),
+        }
+    }
+    /// `y += A x` with the stored copy's matrix `a`.
+    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64]) {
+        let mut t = vec![0.0; x.len()];
+        match a {
+            Linear::Symmetric(k, _) => k.mul_vec(x, &mut t),
+            Linear::General(k, _) => k.mul_vec(x, &mut t),
+        }
+        for (yi, ti) in y.iter_mut().zip(t) {
+            *yi += ti;
+        }
+    }
     fn negative_pivots(&self) -> usize {
         match self {
             Linear::Symmetric(_, f) => f.negative_pivots(),
@@ -314,18 +340,34 @@ fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) 
     Ok(())
 }
 
-/// Solve the static problem from the model's initial state, trying the [`STRATEGIES`] in turn
-/// until one converges; returns the last attempt (flagged unconverged) if none does.
+/// Solve the static problem from the model's initial state: first the interior-point contact
+/// Newton ([`solve_ip_from`]) with the consistent tangent, then, if it fails, the active-set
+/// [`STRATEGIES`] in turn and a load continuation; returns the last attempt (flagged
+/// unconverged) if none converges.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
-    let mut total = 0usize;
+    // 1. Newton with the fully consistent co-rotational tangent, each step solving the contact
+    //    problem of all gaps by the interior-point method
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    let mut state = model.initial_state();
+    soft_string_start(model, &mut state, false);
+    let mut sol = solve_ip_from(&consistent, state, ctl)?;
+    sol.stats.attempts = 1;
+    if sol.converged {
+        sol.stats.seconds = t0.elapsed().as_secs_f64();
+        return Ok(sol);
+    }
+    tracing::info!("interior-point contact Newton did not converge; trying the active-set strategies");
+    // 2. fallbacks: active-set strategies, then load continuation
+    let mut total = sol.stats.iterations;
     let mut last = None;
     for (k, strategy) in STRATEGIES.iter().enumerate() {
         let mut state = model.initial_state();
         soft_string_start(model, &mut state, strategy.bha_open_start);
         let mut sol = solve_from(model, state, ctl, strategy)?;
         total += sol.stats.iterations;
-        sol.stats.attempts = k + 1;
+        sol.stats.attempts = k + 2;
         let done = sol.converged;
         last = Some(sol);
         if done {
@@ -340,7 +382,7 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
         tracing::info!("trying load continuation");
         if let Some(mut cont) = solve_by_continuation(model, ctl)? {
             total += cont.stats.iterations;
-            cont.stats.attempts = STRATEGIES.len() + 1;
+            cont.stats.attempts = STRATEGIES.len() + 2;
             sol = cont;
         }
     }
@@ -826,6 +868,258 @@ pub fn solve_lcp_from(model: &Model, mut state: State, ctl: &SolveControls) -> R
     Ok(Solution {
         state,
         eval: ev,
+        converged,
+        stats,
+    })
+}
+
+/// Newton iteration on the geometry whose every step solves the linearized contact problem of
+/// all (non-pin) gaps exactly by a primal-dual interior-point method on the band system:
+/// `K du + N R = -r0`, `N^T du + s = -g`, `R, s >= 0`, `R s = 0` (Mehrotra-type centering).
+/// Each interior-point iteration factors `K + N diag(R/s) N^T`, which keeps the band
+/// structure (a rank-one 3x3 block per gap). Friction is taken from the previous step's
+/// normal forces (lagged), the rotation of the contact normal enters as the circle stiffness
+/// `(R/s)(I - t t^T - n n^T)`.
+pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    let t0 = Instant::now();
+    let n = model.dofs();
+    let nn = model.nodes();
+    let mut lin = if model.needs_unsymmetric() {
+        Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
+    } else {
+        Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
+    };
+    let constrained = model.constrained_dofs();
+    let top_ax = model.dof(nn - 1, 0);
+    let bordered = model.loads.hook_load_n.is_none();
+    let scale = load_scale(model);
+    let mut stats = SolveStats::default();
+    let mut converged = false;
+    let managed: Vec<bool> = (0..nn)
+        .map(|i| {
+            model.mesh.nodes[i].has_gap && model.clearance(i, model.md_ref[i]) > crate::contact::gap::ZERO_CLEARANCE_M
+        })
+        .collect();
+    let qidx: Vec<usize> = (0..nn).filter(|&i| managed[i]).collect();
+    let m = qidx.len();
+    state.closed = Some(vec![false; nn]);
+    state.free_law = None;
+    state.lcp_nodes = Some(managed.clone());
+    state.implicit_friction = true;
+    let mut ev;
+    loop {
+        // linearize with the managed gaps carrying only their lagged friction
+        ev = model.evaluate(&mut state, Some(lin.sink()));
+        let (kb, c, r0) = bordered_parts(model, &lin, &ev, &constrained);
+        // contact geometry of the managed gaps (node-basis normals, gaps)
+        let mut normals = Vec::with_capacity(m);
+        let mut gaps0 = Vec::with_capacity(m);
+        // equilibrium column of each contact force: [n + f v^ ; f R_c n x v^] (node basis),
+        // friction proportional to the unknown normal force
+        let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
+        for &i in &qidx {
+            let md = model.path.nearest_md(&state.x[i], state.md[i]);
+            let p = model.path.point_at(md);
+            let d = state.x[i] - p.position;
+            let d = d - p.tangent * p.tangent.dot(&d);
+            let s = d.norm();
+            let nrm = if s > 1e-9 { d / s } else { state.normal[i] };
+            state.normal[i] = nrm;
+            let q = &model.basis[i];
+            normals.push(q.transpose() * nrm);
+            let rc = model.mesh.nodes[i].contact_od_m / 2.0;
+            let v = p.tangent * model.loads.axial_speed_m_s + p.tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
+            let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
+                let vh = v / v.norm();
+                (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
+            } else {
+                (Vec3::zeros(), Vec3::zeros())
+            };
+            let et = q.transpose() * (nrm + fv);
+            let em = q.transpose() * fm;
+            eq_cols.push([et.x, et.y, et.z, em.x, em.y, em.z]);
+            gaps0.push(s - model.clearance(i, md));
+            // circle stiffness of the current contact force
+            let lam = state.lambda[i];
+            if lam > 0.0 && s > 1e-9 {
+                let t = p.tangent;
+                let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / s);
+                let kl = q.transpose() * kc * q;
+                let dofs: Vec<usize> = (0..3).map(|k| model.dof(i, k)).collect();
+                lin.sink().add_block(&dofs, kl.transpose().as_slice(), 3);
+            }
+        }
+        // outer residual with the current multipliers as the contact forces
+        let mut rt = r0.clone();
+        for (j, &i) in qidx.iter().enumerate() {
+            for k in 0..6 {
+                rt[model.dof(i, k)] += state.lambda[i] * eq_cols[j][k];
+            }
+        }
+        for &d in &constrained {
+            rt[d] = 0.0;
+        }
+        let rn = residual_norm(model, &rt, scale).max(c.abs() / scale);
+        stats.residual_history.push(rn);
+        let mut pen: f64 = 0.0;
+        let mut compl: f64 = 0.0;
+        for (j, &i) in qidx.iter().enumerate() {
+            let eo = ev.clearance[i].max(1e-3);
+            pen = pen.max(gaps0[j] / eo);
+            compl = compl.max((state.lambda[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
+        }
+        stats.max_penetration = pen.max(0.0);
+        tracing::debug!(
+            iteration = stats.iterations,
+            residual = rn,
+            penetration = pen,
+            compl,
+            "ip newton"
+        );
+        if rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && compl < 1e-6 {
+            converged = true;
+            break;
+        }
+        if stats.iterations >= ctl.max_iterations {
+            break;
+        }
+        // the base matrix K (before interior-point terms) is kept to rebuild each iteration
+        let base = lin.clone_matrix();
+        // interior point on (du, R, s), du the step of this linearization
+        let mut du = vec![0.0; n];
+        let mut dh_total = 0.0;
+        let mut r_f: Vec<f64> = qidx
+            .iter()
+            .map(|&i| state.lambda[i].max(1e-3 * scale / m.max(1) as f64))
+            .collect();
+        let mut s_v: Vec<f64> = (0..m)
+            .map(|j| (-gaps0[j]).max(1e-6 * ev.clearance[qidx[j]].max(1e-3)))
+            .collect();
+        for _ip in 0..60 {
+            // residuals
+            let mut rd = r0.clone();
+            lin.matrix_mul_add(&base, &du, &mut rd);
+            for (j, &i) in qidx.iter().enumerate() {
+                for k in 0..6 {
+                    rd[model.dof(i, k)] += r_f[j] * eq_cols[j][k];
+                }
+            }
+            rd[top_ax] += dh_total;
+            for &d in &constrained {
+                rd[d] = 0.0;
+            }
+            let radial =
+                |j: usize, u: &[f64]| -> f64 { (0..3).map(|k| normals[j][k] * u[model.dof(qidx[j], k)]).sum() };
+            let rp: Vec<f64> = (0..m).map(|j| radial(j, &du) + s_v[j] + gaps0[j]).collect();
+            let mu = (0..m).map(|j| r_f[j] * s_v[j]).sum::<f64>() / m.max(1) as f64;
+            let rd_n = rd.iter().fold(0.0f64, |a, v| a.max(v.abs())) / scale;
+            let rp_n = (0..m)
+                .map(|j| rp[j].abs() / ev.clearance[qidx[j]].max(1e-3))
+                .fold(0.0, f64::max);
+            let cb = if bordered {
+                c + kb.iter().map(|&(d, v)| v * du[d]).sum::<f64>()
+            } else {
+                0.0
+            };
+            if rd_n < 1e-10 && rp_n < 1e-9 && mu < 1e-12 * scale * 1e-3 && cb.abs() < 1e-10 * scale {
+                break;
+            }
+            let sigma = 0.1;
+            // reduced matrix K + N diag(R/s) N^T
+            lin.set_matrix(&base);
+            for (j, &i) in qidx.iter().enumerate() {
+                let dj = r_f[j] / s_v[j];
+                let nv = normals[j];
+                // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
+                let mut blk = [0.0; 36];
+                for r in 0..6 {
+                    for cc in 0..3 {
+                        blk[r * 6 + cc] = dj * eq_cols[j][r] * nv[cc];
+                    }
+                }
+                let dofs: Vec<usize> = (0..6).map(|k| model.dof(i, k)).collect();
+                lin.sink().add_block(&dofs, &blk, 6);
+            }
+            constrain_and_factor(model, &mut lin, &constrained)?;
+            stats.factorizations += 1;
+            // rhs = -rd - N S^-1 (-rc + sigma mu + R rp)
+            let mut rhs: Vec<f64> = rd.iter().map(|v| -v).collect();
+            for (j, &i) in qidx.iter().enumerate() {
+                let w = (-r_f[j] * s_v[j] + sigma * mu + r_f[j] * rp[j]) / s_v[j];
+                for k in 0..6 {
+                    rhs[model.dof(i, k)] -= w * eq_cols[j][k];
+                }
+            }
+            for &d in &constrained {
+                rhs[d] = 0.0;
+            }
+            let mut ddu = rhs;
+            lin.solve(&mut ddu);
+            let ddh = if bordered {
+                let mut b = vec![0.0; n];
+                b[top_ax] = 1.0;
+                lin.solve(&mut b);
+                let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
+                let kba: f64 = kb.iter().map(|&(d, v)| v * ddu[d]).sum();
+                let dh = if kbb.abs() > 1e-30 { (cb + kba) / kbb } else { 0.0 };
+                for k in 0..n {
+                    ddu[k] -= dh * b[k];
+                }
+                dh
+            } else {
+                0.0
+            };
+            let ds: Vec<f64> = (0..m).map(|j| -rp[j] - radial(j, &ddu)).collect();
+            let dr: Vec<f64> = (0..m)
+                .map(|j| (-r_f[j] * s_v[j] + sigma * mu - r_f[j] * ds[j]) / s_v[j])
+                .collect();
+            // fraction to the boundary
+            let mut alpha: f64 = 1.0;
+            for j in 0..m {
+                if dr[j] < 0.0 {
+                    alpha = alpha.min(-0.995 * r_f[j] / dr[j]);
+                }
+                if ds[j] < 0.0 {
+                    alpha = alpha.min(-0.995 * s_v[j] / ds[j]);
+                }
+            }
+            for k in 0..n {
+                du[k] += alpha * ddu[k];
+            }
+            dh_total += alpha * ddh;
+            for j in 0..m {
+                r_f[j] += alpha * dr[j];
+                s_v[j] += alpha * ds[j];
+            }
+        }
+        lin.set_matrix(&base);
+        // geometric step with caps
+        let mut ratio: f64 = 0.0;
+        for i in 0..nn {
+            let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
+            ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
+        }
+        let alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
+        state.hook_load_n += alpha * dh_total;
+        model.update(&mut state, &du, alpha);
+        for (j, &i) in qidx.iter().enumerate() {
+            state.lambda[i] = if r_f[j] > 1e-9 * scale { r_f[j] } else { 0.0 };
+        }
+        stats.iterations += 1;
+    }
+    // final state: contacts with force are closed at their multipliers
+    let closed: Vec<bool> = (0..nn).map(|i| managed[i] && state.lambda[i] > 0.0).collect();
+    state.closed = Some(closed);
+    state.lcp_nodes = None;
+    state.implicit_friction = false;
+    state.exact_multipliers = true;
+    let ev_final = model.evaluate(&mut state, None);
+    state.exact_multipliers = false;
+    let _ = ev;
+    stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(Solution {
+        state,
+        eval: ev_final,
         converged,
         stats,
     })
