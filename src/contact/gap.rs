@@ -37,11 +37,6 @@ pub struct GapInput {
     pub omega: f64,
     /// Normal to use when the offset is ~0 (previous contact direction).
     pub fallback_normal: Vec3,
-    /// Smoothing width delta of the contact law, m (0: the sharp law `max(0, .)`). The normal
-    /// force is `R = k_n delta softplus((lambda + k_n g)/(k_n delta))`: a node within about delta
-    /// of the wall carries a small force that fades smoothly, the tolerance band of the
-    /// paper's Table 1, which lets Newton converge quadratically along line contacts.
-    pub smoothing_m: f64,
     /// Contact status imposed by an active-set solver: `Some(true)` makes the gap bilateral
     /// (the force `lambda + k_n g` may turn negative, telling the solver to release it),
     /// `Some(false)` makes it carry nothing; `None` uses the unilateral law.
@@ -121,30 +116,12 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
             } else {
                 (0.0, 0.0)
             }
-        } else if g.smoothing_m > 0.0 {
-            let f0 = g.k_n * g.smoothing_m;
-            let z = trial / f0;
-            let sp = if z > 30.0 {
-                z
-            } else if z < -40.0 {
-                0.0
-            } else {
-                z.exp().ln_1p()
-            };
-            let sig = if z > 30.0 {
-                1.0
-            } else if z < -40.0 {
-                0.0
-            } else {
-                1.0 / (1.0 + (-z).exp())
-            };
-            (f0 * sp, g.k_n * sig)
         } else if trial > 0.0 {
             (trial, g.k_n)
         } else {
             (0.0, 0.0)
         };
-        let active = r > 1e-3 * (g.k_n * g.smoothing_m).max(1e-9);
+        let active = r > 0.0;
         (r, n, n * dr, dn, active)
     };
     let mut stiffness = n * dr_dx.transpose() + dn_dx * r;
@@ -215,7 +192,6 @@ mod tests {
             axial_speed: 0.0,
             omega: 6.0,
             fallback_normal: Vec3::new(0.0, 1.0, 0.0),
-            smoothing_m: 0.0,
             status: None,
             lambda_vec: Vec3::zeros(),
             friction_load: None,

@@ -92,8 +92,6 @@ pub struct Model {
     pub loads: Loads,
     /// Whether the axial-force/bending coupling is on (off only to demonstrate its effect).
     pub geometric_stiffness: bool,
-    /// Contact smoothing width relative to the clearance (the gap tolerance).
-    pub smoothing: f64,
     /// Length of the bottom-hole assembly from the bit, m.
     pub bha_length_m: f64,
     /// Full consistent element tangent (needed under torque; slower), see
@@ -122,8 +120,6 @@ pub struct State {
     pub free_law: Option<Vec<bool>>,
     /// Vector multipliers of zero-clearance gaps, N.
     pub lambda_vec: Vec<Vec3>,
-    /// Smoothing width of the unilateral contact law relative to the clearance (0: sharp).
-    pub smoothing: f64,
     /// Gaps whose normal force is being decided by the complementarity step (they carry only
     /// their lagged friction during assembly).
     pub lcp_nodes: Option<Vec<bool>>,
@@ -238,7 +234,6 @@ impl Model {
             k_n,
             loads,
             geometric_stiffness: true,
-            smoothing: 0.0,
             consistent_tangent: false,
             bha_length_m: 0.0,
         }
@@ -291,7 +286,6 @@ impl Model {
             closed: None,
             free_law: None,
             lambda_vec: vec![Vec3::zeros(); nn],
-            smoothing: self.smoothing,
             lcp_nodes: None,
             exact_multipliers: false,
             implicit_friction: false,
@@ -415,7 +409,6 @@ impl Model {
                 axial_speed: self.loads.axial_speed_m_s,
                 omega: self.loads.omega_rad_s,
                 fallback_normal: state.normal[i],
-                smoothing_m: state.smoothing * eo.max(1e-3),
                 status: match (&state.closed, &state.free_law, &state.lcp_nodes) {
                     (_, _, Some(q)) if q[i] => Some(false),
                     (_, Some(f), _) if f[i] => None,
