@@ -195,28 +195,47 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
 
 /// Merit of a state: squared residual over free DOFs plus the WOB equation, forces in N and
 /// moments in N.m (1 m length scale).
-fn merit(model: &Model, r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
-    let _ = model;
-    let mut m = 0.0;
-    for (d, v) in r.iter().enumerate() {
-        if !constrained.contains(&d) {
-            m += v * v;
-        }
-    }
+fn merit(r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
+    let m: f64 = r
+        .iter()
+        .enumerate()
+        .filter(|(d, _)| !constrained.contains(d))
+        .map(|(_, v)| v * v)
+        .sum();
     if bordered {
-        m += c * c;
+        m + c * c
+    } else {
+        m
     }
-    m
 }
 
-fn residual_norm(model: &Model, r: &[f64], scale: f64) -> f64 {
-    let mut m: f64 = 0.0;
-    for (d, v) in r.iter().enumerate() {
-        m = m.max(v.abs());
-        let _ = d;
+/// Largest residual entry relative to the load scale.
+fn residual_norm(r: &[f64], scale: f64) -> f64 {
+    r.iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
+}
+
+/// Where a gap node sits relative to the hole: outward unit normal (global; the previous one
+/// when the node is on the axis), radial distance minus clearance, and the axis tangent.
+struct GapGeometry {
+    normal: Vec3,
+    gap: f64,
+    tangent: Vec3,
+    radial: f64,
+}
+
+fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
+    let md = model.path.nearest_md(&state.x[i], state.md[i]);
+    let p = model.path.point_at(md);
+    let d = state.x[i] - p.position;
+    let d = d - p.tangent * p.tangent.dot(&d);
+    let s = d.norm();
+    let normal = if s > 1e-9 { d / s } else { state.normal[i] };
+    GapGeometry {
+        normal,
+        gap: s - model.clearance(i, md),
+        tangent: p.tangent,
+        radial: s,
     }
-    let _ = model;
-    m / scale
 }
 
 /// The global tangent and its factor: symmetric LDL^T, or LU when friction makes the
@@ -227,6 +246,15 @@ enum Linear {
 }
 
 impl Linear {
+    /// LU when friction makes the consistent tangent unsymmetric, LDL^T otherwise.
+    fn for_model(model: &Model) -> Linear {
+        let n = model.dofs();
+        if model.needs_unsymmetric() {
+            Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
+        } else {
+            Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
+        }
+    }
     fn sink(&mut self) -> &mut dyn StiffnessSink {
         match self {
             Linear::Symmetric(k, _) => k,
@@ -442,11 +470,7 @@ pub fn solve_from(
     }
     let t0 = Instant::now();
     let n = model.dofs();
-    let mut lin = if model.needs_unsymmetric() {
-        Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
-    } else {
-        Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
-    };
+    let mut lin = Linear::for_model(model);
     let constrained = model.constrained_dofs();
     let top = model.nodes() - 1;
     let bit_ax = model.dof(0, 0);
@@ -474,7 +498,7 @@ pub fn solve_from(
         ev = model.evaluate(&mut state, Some(lin.sink()));
         // row of the bit axial DOF (free columns) before constraining
         let (kb, c, r) = bordered_parts(model, &lin, &ev, &constrained);
-        let rn = residual_norm(model, &r, scale).max(c.abs() / scale);
+        let rn = residual_norm(&r, scale).max(c.abs() / scale);
         stats.residual_history.push(rn);
         let mut pen: f64 = 0.0;
         for (i, g) in ev.gaps.iter().enumerate() {
@@ -597,7 +621,7 @@ pub fn solve_from(
         // step across contact switches)
         // non-monotone line search (Grippo et al. 1986): compare with the largest merit of
         // the last few iterates, so contact switches may raise the merit for a while
-        let merit_now = merit(model, &ev.residual, &constrained, c, bordered);
+        let merit_now = merit(&ev.residual, &constrained, c, bordered);
         merits.push(merit_now);
         let merit0 = merits
             .iter()
@@ -617,7 +641,7 @@ pub fn solve_from(
             } else {
                 0.0
             };
-            let m1 = merit(model, &tev.residual, &constrained, tc, bordered);
+            let m1 = merit(&tev.residual, &constrained, tc, bordered);
             if m1 <= (1.0 - 1e-4 * alpha) * merit0 || merit0 < 1e-30 {
                 state = trial;
                 accepted = true;
@@ -669,11 +693,7 @@ pub fn solve_lcp_from(model: &Model, mut state: State, ctl: &SolveControls) -> R
     let t0 = Instant::now();
     let n = model.dofs();
     let nn = model.nodes();
-    let mut lin = if model.needs_unsymmetric() {
-        Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
-    } else {
-        Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
-    };
+    let mut lin = Linear::for_model(model);
     let constrained = model.constrained_dofs();
     let top = nn - 1;
     let bit_ax = model.dof(0, 0);
@@ -715,7 +735,7 @@ pub fn solve_lcp_from(model: &Model, mut state: State, ctl: &SolveControls) -> R
         for &d in &constrained {
             r[d] = 0.0;
         }
-        let rn = residual_norm(model, &r, scale).max(c_full.abs() / scale);
+        let rn = residual_norm(&r, scale).max(c_full.abs() / scale);
         stats.residual_history.push(rn);
         let mut pen: f64 = 0.0;
         let mut inconsistent = 0usize;
@@ -790,14 +810,9 @@ pub fn solve_lcp_from(model: &Model, mut state: State, ctl: &SolveControls) -> R
         let mut normals = Vec::with_capacity(qidx.len());
         let mut gaps0 = Vec::with_capacity(qidx.len());
         for &i in &qidx {
-            let md = model.path.nearest_md(&state.x[i], state.md[i]);
-            let p = model.path.point_at(md);
-            let d = state.x[i] - p.position;
-            let d = d - p.tangent * p.tangent.dot(&d);
-            let s = d.norm();
-            let nrm = if s > 1e-9 { d / s } else { state.normal[i] };
-            normals.push(model.basis[i].transpose() * nrm);
-            gaps0.push(s - model.clearance(i, md));
+            let g = gap_geometry(model, &state, i);
+            normals.push(model.basis[i].transpose() * g.normal);
+            gaps0.push(g.gap);
         }
         let m = qidx.len();
         let mut vs: Vec<Vec<f64>> = Vec::with_capacity(m);
@@ -884,11 +899,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     let t0 = Instant::now();
     let n = model.dofs();
     let nn = model.nodes();
-    let mut lin = if model.needs_unsymmetric() {
-        Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
-    } else {
-        Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
-    };
+    let mut lin = Linear::for_model(model);
     let constrained = model.constrained_dofs();
     let top_ax = model.dof(nn - 1, 0);
     let bordered = model.loads.hook_load_n.is_none();
@@ -918,17 +929,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // friction proportional to the unknown normal force
         let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
         for &i in &qidx {
-            let md = model.path.nearest_md(&state.x[i], state.md[i]);
-            let p = model.path.point_at(md);
-            let d = state.x[i] - p.position;
-            let d = d - p.tangent * p.tangent.dot(&d);
-            let s = d.norm();
-            let nrm = if s > 1e-9 { d / s } else { state.normal[i] };
+            let g = gap_geometry(model, &state, i);
+            let (nrm, s) = (g.normal, g.radial);
             state.normal[i] = nrm;
             let q = &model.basis[i];
             normals.push(q.transpose() * nrm);
             let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-            let v = p.tangent * model.loads.axial_speed_m_s + p.tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
+            let v = g.tangent * model.loads.axial_speed_m_s + g.tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
             let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
                 let vh = v / v.norm();
                 (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
@@ -938,11 +945,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             let et = q.transpose() * (nrm + fv);
             let em = q.transpose() * fm;
             eq_cols.push([et.x, et.y, et.z, em.x, em.y, em.z]);
-            gaps0.push(s - model.clearance(i, md));
+            gaps0.push(g.gap);
             // circle stiffness of the current contact force
             let lam = state.lambda[i];
             if lam > 0.0 && s > 1e-9 {
-                let t = p.tangent;
+                let t = g.tangent;
                 let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / s);
                 let kl = q.transpose() * kc * q;
                 let dofs: Vec<usize> = (0..3).map(|k| model.dof(i, k)).collect();
@@ -959,7 +966,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         for &d in &constrained {
             rt[d] = 0.0;
         }
-        let rn = residual_norm(model, &rt, scale).max(c.abs() / scale);
+        let rn = residual_norm(&rt, scale).max(c.abs() / scale);
         stats.residual_history.push(rn);
         let mut pen: f64 = 0.0;
         let mut compl: f64 = 0.0;
