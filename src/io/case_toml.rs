@@ -46,16 +46,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         }
     })?;
     let top = Section::new(path, "", &table);
-    top.check_known(&[
-        "name",
-        "description",
-        "well",
-        "mud",
-        "operation",
-        "string",
-        "bit_rock",
-        "solver",
-    ])?;
+    top.check_known(TOP_KEYS)?;
     let name = top.string("name")?.unwrap_or_else(|| {
         path.file_stem()
             .map(|s| s.to_string_lossy().into_owned())
@@ -75,6 +66,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
 
     let mud = match top.table("mud")? {
         Some(s) => {
+            s.check_known(MUD_KEYS)?;
             let density = s.positive("density", D::Density, "sg", false)?.unwrap_or(1000.0);
             if density > 3000.0 {
                 return Err(s.error("density", "mud density above 3 sg is not plausible"));
@@ -82,7 +74,6 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
             let pv = s
                 .positive("plastic_viscosity", D::Viscosity, "cP", true)?
                 .unwrap_or(0.02);
-            s.finish(&["density", "plastic_viscosity"])?;
             Mud {
                 density_kg_m3: density,
                 plastic_viscosity_pa_s: pv,
@@ -113,16 +104,6 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         .table("solver")?
         .unwrap_or_else(|| Section::new(path, "solver", &empty));
     let solver = read_solver(&sol_sec)?;
-    top.finish(&[
-        "name",
-        "description",
-        "well",
-        "mud",
-        "operation",
-        "string",
-        "bit_rock",
-        "solver",
-    ])?;
 
     Ok(Case {
         name,
@@ -143,7 +124,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
 }
 
 fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
-    s.check_known(&["survey", "survey_md_unit", "origin", "hole", "caliper"])?;
+    s.check_known(WELL_KEYS)?;
     let rel = s
         .string("survey")?
         .ok_or_else(|| s.error("survey", "missing the survey CSV path"))?;
@@ -175,7 +156,7 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
     }
     let mut sections = Vec::new();
     for h in &secs {
-        h.check_known(&["to_md", "diameter", "friction"])?;
+        h.check_known(HOLE_KEYS)?;
         let to_md = h.req_quantity("to_md", D::Length, "m")?;
         let diameter = h
             .positive("diameter", D::Length, "in", false)?
@@ -198,7 +179,6 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
                 return Err(h.error("to_md", "hole sections must be listed top down with increasing to_md"));
             }
         }
-        h.finish(&["to_md", "diameter", "friction"])?;
         sections.push(HoleSection {
             to_md_m: to_md,
             diameter_m: diameter,
@@ -209,7 +189,6 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
         Some(rel) => read_caliper(&dir.join(rel), s)?,
         None => vec![],
     };
-    s.finish(&["survey", "survey_md_unit", "origin", "hole", "caliper"])?;
     Ok((survey, survey_path, origin, HoleSize::new(sections, caliper)))
 }
 
@@ -261,18 +240,7 @@ fn read_caliper(path: &Path, s: &Section) -> InputResult<Vec<(f64, f64)>> {
 }
 
 fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverrides) -> InputResult<Operation> {
-    s.check_known(&[
-        "mode",
-        "bit_md",
-        "wob",
-        "hook_load",
-        "rpm",
-        "rop",
-        "trip_speed",
-        "friction",
-        "bit_torque",
-        "viscous_torque",
-    ])?;
+    s.check_known(OPERATION_KEYS)?;
     let mode = match s.string("mode")? {
         Some(m) => {
             Mode::parse(&m).ok_or_else(|| s.error("mode", format!("unknown mode `{m}` (expected {})", Mode::NAMES)))?
@@ -320,18 +288,6 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
     }
     let bit_torque = s.quantity("bit_torque", D::Moment, "kN.m")?;
     let viscous = s.boolean("viscous_torque")?.unwrap_or(true);
-    s.finish(&[
-        "mode",
-        "bit_md",
-        "wob",
-        "hook_load",
-        "rpm",
-        "rop",
-        "trip_speed",
-        "friction",
-        "bit_torque",
-        "viscous_torque",
-    ])?;
     Ok(Operation {
         mode,
         bit_md_m: bit_md,
@@ -346,6 +302,62 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
     })
 }
 
+/// Keys accepted in the top table (checked before any is read, so a typo is named).
+const TOP_KEYS: &[&str] = &[
+    "name",
+    "description",
+    "well",
+    "mud",
+    "operation",
+    "string",
+    "bit_rock",
+    "solver",
+];
+/// Keys accepted in the well table (checked before any is read, so a typo is named).
+const WELL_KEYS: &[&str] = &["survey", "survey_md_unit", "origin", "hole", "caliper"];
+/// Keys accepted in the hole table (checked before any is read, so a typo is named).
+const HOLE_KEYS: &[&str] = &["to_md", "diameter", "friction"];
+/// Keys accepted in the mud table (checked before any is read, so a typo is named).
+const MUD_KEYS: &[&str] = &["density", "plastic_viscosity"];
+/// Keys accepted in the operation table (checked before any is read, so a typo is named).
+const OPERATION_KEYS: &[&str] = &[
+    "mode",
+    "bit_md",
+    "wob",
+    "hook_load",
+    "rpm",
+    "rop",
+    "trip_speed",
+    "friction",
+    "bit_torque",
+    "viscous_torque",
+];
+/// Keys accepted in the formation table (checked before any is read, so a typo is named).
+const FORMATION_KEYS: &[&str] = &["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"];
+/// Keys accepted in the bit rock table (checked before any is read, so a typo is named).
+const BIT_ROCK_KEYS: &[&str] = &[
+    "law",
+    "lateral_drillability",
+    "walk_angle",
+    "rock_anisotropy",
+    "dip",
+    "dip_direction",
+    "step",
+    "bit_friction",
+    "formations",
+];
+/// Keys accepted in the solver table (checked before any is read, so a typo is named).
+const SOLVER_KEYS: &[&str] = &[
+    "element_length",
+    "bha_element_length",
+    "tolerance",
+    "fidelity",
+    "method",
+    "max_iterations",
+    "alpha",
+];
+
+/// Keys accepted in a `[[string]]` component.
 const COMPONENT_KEYS: &[&str] = &[
     "type",
     "name",
@@ -476,7 +488,6 @@ fn read_string(
             Some(m) => m * G,
             None => area * material.density_kg_m3 * G,
         };
-        c.finish(COMPONENT_KEYS)?;
         let bottom = comps.last().map(|p: &Component| p.top_m()).unwrap_or(0.0);
         let contact = match kind {
             ComponentKind::Bit | ComponentKind::Stabilizer => od,
@@ -553,6 +564,7 @@ fn read_string(
 }
 
 fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
+    s.check_known(BIT_ROCK_KEYS)?;
     let law = s.string("law")?.unwrap_or_else(|| "ho".into());
     if law != "ho" {
         return Err(s.error("law", format!("unknown bit-rock law `{law}` (expected ho)")));
@@ -573,7 +585,7 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
     let mut formations = Vec::new();
     if let Some(fs) = s.tables("formations")? {
         for f in fs {
-            f.check_known(&["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"])?;
+            f.check_known(FORMATION_KEYS)?;
             let from = f.req_quantity("from_md", D::Length, "m")?;
             let to = f.req_quantity("to_md", D::Length, "m")?;
             if to <= from {
@@ -582,7 +594,6 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
             let fi = f.number("rock_anisotropy")?.unwrap_or(ir);
             let fd = f.quantity("dip", D::Angle, "deg")?.unwrap_or(dip);
             let fdd = f.quantity("dip_direction", D::Angle, "deg")?.unwrap_or(dipdir);
-            f.finish(&["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"])?;
             formations.push(Formation {
                 from_md_m: from,
                 to_md_m: to,
@@ -592,17 +603,6 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
             });
         }
     }
-    s.finish(&[
-        "law",
-        "lateral_drillability",
-        "walk_angle",
-        "rock_anisotropy",
-        "dip",
-        "dip_direction",
-        "step",
-        "bit_friction",
-        "formations",
-    ])?;
     Ok(BitRock {
         law,
         lateral_drillability: beta,
@@ -617,6 +617,7 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
 }
 
 fn read_solver(s: &Section) -> InputResult<SolverSettings> {
+    s.check_known(SOLVER_KEYS)?;
     let d = SolverSettings::default();
     let el = s
         .positive("element_length", D::Length, "m", false)?
@@ -653,15 +654,6 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     if !(alpha > 0.0 && alpha < 1.0) {
         return Err(s.error("alpha", format!("{alpha} outside (0, 1)")));
     }
-    s.finish(&[
-        "element_length",
-        "bha_element_length",
-        "tolerance",
-        "fidelity",
-        "method",
-        "max_iterations",
-        "alpha",
-    ])?;
     Ok(SolverSettings {
         element_length_m: el,
         bha_element_length_m: bha,

@@ -1,18 +1,16 @@
-//! A small reader over a TOML table that tracks which keys were used, converts quantities
+//! A small reader over a TOML table that rejects unknown keys up front, converts quantities
 //! with units, and reports unknown keys by their full dotted path (typos must not pass).
 
 use crate::error::{InputError, InputResult};
 use crate::units::{parse_quantity, Dimension};
-use std::cell::RefCell;
 use std::path::Path;
 use toml::{Table, Value};
 
-/// One TOML table being read; call [`Section::finish`] to reject keys nobody asked for.
+/// One TOML table being read; call [`Section::check_known`] first to reject unknown keys.
 pub struct Section<'a> {
     file: &'a Path,
     prefix: String,
     table: &'a Table,
-    used: RefCell<Vec<String>>,
 }
 
 fn type_name(v: &Value) -> &'static str {
@@ -34,7 +32,6 @@ impl<'a> Section<'a> {
             file,
             prefix: prefix.into(),
             table,
-            used: RefCell::new(Vec::new()),
         }
     }
 
@@ -53,11 +50,10 @@ impl<'a> Section<'a> {
     }
 
     fn get(&self, key: &str) -> Option<&'a Value> {
-        self.used.borrow_mut().push(key.to_string());
         self.table.get(key)
     }
 
-    /// True if the key is present (marks it used).
+    /// True if the key is present.
     pub fn has(&self, key: &str) -> bool {
         self.get(key).is_some()
     }
@@ -204,23 +200,6 @@ impl<'a> Section<'a> {
             }
             Some(_) => Err(self.error(key, "expected [north, east, tvd] in m")),
         }
-    }
-
-    /// Reject keys that were never asked for, suggesting the closest known key.
-    pub fn finish(&self, known: &[&str]) -> InputResult<()> {
-        let used = self.used.borrow();
-        for key in self.table.keys() {
-            if !used.iter().any(|u| u == key) {
-                let hint = closest(key, known)
-                    .map(|k| format!(" (did you mean `{k}`?)"))
-                    .unwrap_or_default();
-                return Err(self.error(
-                    key,
-                    format!("unknown key{hint}; accepted keys here: {}", known.join(", ")),
-                ));
-            }
-        }
-        Ok(())
     }
 }
 
