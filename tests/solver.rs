@@ -554,3 +554,24 @@ fn mirrored_well_flips_the_walk_force() {
     assert!((ra.bit.build_force_n - rb.bit.build_force_n).abs() < 1e-6 * scale);
     assert!((ra.bit.tilt_azi_rad + rb.bit.tilt_azi_rad).abs() < 1e-6 * ra.bit.tilt_azi_rad.abs().max(1e-6));
 }
+
+#[test]
+fn paper_method_is_refused_not_ignored() {
+    // `[solver] method = "paper"` is not implemented: the solve must say so rather than run
+    // the default scheme under the user's choice.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("survey.csv"), "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n").unwrap();
+    std::fs::write(
+        dir.path().join("case.toml"),
+        "[well]\nsurvey = \"survey.csv\"\nhole = [{ to_md = \"40 m\", diameter = \"8.5 in\" }]\n[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\n[solver]\nmethod = \"paper\"\n",
+    )
+    .unwrap();
+    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    let model = Model::from_case(&case);
+    let ctl = SolveControls {
+        method: case.solver.method,
+        ..Default::default()
+    };
+    let err = solve(&model, &ctl).err().expect("refused");
+    assert!(err.to_string().contains("paper"), "{err}");
+}

@@ -373,6 +373,9 @@ fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) 
 /// [`STRATEGIES`] in turn and a load continuation; returns the last attempt (flagged
 /// unconverged) if none converges.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    if ctl.method == Method::Paper {
+        return Err(SolveError::NotImplemented("paper"));
+    }
     let t0 = Instant::now();
     // 1. Newton with the fully consistent co-rotational tangent, each step solving the contact
     //    problem of all gaps by the interior-point method
@@ -465,9 +468,6 @@ pub fn solve_from(
     ctl: &SolveControls,
     strategy: &Strategy,
 ) -> Result<Solution, SolveError> {
-    if ctl.method == Method::Paper {
-        return Err(SolveError::NotImplemented("paper"));
-    }
     let t0 = Instant::now();
     let n = model.dofs();
     let mut lin = Linear::for_model(model);
