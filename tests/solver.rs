@@ -352,9 +352,9 @@ fn friction_acts_against_the_motion() {
 }
 
 #[test]
-fn complementarity_step_converges_in_few_iterations() {
-    // The experimental complementarity-step Newton (fem::solve::solve_lcp_from) settles all
-    // contacts of a short pendulum at once: same answer as the reference (0.5%), few iterations.
+fn interior_point_contact_step_converges_in_few_iterations() {
+    // The interior-point contact Newton (fem::solve::solve_ip_from) settles all contacts of a
+    // short pendulum at once: same answer as the reference (0.5%), few Newton iterations.
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("survey.csv"), "md_m,inc_deg,azi_deg\n0,30,0\n40,30,0\n").unwrap();
     std::fs::write(
@@ -382,9 +382,9 @@ bha_element_length = "0.5 m"
     let model = Model::from_case(&case);
     let mut state = model.initial_state();
     drillpath::fem::solve::soft_string_start(&model, &mut state, false);
-    let sol = drillpath::fem::solve::solve_lcp_from(&model, state, &SolveControls::default()).unwrap();
+    let sol = drillpath::fem::solve::solve_ip_from(&model, state, &SolveControls::default()).unwrap();
     assert!(sol.converged);
-    println!("complementarity-step Newton: {} iterations", sol.stats.iterations);
+    println!("interior-point contact Newton: {} iterations", sol.stats.iterations);
     assert!(sol.stats.iterations <= 12, "{} iterations", sol.stats.iterations);
     let res = extract(&model, &sol, case.mud.density_kg_m3);
     let (ei, w_b, r) = collar_properties();

@@ -1,4 +1,3 @@
 //! Contact between string and wall: the spatial multi-directional gap element with friction.
 
 pub mod gap;
-pub mod lcp;

@@ -443,39 +443,6 @@ impl BandLdlt {
         Ok(())
     }
 
-    /// Solve for a right-hand side that is zero before index `first`, computing only the
-    /// solution entries `first..n` (the others are left unspecified). Exact for a band
-    /// factor: forward substitution starts at `first`, backward stops there. Cost is that of
-    /// the tail, which is what the contact step needs near the bit (DOFs numbered from the
-    /// surface).
-    pub fn solve_tail_in_place(&self, b: &mut [f64], first: usize) {
-        let n = self.n;
-        let ld = self.ld;
-        assert!(
-            b.len() == n && self.valid == n,
-            "solve_tail_in_place: bad rhs or no factor"
-        );
-        let data = &self.data[..n * ld];
-        for (k, col) in data.chunks_exact(ld).enumerate().skip(first) {
-            let m = (n - 1 - k).min(self.hb);
-            let (bk, rest) = b[k..].split_first_mut().unwrap();
-            let yk = *bk;
-            for (bi, &l) in rest[..m].iter_mut().zip(&col[1..1 + m]) {
-                *bi -= yk * l;
-            }
-            *bk = yk / col[0];
-        }
-        for (j, col) in data.chunks_exact(ld).enumerate().skip(first).rev() {
-            let m = (n - 1 - j).min(self.hb);
-            let (bj, rest) = b[j..].split_first_mut().unwrap();
-            let mut acc = *bj;
-            for (&xi, &l) in rest[..m].iter().zip(&col[1..1 + m]).rev() {
-                acc -= l * xi;
-            }
-            *bj = acc;
-        }
-    }
-
     /// Solves `A x = b` in place (`b` becomes `x`) with the last successful factorization.
     ///
     /// # Panics

@@ -156,30 +156,6 @@ impl BandLu {
         Ok(())
     }
 
-    /// Solve for a right-hand side that is zero before `first`, computing only entries
-    /// `first..n` (see [`super::band::BandLdlt::solve_tail_in_place`]).
-    pub fn solve_tail_in_place(&self, x: &mut [f64], first: usize) {
-        assert!(self.ok, "BandLu::solve_tail_in_place without a valid factor");
-        let (n, b, w) = (self.f.n, self.f.b, self.f.w);
-        let data = &self.f.data;
-        for i in first..n {
-            let lo = i.saturating_sub(b).max(first);
-            let mut acc = x[i];
-            for j in lo..i {
-                acc -= data[i * w + (j + b - i)] * x[j];
-            }
-            x[i] = acc;
-        }
-        for i in (first..n).rev() {
-            let hi = (i + b).min(n - 1);
-            let mut acc = x[i];
-            for j in i + 1..=hi {
-                acc -= data[i * w + (j + b - i)] * x[j];
-            }
-            x[i] = acc / data[i * w + b];
-        }
-    }
-
     /// Solve `A x = rhs` in place.
     pub fn solve_in_place(&self, x: &mut [f64]) {
         assert!(self.ok, "BandLu::solve_in_place without a valid factor");
