@@ -9,12 +9,19 @@ use drillpath::fem::model::Model;
 use drillpath::fem::results::{extract, SolveResults};
 use drillpath::fem::solve::{solve, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use std::path::Path;
 
 /// 6.5 in x 2-13/16 in steel collar, 8.5 in hole, 1.2 sg mud (physics.md 6.2).
 const OD: f64 = 6.5 * 0.0254;
 const ID: f64 = 2.8125 * 0.0254;
 const HOLE: f64 = 8.5 * 0.0254;
+
+/// Write `survey` and `case_toml` into a fresh directory and read the case as users do.
+fn load_temp_case(survey: &str, case_toml: &str) -> drillpath::case::Case {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
+    std::fs::write(dir.path().join("case.toml"), case_toml).unwrap();
+    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
+}
 
 struct Run {
     res: SolveResults,
@@ -24,12 +31,7 @@ struct Run {
 /// Solve a slick collar string in a straight hole of inclination `inc_deg`, azimuth `azi_deg`,
 /// `length_m` long, with `wob_kn` and BHA element length `el_m`.
 fn slick_collar(inc_deg: f64, azi_deg: f64, length_m: f64, wob_kn: f64, el_m: f64, geometric: bool) -> Run {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("survey.csv"),
-        format!("md_m,inc_deg,azi_deg\n0,{inc_deg},{azi_deg}\n{length_m},{inc_deg},{azi_deg}\n"),
-    )
-    .unwrap();
+    let survey = format!("md_m,inc_deg,azi_deg\n0,{inc_deg},{azi_deg}\n{length_m},{inc_deg},{azi_deg}\n");
     let case = format!(
         r#"
 [well]
@@ -52,8 +54,7 @@ bha_element_length = "{el_m} m"
 max_iterations = 1000
 "#
     );
-    std::fs::write(dir.path().join("case.toml"), case).unwrap();
-    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    let case = load_temp_case(&survey, &case);
     let mut model = Model::from_case(&case);
     model.geometric_stiffness = geometric;
     let sol = solve(
@@ -70,7 +71,6 @@ max_iterations = 1000
         sol.stats.residual_history.last()
     );
     let res = extract(&model, &sol, case.mud.density_kg_m3);
-    let _ = Path::new(".");
     Run { res, model }
 }
 
@@ -237,7 +237,6 @@ fn axial_force_effect_on_side_force_matches_beam_column() {
 /// Drill pipe only (5 in, 29 kg/m, 6-5/8 in joints) in a smooth build-and-hold well: vertical to
 /// 300 m, build 3 deg/30 m to 30 deg, hold to 1,500 m (azimuth 20 deg), 8.5 in hole, 1.2 sg.
 fn pipe_in_build_and_hold(mode: &str, friction: f64) -> (drillpath::case::Case, SolveResults) {
-    let dir = tempfile::tempdir().unwrap();
     let mut rows = vec!["md_m,inc_deg,azi_deg".to_string()];
     let mut md = 0.0;
     while md < 300.0 {
@@ -254,7 +253,6 @@ fn pipe_in_build_and_hold(mode: &str, friction: f64) -> (drillpath::case::Case, 
         md = (md + 30.0).min(1500.0);
         rows.push(format!("{md},30,20"));
     }
-    std::fs::write(dir.path().join("survey.csv"), rows.join("\n") + "\n").unwrap();
     let case = format!(
         r#"
 [well]
@@ -278,8 +276,7 @@ tool_joint_od = "6.625 in"
 element_length = "2 m"
 "#
     );
-    std::fs::write(dir.path().join("case.toml"), case).unwrap();
-    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    let case = load_temp_case(&(rows.join("\n") + "\n"), &case);
     let model = Model::from_case(&case);
     let sol = solve(
         &model,
@@ -355,10 +352,8 @@ fn friction_acts_against_the_motion() {
 fn interior_point_contact_step_converges_in_few_iterations() {
     // The interior-point contact Newton (fem::solve::solve_ip_from) settles all contacts of a
     // short pendulum at once: same answer as the reference (0.5%), few Newton iterations.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), "md_m,inc_deg,azi_deg\n0,30,0\n40,30,0\n").unwrap();
-    std::fs::write(
-        dir.path().join("case.toml"),
+    let case = load_temp_case(
+        "md_m,inc_deg,azi_deg\n0,30,0\n40,30,0\n",
         r#"
 [well]
 survey = "survey.csv"
@@ -376,9 +371,7 @@ id = "2.8125 in"
 [solver]
 bha_element_length = "0.5 m"
 "#,
-    )
-    .unwrap();
-    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    );
     let model = Model::from_case(&case);
     let mut state = model.initial_state();
     drillpath::fem::solve::soft_string_start(&model, &mut state, false);
@@ -396,8 +389,6 @@ bha_element_length = "0.5 m"
 
 /// Solve a generic case given survey rows and a string table; returns (converged, results).
 fn solve_case(survey: &str, hole_in: f64, wob_kn: f64, strings: &str, extra_op: &str) -> Option<(bool, SolveResults)> {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
     let case = format!(
         r#"
 [well]
@@ -415,8 +406,7 @@ friction = 0.0
 max_iterations = 150
 "#
     );
-    std::fs::write(dir.path().join("case.toml"), case).unwrap();
-    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    let case = load_temp_case(survey, &case);
     let model = Model::from_case(&case);
     match solve(
         &model,
@@ -559,14 +549,10 @@ fn mirrored_well_flips_the_walk_force() {
 fn paper_method_is_refused_not_ignored() {
     // `[solver] method = "paper"` is not implemented: the solve must say so rather than run
     // the default scheme under the user's choice.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n").unwrap();
-    std::fs::write(
-        dir.path().join("case.toml"),
+    let case = load_temp_case(
+        "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n",
         "[well]\nsurvey = \"survey.csv\"\nhole = [{ to_md = \"40 m\", diameter = \"8.5 in\" }]\n[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\n[solver]\nmethod = \"paper\"\n",
-    )
-    .unwrap();
-    let case = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap();
+    );
     let model = Model::from_case(&case);
     let ctl = SolveControls {
         method: case.solver.method,
