@@ -353,10 +353,7 @@ impl Model {
             let ma = e1.cross(&q) * (l * l / 12.0);
             // mud drag torque about -t, lumped
             let mt = -e1 * (self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0);
-            let dofs: Vec<usize> = (0..6)
-                .map(|k| self.dof(a, k))
-                .chain((0..6).map(|k| self.dof(b, k)))
-                .collect();
+            let dofs: [usize; 12] = std::array::from_fn(|j| if j < 6 { self.dof(a, j) } else { self.dof(b, j - 6) });
             let qa = &self.basis[a];
             let qb = &self.basis[b];
             let ext = [
@@ -446,7 +443,7 @@ impl Model {
                             blk[(r + 3) * 6 + c] = kr[(r, c)];
                         }
                     }
-                    let d: Vec<usize> = (0..6).map(|k| self.dof(i, k)).collect();
+                    let d: [usize; 6] = std::array::from_fn(|k| self.dof(i, k));
                     km.add_block(&d, &blk, 6);
                 }
                 state.normal[i] = g.normal;

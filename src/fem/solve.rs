@@ -732,7 +732,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 let t = g.tangent;
                 let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / s);
                 let kl = q.transpose() * kc * q;
-                let dofs: Vec<usize> = (0..3).map(|k| model.dof(i, k)).collect();
+                let dofs: [usize; 3] = std::array::from_fn(|k| model.dof(i, k));
                 lin.sink().add_block(&dofs, kl.transpose().as_slice(), 3);
             }
         }
@@ -824,7 +824,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                         blk[r * 6 + cc] = dj * eq_cols[j][r] * nv[cc];
                     }
                 }
-                let dofs: Vec<usize> = (0..6).map(|k| model.dof(i, k)).collect();
+                let dofs: [usize; 6] = std::array::from_fn(|k| model.dof(i, k));
                 lin.sink().add_block(&dofs, &blk, 6);
             }
             constrain_and_factor(model, &mut lin, &constrained)?;
