@@ -73,16 +73,16 @@ pub fn vertical_force_unit(ei: f64, w_b: f64) -> f64 {
 }
 
 /// Vertical hole, Lubinski (1950) first-order buckling: `1.94 (EI w_b^2)^(1/3)` (dimensionless
-/// coefficient). **[uncertain]** commonly quoted value (physics.md 6.4, 10), to confirm against
+/// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10), to confirm against
 /// the original before a test relies on it.
 pub const LUBINSKI_VERTICAL_FIRST: f64 = 1.94;
 
 /// Vertical hole, sinusoidal buckling after Wu et al.: `2.55 (EI w_b^2)^(1/3)` (dimensionless
-/// coefficient). **[uncertain]** commonly quoted value (physics.md 6.4, 10).
+/// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10).
 pub const WU_VERTICAL_SINUSOIDAL: f64 = 2.55;
 
 /// Vertical hole, helical buckling after Wu et al.: `5.55 (EI w_b^2)^(1/3)` (dimensionless
-/// coefficient). **[uncertain]** commonly quoted value (physics.md 6.4, 10).
+/// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10).
 pub const WU_VERTICAL_HELICAL: f64 = 5.55;
 
 /// Wall contact force per length of a weightless helically buckled pipe,
@@ -138,7 +138,7 @@ mod tests {
     }
 
     /// Reference: physics.md 6.4 vertical example: (EI w_b^2)^(1/3) = 4.148 kN (3 decimals) and
-    /// 8.05 / 10.58 / 23.02 kN with the [uncertain] coefficients 1.94 / 2.55 / 5.55 (Lubinski
+    /// 8.05 / 10.58 / 23.02 kN with the \[uncertain\] coefficients 1.94 / 2.55 / 5.55 (Lubinski
     /// 1950; Wu et al.). Tolerance: printed digits. Only the arithmetic is verified here, not
     /// the coefficients themselves.
     #[test]
