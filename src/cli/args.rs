@@ -29,6 +29,81 @@ pub enum Command {
     ///
     /// Example: drillpath solve wells/j-shape/case.toml --out results/
     Solve(SolveArgs),
+    /// Forward-marching trajectory prediction (pre-drill design or tracking against the survey).
+    ///
+    /// Example: drillpath predict wells/seed-daqing/case.toml --from 292 --to 413 --out pred/
+    /// Several cases (e.g. candidate BHAs) give one comparison table of build and walk rates.
+    Predict(PredictArgs),
+    /// Post-drill back-analysis: predict each survey interval from the measured hole behind it.
+    ///
+    /// Example: drillpath backanalyze wells/seed-daqing/case.toml --calibrate --out back/
+    Backanalyze(BackanalyzeArgs),
+}
+
+/// Arguments of `drillpath predict`.
+#[derive(Debug, Args)]
+pub struct PredictArgs {
+    /// Case file(s) (.toml); several cases are compared over the same interval.
+    #[arg(required = true, num_args = 1..)]
+    pub cases: Vec<PathBuf>,
+    /// Start MD: the hole is the survey up to here [default: the last survey station].
+    #[arg(long, value_name = "MD")]
+    pub from: Option<String>,
+    /// End MD of the prediction (e.g. "413 m", 1500ft).
+    #[arg(long, value_name = "MD", conflicts_with = "ahead", required_unless_present = "ahead")]
+    pub to: Option<String>,
+    /// Length to drill ahead of --from instead of --to (e.g. "60 m").
+    #[arg(long, value_name = "LENGTH")]
+    pub ahead: Option<String>,
+    /// Step length [default: the case's [bit_rock] step, 1 m].
+    #[arg(long, value_name = "LENGTH")]
+    pub step: Option<String>,
+    /// Distance from the bit where the stiff model is cut [default: automatic, see README].
+    #[arg(long, value_name = "LENGTH")]
+    pub cut: Option<String>,
+    /// Write trajectory.csv and summary.json (several cases: comparison.csv and one folder per case).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Print summary.json on stdout instead of the readable summary.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Arguments of `drillpath backanalyze`.
+#[derive(Debug, Args)]
+pub struct BackanalyzeArgs {
+    /// Case file (.toml) whose survey is the measured well.
+    pub case: PathBuf,
+    /// Fit the bit-rock law's parameters on the first part of the intervals (see --split) and
+    /// score them on the rest.
+    #[arg(long)]
+    pub calibrate: bool,
+    /// Parameters to fit, comma-separated: lateral_drillability, walk_angle, rock_anisotropy.
+    #[arg(long, value_name = "LIST", default_value = "lateral_drillability,walk_angle")]
+    pub fit: String,
+    /// Fraction of the intervals (from the top) used for calibration.
+    #[arg(long, value_name = "FRACTION", default_value_t = 0.5)]
+    pub split: f64,
+    /// Shortest interval: each interval ends at the first station at least this far below its
+    /// start [default: the next station].
+    #[arg(long, value_name = "LENGTH")]
+    pub horizon: Option<String>,
+    /// First interval starts at the first station at or below this MD [default: the first
+    /// station with 30 m of hole above it].
+    #[arg(long, value_name = "MD")]
+    pub from: Option<String>,
+    /// No interval ends below this MD [default: the last station].
+    #[arg(long, value_name = "MD")]
+    pub to: Option<String>,
+    /// Step length [default: the case's [bit_rock] step, 1 m].
+    #[arg(long, value_name = "LENGTH")]
+    pub step: Option<String>,
+    /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate).
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Print summary.json on stdout instead of the readable summary.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Arguments of `drillpath solve`.

@@ -1,6 +1,8 @@
 //! Command-line layer: clap arguments, one module per subcommand, errors to exit codes.
 
 pub mod args;
+pub mod backanalyze;
+pub mod predict;
 pub mod solve;
 pub mod survey;
 
@@ -13,6 +15,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Survey(a) => survey::run(a),
         Command::Solve(a) => solve::run(a),
+        Command::Predict(a) => predict::run(a),
+        Command::Backanalyze(a) => backanalyze::run(a),
     }
 }
 

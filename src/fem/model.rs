@@ -67,6 +67,49 @@ pub struct Loads {
     pub mud_viscosity_pa_s: f64,
 }
 
+/// How the model's top node is held.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TopCondition {
+    /// The whole string: the top is the rotary table, held on the hole axis laterally and in
+    /// twist, free to tilt; the hook load acts along the axis.
+    Surface,
+    /// A bottom part of the string cut where it lies steadily on the wall (physics.md 3.7, the
+    /// `bha` fidelity): the cut node is held at `offset_m` (global, m) from the hole axis, its
+    /// axis clamped parallel to the hole and its twist held; the axial force there plays the
+    /// hook load's role.
+    Cut {
+        /// Lateral position of the cut node relative to the hole axis (global), m.
+        offset_m: Vec3,
+    },
+}
+
+/// Loads and kinematics of `case`'s operation: WOB or hook load, bit torque (given, or the
+/// bit law `T_b = mu_b W D_b / 3` when drilling with rotation), spin, axial speed, mud drag.
+pub fn loads_from_case(case: &Case) -> Loads {
+    let op = &case.operation;
+    let omega = op.omega_rad_s();
+    let bit_torque = if op.mode == Mode::Drilling && omega > 0.0 {
+        op.bit_torque_nm.unwrap_or_else(|| {
+            let d_bit = case.string.components[0].contact_od_m;
+            case.bit_rock.bit_friction * op.wob_n * d_bit / 3.0
+        })
+    } else {
+        0.0
+    };
+    Loads {
+        wob_n: op.wob_n,
+        hook_load_n: op.hook_load_n,
+        bit_torque_nm: bit_torque,
+        omega_rad_s: omega,
+        axial_speed_m_s: op.axial_speed_m_s(),
+        mud_viscosity_pa_s: if op.viscous_torque {
+            case.mud.plastic_viscosity_pa_s
+        } else {
+            0.0
+        },
+    }
+}
+
 /// Static description of the discretized problem.
 #[derive(Debug, Clone)]
 pub struct Model {
@@ -97,6 +140,8 @@ pub struct Model {
     /// Full consistent element tangent (needed under torque; slower), see
     /// [`super::corotational::element_response`].
     pub consistent_tangent: bool,
+    /// How the top node is held.
+    pub top: TopCondition,
 }
 
 /// Mutable solution state.
@@ -144,39 +189,16 @@ pub struct Evaluation {
 }
 
 impl Model {
-    /// Build the model of `case` with the bit at `case.operation.bit_md_m`.
+    /// Build the whole-string model of `case` with the bit at `case.operation.bit_md_m`.
     pub fn from_case(case: &Case) -> Model {
-        let op = &case.operation;
         let mesh = build_mesh(&case.string, &case.solver, case.mud.density_kg_m3);
-        let bit_md = op.bit_md_m;
-        let omega = op.omega_rad_s();
-        let bit_torque = if op.mode == Mode::Drilling && omega > 0.0 {
-            op.bit_torque_nm.unwrap_or_else(|| {
-                let d_bit = case.string.components[0].contact_od_m;
-                case.bit_rock.bit_friction * op.wob_n * d_bit / 3.0
-            })
-        } else {
-            0.0
-        };
-        let loads = Loads {
-            wob_n: op.wob_n,
-            hook_load_n: op.hook_load_n,
-            bit_torque_nm: bit_torque,
-            omega_rad_s: omega,
-            axial_speed_m_s: op.axial_speed_m_s(),
-            mud_viscosity_pa_s: if op.viscous_torque {
-                case.mud.plastic_viscosity_pa_s
-            } else {
-                0.0
-            },
-        };
         let mut model = Model::new(
             case.well.path.clone(),
             case.well.hole.clone(),
             mesh,
-            bit_md,
-            loads,
-            |md| case.well.hole.friction_at(md).unwrap_or(op.friction),
+            case.operation.bit_md_m,
+            loads_from_case(case),
+            |md| case.well.hole.friction_at(md).unwrap_or(case.operation.friction),
         );
         model.bha_length_m = case.string.bha_length_m();
         model
@@ -236,6 +258,7 @@ impl Model {
             geometric_stiffness: true,
             consistent_tangent: false,
             bha_length_m: 0.0,
+            top: TopCondition::Surface,
         }
     }
 
@@ -263,21 +286,29 @@ impl Model {
     /// equation), the top's two lateral translations and its twist.
     pub fn constrained_dofs(&self) -> Vec<usize> {
         let top = self.nodes() - 1;
-        vec![
+        let mut c = vec![
             self.dof(0, 0),
             self.dof(0, 1),
             self.dof(0, 2),
             self.dof(top, 1),
             self.dof(top, 2),
             self.dof(top, 3),
-        ]
+        ];
+        if let TopCondition::Cut { .. } = self.top {
+            c.extend([self.dof(top, 4), self.dof(top, 5)]);
+        }
+        c
     }
 
-    /// Initial state: nodes on the hole axis, triads = node bases.
+    /// Initial state: nodes on the hole axis (a cut top at its offset), triads = node bases.
     pub fn initial_state(&self) -> State {
         let nn = self.nodes();
+        let mut x: Vec<Vec3> = self.md_ref.iter().map(|&m| self.path.point_at(m).position).collect();
+        if let TopCondition::Cut { offset_m } = self.top {
+            x[nn - 1] += offset_m;
+        }
         State {
-            x: self.md_ref.iter().map(|&m| self.path.point_at(m).position).collect(),
+            x,
             lam: self.basis.clone(),
             md: self.md_ref.clone(),
             lambda: vec![0.0; nn],

@@ -65,6 +65,11 @@ impl HoleSize {
         self.section_at(md_m).diameter_m
     }
 
+    /// Caliper points (MD, diameter), m.
+    pub fn caliper(&self) -> &[(f64, f64)] {
+        &self.caliper
+    }
+
     /// Friction coefficient given for the section holding `md_m`, if any.
     pub fn friction_at(&self, md_m: f64) -> Option<f64> {
         self.section_at(md_m).friction

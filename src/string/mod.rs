@@ -34,6 +34,20 @@ impl DrillString {
             .map(|c| c.top_m())
             .fold(0.0, f64::max)
     }
+    /// The bottom `length_m` of the string (components above dropped, the one crossing the cut
+    /// shortened); the whole string if it is not longer.
+    pub fn truncated(&self, length_m: f64) -> DrillString {
+        let mut components = Vec::new();
+        for c in &self.components {
+            if c.bottom_m >= length_m - 1e-9 {
+                break;
+            }
+            let mut c = c.clone();
+            c.length_m = c.length_m.min(length_m - c.bottom_m);
+            components.push(c);
+        }
+        DrillString { components }
+    }
     /// Distances from the bit of stabilizer contact points (mid-length), m.
     pub fn stabilizer_contacts_m(&self) -> Vec<f64> {
         self.components

@@ -1,0 +1,194 @@
+//! `drillpath backanalyze`: post-drill back-analysis over the survey, with optional
+//! calibration of the bit-rock law (calibrated on the first part, scored on the rest).
+
+use super::args::BackanalyzeArgs;
+use super::parse_length_option;
+use super::predict::{length_opt, load_for_prediction, progress_done, progress_line, settings_for};
+use crate::predict::backanalysis::{error_stats, intervals, run_intervals, Interval, IntervalPlan};
+use crate::predict::calibrate::{calibrate, FitParameter};
+use crate::predict::law::LawParams;
+use crate::predict::march::{MIN_MODEL_LENGTH_M, MIN_STEP_M};
+use crate::report::predict_output::{backanalysis_csv, calibration_json, error_stats_json, fitted_toml, law_json};
+use crate::report::write_atomic;
+use anyhow::{bail, Context};
+use serde_json::json;
+
+/// Hole above the first interval's start by default, m.
+pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
+
+/// Run the command.
+pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
+    let case = load_for_prediction(&a.case)?;
+    let survey = &case.well.path;
+    let from = match &a.from {
+        Some(t) => parse_length_option("--from", t)?,
+        None => survey.md_start() + DEFAULT_START_DEPTH_M,
+    }
+    .max(survey.md_start() + MIN_MODEL_LENGTH_M);
+    let to = match &a.to {
+        Some(t) => parse_length_option("--to", t)?,
+        None => survey.md_end(),
+    };
+    let horizon = length_opt("--horizon", &a.horizon, 0.0)?.unwrap_or(0.0);
+    let step = length_opt("--step", &a.step, MIN_STEP_M)?;
+    if !(a.split > 0.0 && a.split < 1.0) {
+        bail!("option `--split`: {} must lie strictly between 0 and 1", a.split);
+    }
+    let params: Vec<FitParameter> = a
+        .fit
+        .split(',')
+        .map(|s| s.trim())
+        .filter(|s| !s.is_empty())
+        .map(|s| {
+            FitParameter::parse(s).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "option `--fit`: unknown parameter `{s}` (expected {})",
+                    FitParameter::NAMES
+                )
+            })
+        })
+        .collect::<anyhow::Result<_>>()?;
+    if a.calibrate && params.is_empty() {
+        bail!("option `--fit`: no parameter to fit");
+    }
+    let list = intervals(
+        survey,
+        &IntervalPlan {
+            from_md_m: from,
+            to_md_m: to,
+            horizon_m: horizon,
+        },
+    );
+    let min_intervals = if a.calibrate { 4 } else { 1 };
+    if list.len() < min_intervals {
+        bail!(
+            "{}: only {} survey interval(s) between {from:.1} m and {to:.1} m; back-analysis needs {min_intervals}{}",
+            a.case.display(),
+            list.len(),
+            if a.calibrate {
+                " to calibrate on half and score on the other half"
+            } else {
+                ""
+            }
+        );
+    }
+    let settings = settings_for(&case, step, None);
+    let name = a.case.display().to_string();
+    let t0 = std::time::Instant::now();
+    let fail = |e: crate::predict::march::PredictError| anyhow::anyhow!("{name}: {e}");
+    let mut warm = Vec::new();
+    let base = run_intervals(&case, &case.bit_rock, &list, &settings, &mut warm, |k, n| {
+        progress_line(&format!("backanalyze {name}: interval {k}/{n}"))
+    });
+    progress_done();
+    let base = base.map_err(fail)?;
+    let ncal = ((list.len() as f64 * a.split).round() as usize).clamp(2, list.len() - 2);
+    let split_md = list[ncal].from_md_m;
+    let stats_all = error_stats(&base);
+    let mut summary = json!({
+        "case": case.name,
+        "case_file": name,
+        "intervals": base.len(),
+        "from_md_m": list[0].from_md_m,
+        "to_md_m": list[list.len() - 1].to_md_m,
+        "horizon_m": horizon,
+        "step_m": settings.step_m.max(MIN_STEP_M),
+        "inc_err_per_100m_deg": stats_all.inc_mean_abs_per_100m_rad.to_degrees(),
+        "azi_err_per_100m_deg": stats_all.azi_mean_abs_per_100m_rad.to_degrees(),
+        "errors": error_stats_json(&stats_all).map_err(|e| anyhow::anyhow!("internal error: {e}"))?,
+        "bit_rock": law_json(&case.bit_rock.law, &LawParams::at(&case.bit_rock, from), case.bit_rock.formations.len()).map_err(|e| anyhow::anyhow!("internal error: {e}"))?,
+    });
+    let mut results = base.clone();
+    let mut fitted_text = None;
+    if a.calibrate {
+        let (cal_list, score_list): (&[Interval], &[Interval]) = list.split_at(ncal);
+        let cal = calibrate(&case, &params, cal_list, &settings, |m| {
+            progress_line(&format!("backanalyze {name}: {m}"))
+        });
+        progress_done();
+        let cal = cal.map_err(fail)?;
+        let mut warm2 = warm.split_off(ncal.min(warm.len()));
+        let scored = run_intervals(&case, &cal.bit_rock, score_list, &settings, &mut warm2, |_, _| {}).map_err(fail)?;
+        let e = |r: &[crate::predict::backanalysis::IntervalResult]| {
+            error_stats_json(&error_stats(r)).map_err(|e| anyhow::anyhow!("internal error: {e}"))
+        };
+        summary["calibration"] = json!({
+            "parameters": calibration_json(&cal).map_err(|e| anyhow::anyhow!("internal error: {e}"))?,
+            "calibrated_on": {"from_md_m": list[0].from_md_m, "to_md_m": split_md},
+            "scored_on": {"from_md_m": split_md, "to_md_m": list[list.len() - 1].to_md_m},
+            "in_sample_default": e(&base[..ncal])?,
+            "in_sample_fitted": e(&cal.results)?,
+            "out_of_sample_default": e(&base[ncal..])?,
+            "out_of_sample_fitted": e(&scored)?,
+        });
+        results = cal.results.clone();
+        results.extend(scored);
+        fitted_text = Some(fitted_toml(&cal));
+    }
+    summary["seconds"] = json!(t0.elapsed().as_secs_f64());
+    let csv = backanalysis_csv(&results).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    if let Some(dir) = &a.out {
+        let ctx = || format!("cannot write into {}", dir.display());
+        write_atomic(&dir.join("trajectory.csv"), csv.as_bytes()).with_context(ctx)?;
+        if let Some(t) = &fitted_text {
+            write_atomic(&dir.join("bit_rock_fitted.toml"), t.as_bytes()).with_context(ctx)?;
+        }
+        write_atomic(
+            &dir.join("summary.json"),
+            serde_json::to_string_pretty(&summary)?.as_bytes(),
+        )
+        .with_context(ctx)?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+        return Ok(());
+    }
+    println!("backanalyze: {} ({})", case.name, name);
+    println!(
+        "  {} intervals from {:.1} m to {:.1} m (step {:.2} m): mean |error| per 100 m: inclination {:.3} deg, azimuth {:.3} deg (RMS {:.3} and {:.3})",
+        base.len(),
+        list[0].from_md_m,
+        list[list.len() - 1].to_md_m,
+        settings.step_m.max(MIN_STEP_M),
+        stats_all.inc_mean_abs_per_100m_rad.to_degrees(),
+        stats_all.azi_mean_abs_per_100m_rad.to_degrees(),
+        stats_all.inc_rms_per_100m_rad.to_degrees(),
+        stats_all.azi_rms_per_100m_rad.to_degrees()
+    );
+    if let Some(c) = summary.get("calibration") {
+        for f in c["parameters"]["fitted"].as_array().into_iter().flatten() {
+            println!(
+                "  fitted {} = {:.5} +/- {}",
+                f["name"].as_str().unwrap_or("?"),
+                f["value"].as_f64().unwrap_or(f64::NAN),
+                f["std_dev"]
+                    .as_f64()
+                    .map(|v| format!("{v:.5}"))
+                    .unwrap_or_else(|| "n/a".into())
+            );
+        }
+        let show = |k: &str, label: &str| {
+            println!(
+                "  {label}: inclination {:.3} deg/100 m, azimuth {:.3} deg/100 m",
+                c[k]["inc_err_per_100m_deg"].as_f64().unwrap_or(f64::NAN),
+                c[k]["azi_err_per_100m_deg"].as_f64().unwrap_or(f64::NAN)
+            )
+        };
+        println!(
+            "  calibrated on {:.1}-{:.1} m, scored on {:.1}-{:.1} m:",
+            list[0].from_md_m,
+            split_md,
+            split_md,
+            list[list.len() - 1].to_md_m
+        );
+        show("in_sample_default", "  calibration part, case law ");
+        show("in_sample_fitted", "  calibration part, fitted law");
+        show("out_of_sample_default", "  scoring part, case law     ");
+        show("out_of_sample_fitted", "  scoring part, fitted law   ");
+    }
+    println!("  {:.2} s", t0.elapsed().as_secs_f64());
+    if let Some(dir) = &a.out {
+        println!("  wrote {}", dir.display());
+    }
+    Ok(())
+}

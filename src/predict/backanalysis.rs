@@ -1,0 +1,158 @@
+//! Post-drill back-analysis (physics.md 7.7): for each interval of a survey, rebuild the hole
+//! from the measured stations behind it, predict to the interval's end and compare with the
+//! measured station there. Errors per 100 m are the seed paper's metric (end-of-interval error
+//! divided by the interval length).
+
+use super::march::{hole_to, predict_from, MarchSettings, PredictError, WarmStart};
+use crate::case::{BitRock, Case};
+use crate::fem::results::BitResult;
+use crate::geometry::survey::wrap_pi;
+use crate::geometry::{Vec3, WellPath};
+
+/// How the survey is cut into intervals.
+#[derive(Debug, Clone, Copy)]
+pub struct IntervalPlan {
+    /// First interval starts at the first station at or below this MD, m.
+    pub from_md_m: f64,
+    /// No interval ends below this MD, m.
+    pub to_md_m: f64,
+    /// Shortest interval, m: an interval ends at the first station at least this far below
+    /// its start (0: the next station). Intervals are consecutive (each starts where the last
+    /// ended).
+    pub horizon_m: f64,
+}
+
+/// One interval: predicted from its start station to its end station.
+#[derive(Debug, Clone, Copy)]
+pub struct Interval {
+    /// Start MD (a measured station), m.
+    pub from_md_m: f64,
+    /// End MD (a measured station), m.
+    pub to_md_m: f64,
+    /// Measured inclination and azimuth at the end, rad.
+    pub measured: (f64, f64),
+}
+
+/// Result of one interval.
+#[derive(Debug, Clone, Copy)]
+pub struct IntervalResult {
+    /// The interval.
+    pub interval: Interval,
+    /// Predicted inclination at the end, rad.
+    pub inc_rad: f64,
+    /// Predicted azimuth at the end, rad.
+    pub azi_rad: f64,
+    /// Predicted position at the end (north, east, tvd), m.
+    pub position: Vec3,
+    /// Bit results at the interval's start (on the measured hole).
+    pub bit_start: BitResult,
+    /// Bit results at the interval's end (on the predicted hole).
+    pub bit_end: BitResult,
+}
+
+impl IntervalResult {
+    /// Interval length, m.
+    pub fn length_m(&self) -> f64 {
+        self.interval.to_md_m - self.interval.from_md_m
+    }
+    /// Inclination error at the end (predicted - measured), rad.
+    pub fn inc_err_rad(&self) -> f64 {
+        self.inc_rad - self.interval.measured.0
+    }
+    /// Azimuth error at the end, wrapped, rad.
+    pub fn azi_err_rad(&self) -> f64 {
+        wrap_pi(self.azi_rad - self.interval.measured.1)
+    }
+}
+
+/// Consecutive intervals of `path` per `plan`.
+pub fn intervals(path: &WellPath, plan: &IntervalPlan) -> Vec<Interval> {
+    let st = path.stations();
+    let mut out = Vec::new();
+    let Some(mut k) = st.iter().position(|s| s.md_m >= plan.from_md_m - 1e-9) else {
+        return out;
+    };
+    while k + 1 < st.len() {
+        let mut e = k + 1;
+        while e + 1 < st.len() && st[e].md_m - st[k].md_m < plan.horizon_m - 1e-9 {
+            e += 1;
+        }
+        if st[e].md_m > plan.to_md_m + 1e-9 {
+            break;
+        }
+        out.push(Interval {
+            from_md_m: st[k].md_m,
+            to_md_m: st[e].md_m,
+            measured: (st[e].inc_rad, st[e].azi_rad),
+        });
+        k = e;
+    }
+    out
+}
+
+/// Predict each interval with the law parameters `bit_rock`; `warm` holds one warm start per
+/// interval (reused between calls with other parameters, as calibration does).
+pub fn run_intervals(
+    case: &Case,
+    bit_rock: &BitRock,
+    list: &[Interval],
+    settings: &MarchSettings,
+    warm: &mut Vec<WarmStart>,
+    mut progress: impl FnMut(usize, usize),
+) -> Result<Vec<IntervalResult>, PredictError> {
+    warm.resize_with(list.len(), || None);
+    let mut out = Vec::with_capacity(list.len());
+    for (k, iv) in list.iter().enumerate() {
+        let start = hole_to(&case.well.path, iv.from_md_m)?;
+        if warm[k].is_none() && k > 0 {
+            warm[k] = warm[k - 1].clone();
+        }
+        let pred = predict_from(case, bit_rock, &start, iv.to_md_m, settings, &mut warm[k], &mut |_| {})?;
+        let end = pred.path.point_at(iv.to_md_m);
+        out.push(IntervalResult {
+            interval: *iv,
+            inc_rad: end.inc_rad,
+            azi_rad: end.azi_rad,
+            position: end.position,
+            bit_start: pred.steps[0].bit,
+            bit_end: pred.steps[pred.steps.len() - 1].bit,
+        });
+        progress(k + 1, list.len());
+    }
+    Ok(out)
+}
+
+/// Error statistics over intervals (all per 100 m of interval length).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ErrorStats {
+    /// Intervals.
+    pub intervals: usize,
+    /// Mean |inclination error| per 100 m, rad.
+    pub inc_mean_abs_per_100m_rad: f64,
+    /// Mean |azimuth error| per 100 m, rad.
+    pub azi_mean_abs_per_100m_rad: f64,
+    /// RMS inclination error per 100 m, rad.
+    pub inc_rms_per_100m_rad: f64,
+    /// RMS azimuth error per 100 m, rad.
+    pub azi_rms_per_100m_rad: f64,
+}
+
+/// Error statistics of `results`.
+pub fn error_stats(results: &[IntervalResult]) -> ErrorStats {
+    let n = results.len();
+    if n == 0 {
+        return ErrorStats::default();
+    }
+    let per = |e: f64, r: &IntervalResult| e * 100.0 / r.length_m();
+    let fi: Vec<f64> = results.iter().map(|r| per(r.inc_err_rad(), r)).collect();
+    let fa: Vec<f64> = results.iter().map(|r| per(r.azi_err_rad(), r)).collect();
+    let mean_abs = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>() / n as f64;
+    let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / n as f64).sqrt();
+    ErrorStats {
+        intervals: n,
+        inc_mean_abs_per_100m_rad: mean_abs(&fi),
+        azi_mean_abs_per_100m_rad: mean_abs(&fa),
+        inc_rms_per_100m_rad: rms(&fi),
+        azi_rms_per_100m_rad: rms(&fa),
+    }
+}

@@ -1,0 +1,526 @@
+//! The forward-marching loop (physics.md 7.6): solve the stiff bottom-hole assembly with the
+//! bit at `s`, apply the bit-rock law, extend the hole by one minimum-curvature arc to the
+//! drilling direction, move the bit, re-solve warm-started from the previous state.
+
+use super::law::{deviation, drilling_direction, BitAction, LawParams};
+use crate::case::{BitRock, Case};
+use crate::fem::bha::{bha_model, default_cut_m};
+use crate::fem::model::{Model, State};
+use crate::fem::results::{extract, BitResult};
+use crate::fem::solve::{soft_string_start, solve, solve_ip_from, SolveControls};
+use crate::geometry::frame::inc_azi;
+use crate::geometry::{Frame, HoleSection, HoleSize, Station, Survey, Vec3, WellPath};
+use nalgebra::{Matrix2, Vector2};
+use std::time::Instant;
+
+/// Shortest prediction step accepted, m (physics.md 7.6).
+pub const MIN_STEP_M: f64 = 0.2;
+
+/// Shortest string model (bit to cut or to the top of the hole), m.
+pub const MIN_MODEL_LENGTH_M: f64 = 10.0;
+
+/// Settings of a prediction.
+#[derive(Debug, Clone, Copy)]
+pub struct MarchSettings {
+    /// Step length, m.
+    pub step_m: f64,
+    /// Cut distance of the bottom-hole-assembly model above the bit, m (None: the default rule
+    /// of [`crate::fem::bha`]).
+    pub cut_m: Option<f64>,
+    /// Solver controls.
+    pub controls: SolveControls,
+}
+
+impl MarchSettings {
+    /// Settings from `case`: `[bit_rock] step`, `[solver]` tolerance and iteration limit.
+    pub fn from_case(case: &Case) -> MarchSettings {
+        MarchSettings {
+            step_m: case.bit_rock.step_m,
+            cut_m: None,
+            controls: SolveControls {
+                max_iterations: case.solver.max_iterations,
+                gap_tolerance: case.solver.tolerance,
+                method: case.solver.method,
+                alpha: case.solver.alpha,
+                ..SolveControls::default()
+            },
+        }
+    }
+}
+
+/// One solved bit position of a prediction.
+#[derive(Debug, Clone, Copy)]
+pub struct StepRecord {
+    /// Bit MD, m.
+    pub md_m: f64,
+    /// Hole inclination at the bit, rad.
+    pub inc_rad: f64,
+    /// Hole azimuth at the bit, rad.
+    pub azi_rad: f64,
+    /// Bit position (north, east, tvd), m.
+    pub position: Vec3,
+    /// Bit forces and tilt from the string solve.
+    pub bit: BitResult,
+    /// Drilling direction from the law (global unit vector; equal to the hole tangent after the
+    /// first record, within the implicit step's tolerance).
+    pub direction: Vec3,
+    /// Newton iterations of this step's solve.
+    pub iterations: usize,
+}
+
+/// A prediction from `from_md_m` to `to_md_m`.
+#[derive(Debug, Clone)]
+pub struct Prediction {
+    /// The hole: measured stations up to the start, then one predicted station per step.
+    pub path: WellPath,
+    /// Solved bit positions, the start first and the end last.
+    pub steps: Vec<StepRecord>,
+    /// Start MD, m.
+    pub from_md_m: f64,
+    /// End MD, m.
+    pub to_md_m: f64,
+    /// Cut distance of the model, m.
+    pub cut_m: f64,
+    /// Degrees of freedom of the model.
+    pub dofs: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+}
+
+/// Why a prediction stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum PredictError {
+    /// The string solve at a bit position did not converge.
+    #[error("the string solve with the bit at {md_m:.2} m MD did not converge after {iterations} iterations (residual {residual:.1e}, penetration {penetration:.1e} of the clearance){detail}")]
+    NotConverged {
+        /// Bit MD, m.
+        md_m: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// Last relative residual.
+        residual: f64,
+        /// Largest penetration relative to the clearance.
+        penetration: f64,
+        /// Chattering contacts, if any.
+        detail: String,
+    },
+    /// The string solve failed (singular system).
+    #[error("the string solve with the bit at {md_m:.2} m MD failed: {source}")]
+    Solve {
+        /// Bit MD, m.
+        md_m: f64,
+        /// The solver's error.
+        source: crate::fem::solve::SolveError,
+    },
+    /// The implicit step found no hole direction consistent with the law.
+    #[error("no drilling direction consistent with the bit-rock law was found for the step ending at {md_m:.2} m MD (deviation left {residual_rad:.1e} rad); try a shorter step")]
+    NoDirection {
+        /// End MD of the step, m.
+        md_m: f64,
+        /// Deviation between drilling direction and hole tangent left, rad.
+        residual_rad: f64,
+    },
+    /// Too little hole above the bit for the string model.
+    #[error("the bit at {md_m:.2} m MD has only {length_m:.1} m of hole above it; the string model needs at least {MIN_MODEL_LENGTH_M} m")]
+    TooShallow {
+        /// Bit MD, m.
+        md_m: f64,
+        /// Hole length above the bit, m.
+        length_m: f64,
+    },
+    /// The hole could not be built (bad stations).
+    #[error("{0}")]
+    Geometry(String),
+}
+
+/// The measured hole up to `md_m`: the survey's stations up to it, plus a station
+/// interpolated at `md_m` if it falls between stations.
+pub fn hole_to(path: &WellPath, md_m: f64) -> Result<WellPath, PredictError> {
+    let mut st: Vec<Station> = path
+        .stations()
+        .iter()
+        .copied()
+        .filter(|s| s.md_m <= md_m + 1e-9)
+        .collect();
+    if st.last().is_none_or(|s| md_m - s.md_m > 1e-6) {
+        let p = path.point_at(md_m);
+        st.push(Station {
+            md_m,
+            inc_rad: p.inc_rad,
+            azi_rad: p.azi_rad,
+        });
+    }
+    let survey = Survey::new(st).map_err(|p| PredictError::Geometry(p.message))?;
+    WellPath::new(&survey, path.station_position(0)).map_err(|p| PredictError::Geometry(p.message))
+}
+
+/// Hole size for a prediction to `to_md_m`: the case's sections, continued below the deepest
+/// one at the bit diameter (the new hole is drilled by this bit).
+pub fn hole_for_prediction(case: &Case, to_md_m: f64) -> HoleSize {
+    let hole = &case.well.hole;
+    if hole.deepest_md() >= to_md_m {
+        return hole.clone();
+    }
+    let mut sections = hole.sections().to_vec();
+    let friction = sections.last().and_then(|s| s.friction);
+    sections.push(HoleSection {
+        to_md_m,
+        diameter_m: case.string.components[0].contact_od_m,
+        friction,
+    });
+    HoleSize::new(sections, hole.caliper().to_vec())
+}
+
+/// Carry a solved state to the model with the bit moved: each node keeps its position and
+/// triad relative to its node basis (the hole frame at its reference MD), its contact force
+/// and normal; the hook load is kept.
+pub fn transport_state(prev_model: &Model, prev: &State, model: &Model) -> State {
+    let mut st = model.initial_state();
+    for i in 0..model.nodes().min(prev_model.nodes()) {
+        let qp = &prev_model.basis[i];
+        let qn = &model.basis[i];
+        let rel = qn * qp.transpose();
+        let p_prev = prev_model.path.point_at(prev_model.md_ref[i]).position;
+        let p_new = model.path.point_at(model.md_ref[i]).position;
+        st.x[i] = p_new + rel * (prev.x[i] - p_prev);
+        st.lam[i] = crate::fem::rotation::orthonormalize(&(rel * prev.lam[i]));
+        st.md[i] = model.md_ref[i] + (prev.md[i] - prev_model.md_ref[i]);
+        st.lambda[i] = prev.lambda[i];
+        st.normal[i] = rel * prev.normal[i];
+    }
+    st.hook_load_n = prev.hook_load_n;
+    st
+}
+
+/// Solve the model warm-started from `warm` (or from the soft-string start); falls back to the
+/// full cold [`solve`] when the warm start does not converge.
+fn solve_step(
+    model: &Model,
+    warm: Option<State>,
+    ctl: &SolveControls,
+) -> Result<crate::fem::solve::Solution, PredictError> {
+    let md = model.bit_md_m;
+    let wrap = |source| PredictError::Solve { md_m: md, source };
+    if let Some(state) = warm {
+        let sol = solve_ip_from(model, state, ctl).map_err(wrap)?;
+        if sol.converged {
+            return Ok(sol);
+        }
+        tracing::info!(md, "warm-started solve did not converge; solving from scratch");
+    } else {
+        let mut state = model.initial_state();
+        soft_string_start(model, &mut state, false);
+        let sol = solve_ip_from(model, state, ctl).map_err(wrap)?;
+        if sol.converged {
+            return Ok(sol);
+        }
+    }
+    let sol = solve(model, ctl).map_err(wrap)?;
+    if sol.converged {
+        return Ok(sol);
+    }
+    let detail = if sol.stats.chattering_nodes.is_empty() {
+        String::new()
+    } else {
+        let near: Vec<String> = sol
+            .stats
+            .chattering_nodes
+            .iter()
+            .take(8)
+            .map(|&i| format!("{:.2} m", model.md_ref[i]))
+            .collect();
+        format!("; contacts changing state at {}", near.join(", "))
+    };
+    Err(PredictError::NotConverged {
+        md_m: md,
+        iterations: sol.stats.iterations,
+        residual: sol.stats.residual_history.last().copied().unwrap_or(f64::NAN),
+        penetration: sol.stats.max_penetration,
+        detail,
+    })
+}
+
+/// The bit action seen by the law.
+pub fn bit_action(bit: &BitResult) -> BitAction {
+    BitAction {
+        wob_n: bit.wob_n,
+        build_force_n: bit.build_force_n,
+        walk_force_n: bit.walk_force_n,
+        tilt_inc_rad: bit.tilt_inc_rad,
+        tilt_azi_rad: bit.tilt_azi_rad,
+    }
+}
+
+/// Warm-start memory between calls: the last model and its solved state.
+pub type WarmStart = Option<(Model, State)>;
+
+/// Convergence tolerance of the implicit step on the deviation between the drilling direction
+/// and the hole tangent at the bit, rad.
+pub const DIRECTION_TOLERANCE_RAD: f64 = 1e-6;
+
+/// Newton iterations allowed per implicit step.
+pub const MAX_DIRECTION_ITERATIONS: usize = 12;
+
+/// Largest change of the step's turn angles per Newton iteration, rad.
+pub const MAX_TURN_CHANGE_RAD: f64 = 0.05;
+
+/// Finite-difference perturbation of the turn angles for the direction Jacobian, rad.
+pub const TURN_PERTURBATION_RAD: f64 = 1e-4;
+
+/// One solved bit position: the model, the solution's state and the bit results.
+struct BitSolve {
+    model: Model,
+    state: State,
+    bit: BitResult,
+    iterations: usize,
+}
+
+/// Solve the string with the bit at `md_m` in `path`, warm-started from `warm`.
+fn solve_at(
+    case: &Case,
+    path: &WellPath,
+    hole: &HoleSize,
+    md_m: f64,
+    cut_m: f64,
+    warm: &WarmStart,
+    ctl: &SolveControls,
+) -> Result<BitSolve, PredictError> {
+    let mut model = bha_model(case, path, hole, md_m, cut_m);
+    model.consistent_tangent = true;
+    let warm_state = warm
+        .as_ref()
+        .filter(|(m, _)| m.nodes() == model.nodes())
+        .map(|(m, st)| transport_state(m, st, &model));
+    let sol = solve_step(&model, warm_state, ctl)?;
+    let bit = extract(&model, &sol, case.mud.density_kg_m3).bit;
+    Ok(BitSolve {
+        model,
+        iterations: sol.stats.iterations,
+        state: sol.state,
+        bit,
+    })
+}
+
+/// The predicted hole: the measured stations up to the start, then one point per step joined
+/// by minimum-curvature arcs whose station tangents follow the bit's motion: at an interior
+/// predicted station the mean of the adjacent chord directions, at the bit the last chord
+/// direction (the drilling direction).
+struct PredictedHole {
+    measured: Vec<Station>,
+    origin: Vec3,
+    /// (end MD of the segment, chord direction) per predicted segment.
+    chords: Vec<(f64, Vec3)>,
+}
+
+impl PredictedHole {
+    fn path_with(&self, extra: Option<(f64, Vec3)>) -> Result<WellPath, PredictError> {
+        let mut st = self.measured.clone();
+        let chords: Vec<(f64, Vec3)> = self.chords.iter().copied().chain(extra).collect();
+        let fallback = st.last().map(|s| s.azi_rad).unwrap_or(0.0);
+        for (k, &(md, c)) in chords.iter().enumerate() {
+            let t = match chords.get(k + 1) {
+                Some(&(_, next)) => (c + next).normalize(),
+                None => c,
+            };
+            let (inc, azi) = inc_azi(&t, fallback);
+            st.push(Station {
+                md_m: md,
+                inc_rad: inc,
+                azi_rad: azi,
+            });
+        }
+        let survey = Survey::new(st).map_err(|p| PredictError::Geometry(p.message))?;
+        WellPath::new(&survey, self.origin).map_err(|p| PredictError::Geometry(p.message))
+    }
+}
+
+/// Predict from the end of `start` (the hole drilled so far; its last station is the bit) to
+/// `to_md_m`, with the law parameters of `bit_rock` (the case's unless overridden, for
+/// calibration). `warm` carries the last solved state between calls.
+///
+/// Each step is implicit (backward Euler on the bit's position): the bit moves from `s` to
+/// `s + ds` along the drilling direction it has when it arrives there. The unknown is the
+/// direction of the step's chord; Newton's method with a finite-difference Jacobian kept
+/// between steps (Broyden updates) drives the deviation between the law's drilling direction
+/// at the new bit position and the chord to zero. Station tangents follow the chords (see
+/// [`PredictedHole`]), so the hole is smooth. Why not simpler schemes: the bit side force
+/// answers a lateral move of the bit with a stiffness of order 3 EI / a^3 (a: bit to first
+/// stabilizer), so "new tangent = drilling direction computed before the step" (explicit) is
+/// unstable unless `ds < 4 W a^3 / (3 EI)` (centimetres for a near-bit stabilizer), and
+/// "new tangent = drilling direction after the step" with arcs between tangents (trapezoidal)
+/// leaves an undamped zig-zag of the station tangents.
+pub fn predict_from(
+    case: &Case,
+    bit_rock: &BitRock,
+    start: &WellPath,
+    to_md_m: f64,
+    settings: &MarchSettings,
+    warm: &mut WarmStart,
+    on_step: &mut dyn FnMut(f64),
+) -> Result<Prediction, PredictError> {
+    let t0 = Instant::now();
+    let from = start.md_end();
+    let hole = hole_for_prediction(case, to_md_m);
+    let step = settings.step_m.max(MIN_STEP_M);
+    let ctl = &settings.controls;
+    let cut = settings
+        .cut_m
+        .unwrap_or_else(|| {
+            let p = start.point_at(from);
+            default_cut_m(&case.string, hole.diameter_at(from), p.inc_rad, case.mud.density_kg_m3)
+        })
+        .min(from - start.md_start());
+    if cut < MIN_MODEL_LENGTH_M {
+        return Err(PredictError::TooShallow {
+            md_m: from,
+            length_m: cut,
+        });
+    }
+    let direction_at = |path: &WellPath, md: f64, bit: &BitResult| -> Vec3 {
+        let frame = path.frame_at(md);
+        drilling_direction(&frame, &bit_action(bit), &LawParams::at(bit_rock, md))
+    };
+    let mut hole_pred = PredictedHole {
+        measured: start.stations().to_vec(),
+        origin: start.station_position(0),
+        chords: Vec::new(),
+    };
+    let mut s = from;
+    let first = solve_at(case, start, &hole, s, cut, warm, ctl)?;
+    let mut iterations = first.iterations;
+    let dofs = first.model.dofs();
+    let mut records = vec![(s, first.bit, direction_at(start, s, &first.bit), first.iterations)];
+    *warm = Some((first.model, first.state));
+    let mut jac: Option<Matrix2<f64>> = None;
+    // reference direction of the next chord: the last chord (the start tangent at first)
+    let mut last_chord = start.point_at(from).tangent;
+    let mut path = start.clone();
+    while s < to_md_m - 1e-9 {
+        // the last step ends exactly at the target; a sliver shorter than half the minimum
+        // step is merged into this one
+        let mut ds = step.min(to_md_m - s);
+        if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
+            ds = to_md_m - s;
+        }
+        let s1 = s + ds;
+        let reference = Frame::from_tangent(&last_chord, path.point_at(s).azi_rad);
+        let x0 = path.point_at(s).position;
+        let chord_of = |turn: [f64; 2]| -> Vec3 {
+            (reference.t + reference.h * turn[0].tan() + reference.r * turn[1].tan()).normalize()
+        };
+        let mut step_iterations = 0;
+        // residual: drilling direction at the new bit position minus the actual chord, in the
+        // reference frame (rad)
+        let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
+            let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
+            let sol = solve_at(case, &p, &hole, s1, cut, warm, ctl)?;
+            let d = direction_at(&p, s1, &sol.bit);
+            let chord = (p.point_at(s1).position - x0).normalize();
+            let (dh, dr) = deviation(&reference, &d);
+            let (ch, cr) = deviation(&reference, &chord);
+            Ok((p, sol, [dh - ch, dr - cr], d))
+        };
+        // predictor: the previous chord's direction (zero turn)
+        let mut turn = [0.0f64; 2];
+        let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
+        step_iterations += sol1.iterations;
+        let mut converged = false;
+        for _ in 0..MAX_DIRECTION_ITERATIONS {
+            if res[0].abs().max(res[1].abs()) < DIRECTION_TOLERANCE_RAD {
+                converged = true;
+                break;
+            }
+            let j = match jac {
+                Some(j) => j,
+                None => {
+                    let mut j = Matrix2::zeros();
+                    for c in 0..2 {
+                        let mut tp = turn;
+                        tp[c] += TURN_PERTURBATION_RAD;
+                        let (_, sp, rp, _) = eval(tp, warm)?;
+                        step_iterations += sp.iterations;
+                        for r in 0..2 {
+                            j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
+                        }
+                    }
+                    jac = Some(j);
+                    j
+                }
+            };
+            let Some(jinv) = j.try_inverse() else {
+                jac = None;
+                continue;
+            };
+            let mut dt = -(jinv * Vector2::new(res[0], res[1]));
+            let big = dt.amax();
+            if big > MAX_TURN_CHANGE_RAD {
+                dt *= MAX_TURN_CHANGE_RAD / big;
+            }
+            let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
+            let (p, sol, r, d) = eval(new_turn, warm)?;
+            step_iterations += sol.iterations;
+            // Broyden update of the kept Jacobian
+            let dr = Vector2::new(r[0] - res[0], r[1] - res[1]);
+            let denom = dt.dot(&dt);
+            if denom > 0.0 {
+                jac = Some(j + (dr - j * dt) * dt.transpose() / denom);
+            }
+            (turn, p1, sol1, res, dir) = (new_turn, p, sol, r, d);
+        }
+        if !converged {
+            return Err(PredictError::NoDirection {
+                md_m: s1,
+                residual_rad: res[0].abs().max(res[1].abs()),
+            });
+        }
+        iterations += step_iterations;
+        last_chord = chord_of(turn);
+        hole_pred.chords.push((s1, last_chord));
+        path = p1;
+        s = s1;
+        records.push((s, sol1.bit, dir, step_iterations));
+        on_step(s);
+        *warm = Some((sol1.model, sol1.state));
+    }
+    // stations reported on the final hole
+    let steps = records
+        .into_iter()
+        .map(|(md, bit, direction, iterations)| {
+            let p = path.point_at(md);
+            StepRecord {
+                md_m: md,
+                inc_rad: p.inc_rad,
+                azi_rad: p.azi_rad,
+                position: p.position,
+                bit,
+                direction,
+                iterations,
+            }
+        })
+        .collect();
+    Ok(Prediction {
+        path,
+        steps,
+        from_md_m: from,
+        to_md_m,
+        cut_m: cut,
+        dofs,
+        iterations,
+        seconds: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// Predict `case` from `from_md_m` on its survey (the measured hole behind) to `to_md_m`;
+/// `on_step` hears each new bit MD (for progress).
+pub fn predict(
+    case: &Case,
+    from_md_m: f64,
+    to_md_m: f64,
+    settings: &MarchSettings,
+    on_step: &mut dyn FnMut(f64),
+) -> Result<Prediction, PredictError> {
+    let start = hole_to(&case.well.path, from_md_m)?;
+    predict_from(case, &case.bit_rock, &start, to_md_m, settings, &mut None, on_step)
+}

@@ -1,0 +1,9 @@
+//! Trajectory prediction: the bit-rock law, the forward-marching loop on the stiff
+//! bottom-hole-assembly model, tracking against a survey, back-analysis and calibration
+//! (physics.md 7).
+
+pub mod backanalysis;
+pub mod calibrate;
+pub mod law;
+pub mod march;
+pub mod track;
