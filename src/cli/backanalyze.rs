@@ -13,6 +13,10 @@ use crate::report::write_atomic;
 use anyhow::{bail, Context};
 use serde_json::json;
 
+/// By default back-analysis starts at the first station this inclined, deg: in a vertical
+/// hole the bit forces have no direction to predict (a kick-off is steered, not predicted).
+pub const DEFAULT_MIN_INCLINATION_DEG: f64 = 3.0;
+
 /// Hole above the first interval's start by default, m.
 pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
 
@@ -22,7 +26,13 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
     let survey = &case.well.path;
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
-        None => survey.md_start() + DEFAULT_START_DEPTH_M,
+        None => survey
+            .stations()
+            .iter()
+            .find(|s| s.inc_rad >= DEFAULT_MIN_INCLINATION_DEG.to_radians())
+            .map(|s| s.md_m)
+            .unwrap_or(survey.md_end())
+            .max(survey.md_start() + DEFAULT_START_DEPTH_M),
     }
     .max(survey.md_start() + MIN_MODEL_LENGTH_M);
     let to = match &a.to {

@@ -29,9 +29,15 @@ pub const CENTRED_LOAD_FRACTION: f64 = 0.02;
 /// Default cut distance from the bit, m, for `string` in a hole of diameter `hole_diameter_m`
 /// at inclination `inc_rad`.
 pub fn default_cut_m(string: &DrillString, hole_diameter_m: f64, inc_rad: f64, mud_density_kg_m3: f64) -> f64 {
-    let stabs = string.stabilizer_contacts_m();
-    let s_stab = stabs.iter().copied().fold(0.0, f64::max);
-    let above = string.component_at(s_stab + 1e-6);
+    let s_stab = string.stabilizer_contacts_m().into_iter().fold(0.0, f64::max);
+    // the component above the highest stabilizer (the bit when there is none)
+    let top_of_stab = string
+        .components
+        .iter()
+        .filter(|c| c.kind == crate::string::ComponentKind::Stabilizer)
+        .map(|c| c.top_m())
+        .fold(0.0, f64::max);
+    let above = string.component_at(top_of_stab + 1e-6);
     let w = above.buoyed_weight_n_per_m(mud_density_kg_m3).abs().max(1.0);
     let r = ((hole_diameter_m - above.contact_od_m) / 2.0).max(1e-3);
     let sin_i = inc_rad.sin().abs().max(5f64.to_radians().sin());

@@ -71,7 +71,8 @@ impl FitParameter {
     fn unbounded(self, v: f64) -> f64 {
         match self {
             FitParameter::LateralDrillability => {
-                let x = ((v - BETA_MIN) / (1.0 - BETA_MIN)).clamp(1e-4, 1.0 - 1e-4);
+                // started at most at BETA_START_MAX: the logistic is flat near 1
+                let x = ((v.min(BETA_START_MAX) - BETA_MIN) / (1.0 - BETA_MIN)).clamp(1e-4, 1.0 - 1e-4);
                 (x / (1.0 - x)).ln()
             }
             FitParameter::WalkAngle => v,
@@ -102,11 +103,15 @@ impl FitParameter {
 /// Smallest lateral drillability calibration may reach.
 pub const BETA_MIN: f64 = 1e-3;
 
+/// Largest starting lateral drillability (the reparametrization is flat at 1, where a fit
+/// started there could not move).
+pub const BETA_START_MAX: f64 = 0.9;
+
 /// Levenberg-Marquardt iterations allowed.
 pub const MAX_LM_ITERATIONS: usize = 20;
 
 /// Finite-difference step in the unbounded variables.
-pub const FD_STEP: f64 = 1e-3;
+pub const FD_STEP: f64 = 0.03;
 
 /// Result of a calibration.
 #[derive(Debug, Clone)]

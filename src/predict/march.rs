@@ -258,7 +258,12 @@ pub type WarmStart = Option<(Model, State)>;
 
 /// Convergence tolerance of the implicit step on the deviation between the drilling direction
 /// and the hole tangent at the bit, rad.
-pub const DIRECTION_TOLERANCE_RAD: f64 = 1e-6;
+pub const DIRECTION_TOLERANCE_RAD: f64 = 1e-5;
+
+/// The implicit step also stops when its last update of the turn angles is below this (rad)
+/// and the deviation below 10 x [`DIRECTION_TOLERANCE_RAD`]: contact switching makes the
+/// deviation non-smooth at the 1e-5 rad level.
+pub const TURN_TOLERANCE_RAD: f64 = 2e-5;
 
 /// Newton iterations allowed per implicit step.
 pub const MAX_DIRECTION_ITERATIONS: usize = 12;
@@ -397,10 +402,12 @@ pub fn predict_from(
     // reference direction of the next chord: the last chord (the start tangent at first)
     let mut last_chord = start.point_at(from).tangent;
     let mut path = start.clone();
+    // the step in use: halved where the implicit step fails, grown back after a success
+    let mut cur_step = step;
     while s < to_md_m - 1e-9 {
         // the last step ends exactly at the target; a sliver shorter than half the minimum
         // step is merged into this one
-        let mut ds = step.min(to_md_m - s);
+        let mut ds = cur_step.min(to_md_m - s);
         if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
             ds = to_md_m - s;
         }
@@ -427,8 +434,20 @@ pub fn predict_from(
         let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
         step_iterations += sol1.iterations;
         let mut converged = false;
+        let mut last_update = f64::INFINITY;
         for _ in 0..MAX_DIRECTION_ITERATIONS {
-            if res[0].abs().max(res[1].abs()) < DIRECTION_TOLERANCE_RAD {
+            tracing::debug!(
+                md = s1,
+                turn_h = turn[0],
+                turn_r = turn[1],
+                res_h = res[0],
+                res_r = res[1],
+                "direction iteration"
+            );
+            let r_norm = res[0].abs().max(res[1].abs());
+            if r_norm < DIRECTION_TOLERANCE_RAD
+                || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
+            {
                 converged = true;
                 break;
             }
@@ -459,15 +478,28 @@ pub fn predict_from(
                 dt *= MAX_TURN_CHANGE_RAD / big;
             }
             let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
+            last_update = dt.amax();
             let (p, sol, r, d) = eval(new_turn, warm)?;
             step_iterations += sol.iterations;
-            // Broyden update of the kept Jacobian
-            let dr = Vector2::new(r[0] - res[0], r[1] - res[1]);
-            let denom = dt.dot(&dt);
-            if denom > 0.0 {
-                jac = Some(j + (dr - j * dt) * dt.transpose() / denom);
+            let norm = |x: &[f64; 2]| x[0].abs().max(x[1].abs());
+            if norm(&r) > 0.5 * norm(&res) {
+                // poor progress: rebuild the Jacobian by differences at the new point
+                jac = None;
+            } else {
+                // Broyden update of the kept Jacobian
+                let dr = Vector2::new(r[0] - res[0], r[1] - res[1]);
+                let denom = dt.dot(&dt);
+                if denom > 0.0 {
+                    jac = Some(j + (dr - j * dt) * dt.transpose() / denom);
+                }
             }
             (turn, p1, sol1, res, dir) = (new_turn, p, sol, r, d);
+        }
+        if !converged && ds / 2.0 >= MIN_STEP_M {
+            tracing::info!(md = s1, step = ds / 2.0, "implicit step failed; halving the step");
+            cur_step = ds / 2.0;
+            jac = None;
+            continue;
         }
         if !converged {
             return Err(PredictError::NoDirection {
@@ -476,6 +508,7 @@ pub fn predict_from(
             });
         }
         iterations += step_iterations;
+        cur_step = (cur_step * 2.0).min(step);
         last_chord = chord_of(turn);
         hole_pred.chords.push((s1, last_chord));
         path = p1;
