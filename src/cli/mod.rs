@@ -1,6 +1,7 @@
 //! Command-line layer: clap arguments, one module per subcommand, errors to exit codes.
 
 pub mod args;
+pub mod loads;
 pub mod solve;
 pub mod survey;
 
@@ -13,6 +14,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Survey(a) => survey::run(a),
         Command::Solve(a) => solve::run(a),
+        Command::Loads(a) => loads::run(a),
     }
 }
 

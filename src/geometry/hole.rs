@@ -43,6 +43,11 @@ impl HoleSize {
         &self.sections
     }
 
+    /// The caliper points `(md_m, diameter_m)` sorted by MD (empty without a caliper).
+    pub fn caliper(&self) -> &[(f64, f64)] {
+        &self.caliper
+    }
+
     fn section_at(&self, md_m: f64) -> &HoleSection {
         self.sections
             .iter()
