@@ -141,8 +141,8 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
     let mut rows = soft_chart(&chart_case, &depths, &settings);
     let soft_s = t0.elapsed().as_secs_f64();
     let stiff = a.stiff || case.solver.fidelity == Fidelity::Whole;
+    let t1 = std::time::Instant::now();
     if stiff {
-        let t1 = std::time::Instant::now();
         for (k, &d) in depths.iter().enumerate() {
             let c = case_at_depth(&chart_case, d);
             let wobs: Vec<f64> = rows[k * MODES.len()..(k + 1) * MODES.len()]
@@ -153,7 +153,7 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
             for (j, o) in outcomes.into_iter().enumerate() {
                 rows[k * MODES.len() + j].stiff = Some(o);
             }
-            tracing::warn!(
+            tracing::info!(
                 "stiff: bit depth {d:.1} m done ({}/{}, {:.1} s)",
                 k + 1,
                 depths.len(),
@@ -168,6 +168,16 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
     }
     print_summary(&rows, &depths, soft_s);
     if stiff {
+        let warm = rows
+            .iter()
+            .filter(|r| matches!(r.stiff, Some(StiffOutcome::Converged { warm: true, .. })))
+            .count();
+        println!(
+            "  stiff (whole-string FEM): {} rows in {:.1} s, {} converged from the previous load case's state",
+            rows.len(),
+            t1.elapsed().as_secs_f64(),
+            warm
+        );
         let bad: Vec<String> = rows
             .iter()
             .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
