@@ -20,6 +20,7 @@ pub mod error;
 pub mod fem;
 pub mod geometry;
 pub mod io;
+pub mod loads;
 pub mod predict;
 pub mod report;
 pub mod softstring;

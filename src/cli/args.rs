@@ -38,6 +38,11 @@ pub enum Command {
     ///
     /// Example: drillpath backanalyze wells/seed-daqing/case.toml --calibrate --out back/
     Backanalyze(BackanalyzeArgs),
+    /// Torque-and-drag chart: hook load and surface torque against bit depth for every load case,
+    /// buckling and yield limits; friction calibration from measured hook loads.
+    ///
+    /// Example: drillpath loads wells/j-shape/case.toml --every "30 m" --out results/
+    Loads(LoadsArgs),
 }
 
 /// Arguments of `drillpath predict`.
@@ -139,4 +144,33 @@ pub struct SurveyArgs {
     /// Print the positions CSV on stdout instead of the summary.
     #[arg(long)]
     pub csv: bool,
+}
+
+/// Arguments of `drillpath loads`.
+#[derive(Debug, Args)]
+pub struct LoadsArgs {
+    /// Case file (.toml).
+    pub case: PathBuf,
+    /// Shallowest bit depth (e.g. "500 m", 1500ft; bare number = m) [default: 0; depths at the
+    /// top of the survey are skipped].
+    #[arg(long, value_name = "MD")]
+    pub from: Option<String>,
+    /// Deepest bit depth [default: the case's bit_md].
+    #[arg(long, value_name = "MD")]
+    pub to: Option<String>,
+    /// Bit depth step [default: 30 m].
+    #[arg(long, value_name = "LENGTH")]
+    pub every: Option<String>,
+    /// Write loads.csv (and calibration.csv, calibration.json with --measured) into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Also run the stiff whole-string FEM for every row (slow; also on with [solver] fidelity = "whole").
+    #[arg(long)]
+    pub stiff: bool,
+    /// Measured hook loads (and torques) to fit the friction factor per hole section to.
+    #[arg(long, value_name = "FILE")]
+    pub measured: Option<PathBuf>,
+    /// Weight on bit of the drilling and sliding rows (e.g. "100 kN", "20 klbf") [default: the case's wob].
+    #[arg(long, value_name = "FORCE")]
+    pub wob: Option<String>,
 }

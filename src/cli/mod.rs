@@ -2,6 +2,7 @@
 
 pub mod args;
 pub mod backanalyze;
+pub mod loads;
 pub mod predict;
 pub mod solve;
 pub mod survey;
@@ -17,6 +18,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Solve(a) => solve::run(a),
         Command::Predict(a) => predict::run(a),
         Command::Backanalyze(a) => backanalyze::run(a),
+        Command::Loads(a) => loads::run(a),
     }
 }
 

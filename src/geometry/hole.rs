@@ -43,6 +43,11 @@ impl HoleSize {
         &self.sections
     }
 
+    /// The caliper points `(md_m, diameter_m)` sorted by MD (empty without a caliper).
+    pub fn caliper(&self) -> &[(f64, f64)] {
+        &self.caliper
+    }
+
     fn section_at(&self, md_m: f64) -> &HoleSection {
         self.sections
             .iter()
@@ -63,11 +68,6 @@ impl HoleSize {
             return d0 + lam * (d1 - d0);
         }
         self.section_at(md_m).diameter_m
-    }
-
-    /// Caliper points (MD, diameter), m.
-    pub fn caliper(&self) -> &[(f64, f64)] {
-        &self.caliper
     }
 
     /// Friction coefficient given for the section holding `md_m`, if any.

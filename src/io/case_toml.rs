@@ -372,6 +372,8 @@ const COMPONENT_KEYS: &[&str] = &[
     "youngs_modulus",
     "shear_modulus",
     "material_density",
+    "grade",
+    "yield_strength",
 ];
 
 fn read_string(
@@ -477,6 +479,7 @@ fn read_string(
         if let Some(r) = c.positive("material_density", D::Density, "kg/m3", false)? {
             material.density_kg_m3 = r;
         }
+        material.yield_strength_pa = read_yield_strength(c)?;
         if mud.density_kg_m3 >= material.density_kg_m3 {
             return Err(c.error(
                 "material_density",
@@ -561,6 +564,28 @@ fn read_string(
         }
     }
     Ok(DrillString { components: comps })
+}
+
+/// Pipe-body yield strength from `grade` (API name) or `yield_strength` (pressure), if given.
+fn read_yield_strength(c: &Section) -> InputResult<Option<f64>> {
+    let grade = c.string("grade")?;
+    let given = c.positive("yield_strength", D::Pressure, "MPa", false)?;
+    match (grade, given) {
+        (Some(_), Some(_)) => Err(c.error("yield_strength", "give either grade or yield_strength, not both")),
+        (Some(g), None) => crate::string::material::grade_yield_strength_pa(&g)
+            .map(Some)
+            .ok_or_else(|| {
+                let names: Vec<&str> = crate::string::material::GRADES.iter().map(|(n, _)| *n).collect();
+                c.error(
+                    "grade",
+                    format!(
+                        "unknown grade `{g}` (expected {}, or give yield_strength)",
+                        names.join(", ")
+                    ),
+                )
+            }),
+        (None, y) => Ok(y),
+    }
 }
 
 fn read_bit_rock(s: &Section) -> InputResult<BitRock> {

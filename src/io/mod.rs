@@ -1,5 +1,6 @@
 //! Input files: survey CSV and TOML case files, turned into validated library types.
 
 pub mod case_toml;
+pub mod measured_csv;
 pub mod survey_csv;
 pub mod toml_reader;

@@ -11,6 +11,9 @@ pub struct Material {
     pub shear_modulus_pa: f64,
     /// Density, kg/m3.
     pub density_kg_m3: f64,
+    /// Minimum yield strength of the pipe body, Pa, if given (`grade` or `yield_strength` in
+    /// the case file); used only for the yield limit curves of `drillpath loads`.
+    pub yield_strength_pa: Option<f64>,
 }
 
 /// Names accepted for `material`.
@@ -33,10 +36,27 @@ pub fn material_by_name(name: &str) -> Option<Material> {
         youngs_modulus_pa: e,
         shear_modulus_pa: g,
         density_kg_m3: rho,
+        yield_strength_pa: None,
     })
 }
 
 /// Default material: steel.
 pub fn steel() -> Material {
     material_by_name("steel").expect("steel is built in")
+}
+
+/// API drill-pipe grades (API Spec 5DP / RP 7G) and their minimum yield strengths, ksi.
+pub const GRADES: &[(&str, f64)] = &[("E-75", 75.0), ("X-95", 95.0), ("G-105", 105.0), ("S-135", 135.0)];
+
+/// Minimum yield strength of an API drill-pipe grade, Pa (`"S-135"`, `"s135"`, `"S 135"`).
+pub fn grade_yield_strength_pa(grade: &str) -> Option<f64> {
+    let key: String = grade
+        .chars()
+        .filter(|c| c.is_ascii_alphanumeric())
+        .collect::<String>()
+        .to_ascii_uppercase();
+    GRADES
+        .iter()
+        .find(|(name, _)| name.replace('-', "") == key)
+        .map(|(_, ksi)| ksi * 1e3 * crate::units::lookup("psi").expect("psi is a unit").to_si)
 }

@@ -1,0 +1,263 @@
+//! `drillpath loads`: torque-and-drag chart, limits, optional stiff rows and friction
+//! calibration (the computation is in [`crate::loads`]).
+
+use super::args::LoadsArgs;
+use super::parse_length_option;
+use crate::case::{Fidelity, Mode};
+use crate::error::InputError;
+use crate::io::case_toml::{load_case, CaseOverrides};
+use crate::io::measured_csv::read_measured_csv;
+use crate::loads::calibrate::{calibrate, calibrated_case};
+use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow};
+use crate::loads::stiff::{stiff_depth, StiffOutcome};
+use crate::loads::{check_fits, depth_list, string_at_depth, ChartOperation, MODES};
+use crate::report::loads_output::{calibration_json, loads_csv, overlay_csv};
+use crate::report::write_atomic;
+use crate::units::{parse_quantity, Dimension};
+use anyhow::{bail, Context};
+
+/// Default bit-depth step, m.
+pub const DEFAULT_EVERY_M: f64 = 30.0;
+
+/// Run the command.
+pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
+    let len = |name: &str, v: &Option<String>| v.as_deref().map(|t| parse_length_option(name, t)).transpose();
+    let from = len("--from", &a.from)?.unwrap_or(0.0);
+    let to = len("--to", &a.to)?;
+    let every = len("--every", &a.every)?.unwrap_or(DEFAULT_EVERY_M);
+    let wob = a
+        .wob
+        .as_deref()
+        .map(|t| parse_quantity(t, Dimension::Force, "kN").map_err(|m| InputError::option("--wob", m)))
+        .transpose()?;
+    if every <= 0.0 {
+        return Err(InputError::option("--every", "the bit-depth step must be positive").into());
+    }
+    if from < 0.0 {
+        return Err(InputError::option("--from", "the bit depth must not be negative").into());
+    }
+    if wob.is_some_and(|w| w < 0.0) {
+        return Err(InputError::option("--wob", "the weight on bit must not be negative").into());
+    }
+    let case = load_case(&a.case, &CaseOverrides::default())?;
+    if case.string.components.is_empty() {
+        bail!("{}: the case has no [[string]] components", a.case.display());
+    }
+    let path = &case.well.path;
+    let deepest = path.md_end().min(case.well.hole.deepest_md());
+    let to = to.unwrap_or(case.operation.bit_md_m);
+    if to > deepest + 1e-6 {
+        return Err(InputError::option(
+            "--to",
+            format!("bit depth {to:.2} m is below the surveyed hole and its sections (deepest {deepest:.2} m)"),
+        )
+        .into());
+    }
+    if to < from {
+        return Err(InputError::option("--to", format!("--to ({to:.2} m) is above --from ({from:.2} m)")).into());
+    }
+    let depths = depth_list(from, to, every, path.md_start());
+    if depths.is_empty() {
+        return Err(InputError::option("--to", "no bit depth below the top of the survey in the range").into());
+    }
+    if depths.len() > 100_000 {
+        return Err(InputError::option("--every", format!("{} bit depths: use a longer step", depths.len())).into());
+    }
+    for &d in &depths {
+        check_fits(&string_at_depth(&case.string, d), &case.well.hole, d).map_err(|m| InputError::option("--to", m))?;
+    }
+    let mut op = ChartOperation::from_case(&case);
+    if let Some(w) = wob {
+        op.wob_n = w;
+    }
+    let settings = ChartSettings {
+        op,
+        max_element_m: case.solver.element_length_m,
+    };
+    println!("loads: {} ({})", case.name, a.case.display());
+    if case.operation.rpm <= 0.0 {
+        println!("  note: the case gives no rpm; rotating rows use {:.0} rpm", op.rpm);
+    }
+    if op.wob_n == 0.0 {
+        println!("  note: WOB 0 for the drilling and sliding rows (give wob in the case or --wob)");
+    }
+
+    // friction calibration first: the chart then uses the fitted factors
+    let mut chart_case = case.clone();
+    if let Some(mpath) = &a.measured {
+        let data = read_measured_csv(mpath, path.md_start(), deepest)?;
+        for p in &data {
+            check_fits(&string_at_depth(&case.string, p.bit_md_m), &case.well.hole, p.bit_md_m)
+                .map_err(|m| InputError::line(mpath, p.line, None, m))?;
+        }
+        let cal = calibrate(&case, &data, &op, settings.max_element_m)
+            .with_context(|| format!("{}: friction calibration", mpath.display()))?;
+        println!(
+            "  calibration: {} points ({} residuals), {} iterations{}",
+            data.len(),
+            cal.residuals,
+            cal.iterations,
+            if cal.converged { "" } else { " (NOT CONVERGED)" }
+        );
+        for p in &cal.parameters {
+            let what = match (p.fitted, p.std_error) {
+                (true, Some(s)) => format!("{:.3} +/- {:.3} (was {:.3})", p.value, s, p.initial),
+                (true, None) => format!(
+                    "{:.3} (was {:.3}; no redundancy for an error estimate)",
+                    p.value, p.initial
+                ),
+                (false, _) => format!("{:.3} kept (the data do not constrain this section)", p.value),
+            };
+            println!(
+                "    section {} ({:.0}-{:.0} m, {:.3} in): friction {}",
+                p.section + 1,
+                p.from_md_m,
+                p.to_md_m,
+                p.diameter_m / 0.0254,
+                what
+            );
+        }
+        print!("    residual RMS: hook load {:.2} kN", cal.rms_hook_load_n / 1e3);
+        match cal.rms_torque_nm {
+            Some(t) => println!(", torque {:.3} kN.m", t / 1e3),
+            None => println!(),
+        }
+        if let Some(dir) = &a.out {
+            let overlay = overlay_csv(&cal).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+            let json = calibration_json(&cal).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+            write_atomic(&dir.join("calibration.csv"), overlay.as_bytes())
+                .with_context(|| format!("cannot write {}", dir.display()))?;
+            write_atomic(
+                &dir.join("calibration.json"),
+                serde_json::to_string_pretty(&json)?.as_bytes(),
+            )
+            .with_context(|| format!("cannot write {}", dir.display()))?;
+        }
+        chart_case = calibrated_case(&case, &cal);
+        println!("  the chart below uses the fitted friction factors");
+    }
+
+    let t0 = std::time::Instant::now();
+    let mut rows = soft_chart(&chart_case, &depths, &settings);
+    let soft_s = t0.elapsed().as_secs_f64();
+    let stiff = a.stiff || case.solver.fidelity == Fidelity::Whole;
+    let t1 = std::time::Instant::now();
+    if stiff {
+        for (k, &d) in depths.iter().enumerate() {
+            let c = case_at_depth(&chart_case, d);
+            let wobs: Vec<f64> = rows[k * MODES.len()..(k + 1) * MODES.len()]
+                .iter()
+                .map(|r| r.wob_n)
+                .collect();
+            let outcomes = stiff_depth(&c, d, &op, &wobs);
+            for (j, o) in outcomes.into_iter().enumerate() {
+                rows[k * MODES.len() + j].stiff = Some(o);
+            }
+            tracing::info!(
+                "stiff: bit depth {d:.1} m done ({}/{}, {:.1} s)",
+                k + 1,
+                depths.len(),
+                t1.elapsed().as_secs_f64()
+            );
+        }
+    }
+    let csv = loads_csv(&rows).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    if let Some(dir) = &a.out {
+        write_atomic(&dir.join("loads.csv"), csv.as_bytes())
+            .with_context(|| format!("cannot write {}", dir.display()))?;
+    }
+    print_summary(&rows, &depths, soft_s);
+    if stiff {
+        let warm = rows
+            .iter()
+            .filter(|r| matches!(r.stiff, Some(StiffOutcome::Converged { warm: true, .. })))
+            .count();
+        println!(
+            "  stiff (whole-string FEM): {} rows in {:.1} s, {} converged from the previous load case's state",
+            rows.len(),
+            t1.elapsed().as_secs_f64(),
+            warm
+        );
+        let bad: Vec<String> = rows
+            .iter()
+            .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
+            .map(|r| format!("{:.0} m {}", r.bit_md_m, r.mode.name()))
+            .collect();
+        if !bad.is_empty() {
+            println!(
+                "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
+                bad.len(),
+                bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+            );
+        }
+    }
+    match &a.out {
+        Some(dir) => println!("  wrote {}/loads.csv", dir.display()),
+        None => println!("  (use --out DIR to write loads.csv)"),
+    }
+    Ok(())
+}
+
+fn row(rows: &[LoadRow], k: usize, mode: Mode) -> &LoadRow {
+    let j = MODES.iter().position(|m| *m == mode).expect("all modes");
+    &rows[k * MODES.len() + j]
+}
+
+/// Readable table: hook loads of the five cases and the rotating torques per depth (at most
+/// about 40 lines), then the limits.
+fn print_summary(rows: &[LoadRow], depths: &[f64], seconds: f64) {
+    println!(
+        "  {} bit depths x {} load cases, soft string in {:.3} s",
+        depths.len(),
+        MODES.len(),
+        seconds
+    );
+    println!("  bit MD m | hook load kN: trip_in  trip_out  rot_off  drilling  sliding | torque kN.m: rot_off  drilling | buckled m (sliding)");
+    let stride = depths.len().div_ceil(40).max(1);
+    for (k, d) in depths.iter().enumerate() {
+        if k % stride != 0 && k + 1 != depths.len() {
+            continue;
+        }
+        let h = |m| row(rows, k, m).soft.hook_load_n / 1e3;
+        let t = |m| row(rows, k, m).soft.surface_torque_nm / 1e3;
+        println!(
+            "  {:>8.1} | {:>9.1} {:>9.1} {:>8.1} {:>9.1} {:>8.1} | {:>8.2} {:>9.2} | {:>7.1}",
+            d,
+            h(Mode::TripIn),
+            h(Mode::TripOut),
+            h(Mode::RotatingOffBottom),
+            h(Mode::Drilling),
+            h(Mode::Sliding),
+            t(Mode::RotatingOffBottom),
+            t(Mode::Drilling),
+            row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m
+        );
+    }
+    let worst = rows
+        .iter()
+        .filter_map(|r| r.yield_.max_stress_ratio.map(|s| (s, r)))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    match worst {
+        Some((s, r)) => println!(
+            "  yield: largest von Mises / yield {:.3} ({} at {:.0} m); top pipe body: tension {:.0} kN, torque {:.1} kN.m",
+            s,
+            r.mode.name(),
+            r.bit_md_m,
+            r.yield_.tension_limit_n.unwrap_or(0.0) / 1e3,
+            r.yield_.torque_limit_nm.unwrap_or(0.0) / 1e3
+        ),
+        None => println!("  yield limits: not computed (give grade or yield_strength in the [[string]] components)"),
+    }
+    let buckled: Vec<&LoadRow> = rows.iter().filter(|r| r.buckling.sinusoidal_length_m > 0.0).collect();
+    if let Some(first) = buckled.first() {
+        println!(
+            "  buckling: {} rows with sinusoidal buckling (first: {} at {:.0} m), {} with helical",
+            buckled.len(),
+            first.mode.name(),
+            first.bit_md_m,
+            rows.iter().filter(|r| r.buckling.helical_length_m > 0.0).count()
+        );
+    } else {
+        println!("  buckling: none (compression below the sinusoidal onset everywhere)");
+    }
+}

@@ -1,0 +1,162 @@
+//! The soft-string torque-and-drag chart: for each bit depth and each load case, hook load,
+//! surface torque, largest contact force, buckling and yield (one [`LoadRow`] each).
+//!
+//! Each depth refits the string once ([`super::string_at_depth`]) and runs the five load cases
+//! on it (Johancsik soft string, [`crate::softstring::from_case`]). A soft-string pass is a
+//! single explicit sweep from the bit up, so there is nothing to iterate and no state to warm
+//! start; the only reuse is the refitted string and case per depth.
+//!
+//! Contact force: the soft string gives a normal force per length `q` (N/m); the reported
+//! contact force is `q` times the component's joint length (the force one tool joint carries
+//! when the pipe touches the wall at its joints, 9.144 m by default), comparable with the
+//! nodal contact forces of the stiff model; `max_side_force_n_per_m` keeps `q` itself.
+
+use super::limits::{buckling_along, combined_torque_limit, max_stress_ratio, yield_limits, Buckling};
+use super::stiff::StiffOutcome;
+use super::{set_row_operation, string_at_depth, ChartOperation, MODES};
+use crate::case::{Case, Mode};
+use crate::softstring::{from_case, SoftStringResult};
+use crate::string::DrillString;
+
+/// Surface loads and largest wall contact of one solution (soft or stiff), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowLoads {
+    /// Hook load (effective tension at the top, no block weight), N.
+    pub hook_load_n: f64,
+    /// Surface torque, N.m.
+    pub surface_torque_nm: f64,
+    /// Largest wall contact force, N (soft: per joint, see the module documentation; stiff:
+    /// largest nodal contact force).
+    pub max_contact_force_n: f64,
+    /// Largest wall contact force per length, N/m (soft only; 0 for stiff).
+    pub max_side_force_n_per_m: f64,
+}
+
+/// Yield limits at the surface and the worst stress along the string (all `None` when the
+/// string gives no yield strength; see [`super::limits`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RowYield {
+    /// Tension at yield of the top component, N.
+    pub tension_limit_n: Option<f64>,
+    /// Torque at yield of the top component without tension, N.m.
+    pub torque_limit_nm: Option<f64>,
+    /// Torque at yield of the top component under this row's hook load, N.m.
+    pub combined_torque_limit_nm: Option<f64>,
+    /// Largest von Mises ratio (axial + torsion) along the string.
+    pub max_stress_ratio: Option<f64>,
+}
+
+/// One row of the chart: one bit depth, one load case.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadRow {
+    /// Bit measured depth, m.
+    pub bit_md_m: f64,
+    /// Load case.
+    pub mode: Mode,
+    /// Weight on bit of the row, N (0 off bottom; on bottom the chart's WOB, or less where the
+    /// string cannot give it, see [`soft_row`]).
+    pub wob_n: f64,
+    /// Soft-string loads.
+    pub soft: RowLoads,
+    /// Buckling along the soft string.
+    pub buckling: Buckling,
+    /// Yield limits and stress ratio.
+    pub yield_: RowYield,
+    /// Stiff (whole-string FEM) result, when asked for.
+    pub stiff: Option<StiffOutcome>,
+}
+
+/// Settings of a soft-string chart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChartSettings {
+    /// WOB and RPM of the rows.
+    pub op: ChartOperation,
+    /// Longest soft-string element, m (> 0).
+    pub max_element_m: f64,
+}
+
+/// Soft-string loads of a result for `string` with its bit at `bit_md_m`.
+pub fn soft_loads(res: &SoftStringResult, string: &DrillString, bit_md_m: f64) -> RowLoads {
+    let mut max_f: f64 = 0.0;
+    let mut max_q: f64 = 0.0;
+    for (k, p) in res.points.iter().enumerate().skip(1) {
+        // points[k] carries the element just below it (between points k-1 and k)
+        let mid = 0.5 * (p.md_m + res.points[k - 1].md_m);
+        let c = string.component_at((bit_md_m - mid).max(0.0));
+        max_q = max_q.max(p.normal_force_per_m);
+        max_f = max_f.max(p.normal_force_per_m * c.joint_length_m);
+    }
+    RowLoads {
+        hook_load_n: res.hook_load_n,
+        surface_torque_nm: res.surface_torque_nm,
+        max_contact_force_n: max_f,
+        max_side_force_n_per_m: max_q,
+    }
+}
+
+/// The soft-string row of `case` (string and operation already set for the row).
+///
+/// On bottom, a WOB larger than the string can give (hook load below zero) is not achievable:
+/// the row then uses the WOB that brings the hook load to zero (the row's `wob_n` says so).
+pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
+    let op = &case.operation;
+    let mut res = from_case(case, max_element_m);
+    if op.mode.on_bottom() && res.hook_load_n < 0.0 {
+        let mut c = case.clone();
+        c.operation.hook_load_n = Some(0.0);
+        res = from_case(&c, max_element_m);
+        // zero within the secant's tolerance (1e-9 N)
+        res.hook_load_n = res.hook_load_n.max(0.0);
+    }
+    let wob_n = -res.points[0].tension_n;
+    let loads = soft_loads(&res, &case.string, op.bit_md_m);
+    let buckling = buckling_along(
+        &res,
+        &case.string,
+        &case.well.path,
+        &case.well.hole,
+        op.bit_md_m,
+        case.mud.density_kg_m3,
+    );
+    let top = case.string.components.last().expect("a string has components");
+    let yield_ = RowYield {
+        tension_limit_n: yield_limits(top).map(|y| y.tension_n),
+        torque_limit_nm: yield_limits(top).map(|y| y.torque_nm),
+        combined_torque_limit_nm: combined_torque_limit(top, res.hook_load_n),
+        max_stress_ratio: max_stress_ratio(&res, &case.string, &case.well.path, op.bit_md_m, case.mud.density_kg_m3),
+    };
+    LoadRow {
+        bit_md_m: op.bit_md_m,
+        mode: op.mode,
+        wob_n,
+        soft: loads,
+        buckling,
+        yield_,
+        stiff: None,
+    }
+}
+
+/// The case with its string refitted to `bit_md_m` (operation not yet set for a row).
+pub fn case_at_depth(base: &Case, bit_md_m: f64) -> Case {
+    let mut c = base.clone();
+    c.string = string_at_depth(&base.string, bit_md_m);
+    c.operation.bit_md_m = bit_md_m;
+    c
+}
+
+/// Soft-string chart of `case` at the bit depths `depths` (m, each inside the surveyed hole),
+/// rows in depth order, load cases in [`MODES`] order.
+///
+/// # Panics
+/// If the case has no string components or `settings.max_element_m` is not positive.
+pub fn soft_chart(case: &Case, depths: &[f64], settings: &ChartSettings) -> Vec<LoadRow> {
+    let mut rows = Vec::with_capacity(depths.len() * MODES.len());
+    for &d in depths {
+        let mut c = case_at_depth(case, d);
+        for mode in MODES {
+            set_row_operation(&mut c, d, mode, &settings.op);
+            rows.push(soft_row(&c, settings.max_element_m));
+        }
+    }
+    rows
+}

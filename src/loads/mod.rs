@@ -1,0 +1,228 @@
+//! Torque-and-drag chart (`drillpath loads`): hook load and surface torque against bit depth
+//! for the five load cases, buckling onset and yield limits, stiff (whole-string FEM) results
+//! on request, and friction calibration from measured hook loads.
+//!
+//! - [`chart`]: the soft-string chart (Johancsik, [`crate::softstring`]) over a list of bit
+//!   depths, one row per depth and load case;
+//! - [`stiff`]: the same rows from the whole-string FEM, warm-started;
+//! - [`limits`]: buckling onset (sinusoidal, helical) along the string and pipe-body yield
+//!   limits (tension, torsion, combined);
+//! - [`calibrate`]: least-squares fit of the friction factor per hole section.
+//!
+//! The case gives the string at its own bit depth. At another bit depth the string is the same
+//! from the bit upward and its topmost component is lengthened or shortened so that it reaches
+//! the surface ([`string_at_depth`]); when the bit is shallower than the components below the
+//! top one, the string is cut at the surface.
+
+pub mod calibrate;
+pub mod chart;
+pub mod limits;
+pub mod stiff;
+
+use crate::case::{Case, Mode};
+use crate::string::{ComponentKind, DrillString};
+
+/// The load cases of a chart, in the order of `loads.csv`.
+pub const MODES: [Mode; 5] = [
+    Mode::TripIn,
+    Mode::TripOut,
+    Mode::RotatingOffBottom,
+    Mode::Drilling,
+    Mode::Sliding,
+];
+
+/// Axial speed used for a sliding row when the case gives no ROP, m/s. Without rotation only
+/// the direction of motion matters (friction is `f N` against it), so any positive value gives
+/// the same loads; a nonzero value keeps friction on.
+pub const SLIDING_NOMINAL_SPEED_M_S: f64 = 1.0 / 3600.0;
+
+/// Rotary speed used for the rotating rows when the case gives none, rev/min (stated in the
+/// command's output). Off bottom only the direction matters; drilling, the ratio ROP/RPM splits
+/// friction between axial and tangential.
+pub const DEFAULT_CHART_RPM: f64 = 60.0;
+
+/// Operating values shared by all rows of a chart, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ChartOperation {
+    /// Weight on bit of the on-bottom rows (drilling, sliding), N.
+    pub wob_n: f64,
+    /// Surface rotary speed of the rotating rows (drilling, rotating off bottom), rev/min (> 0).
+    pub rpm: f64,
+    /// Rate of penetration of the on-bottom rows, m/s (>= 0).
+    pub rop_m_s: f64,
+}
+
+impl ChartOperation {
+    /// From the case: its WOB and ROP, and its RPM or [`DEFAULT_CHART_RPM`] when it gives none.
+    pub fn from_case(case: &Case) -> ChartOperation {
+        let rpm = if case.operation.rpm > 0.0 {
+            case.operation.rpm
+        } else {
+            DEFAULT_CHART_RPM
+        };
+        ChartOperation {
+            wob_n: case.operation.wob_n,
+            rpm,
+            rop_m_s: case.operation.rop_m_s,
+        }
+    }
+}
+
+/// Bit depths from `from_m` to `to_m` every `every_m` (m): `from, from + every, ...` and `to`
+/// itself, keeping only depths strictly below `md_start` (the top of the survey, where the
+/// string has no length). `every_m` must be positive and `to_m >= from_m`.
+pub fn depth_list(from_m: f64, to_m: f64, every_m: f64, md_start: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    if every_m.is_nan() || every_m <= 0.0 || to_m.is_nan() || to_m < from_m {
+        return out;
+    }
+    let n = ((to_m - from_m) / every_m + 1e-9).floor() as usize;
+    for k in 0..=n {
+        let d = from_m + k as f64 * every_m;
+        if d > md_start + 1e-9 && d < to_m - 1e-6 {
+            out.push(d);
+        }
+    }
+    if to_m > md_start + 1e-9 {
+        out.push(to_m);
+    }
+    out
+}
+
+/// The string with its bit at `bit_md_m` (distance to surface `bit_md_m`, m): components from
+/// the bit upward as in `string`; the topmost one is resized so that the string reaches the
+/// surface, or the string is cut at the surface when the lower components are already longer.
+///
+/// # Panics
+/// If `string` has no components or `bit_md_m` is not positive.
+pub fn string_at_depth(string: &DrillString, bit_md_m: f64) -> DrillString {
+    assert!(!string.components.is_empty() && bit_md_m > 0.0);
+    let mut comps = Vec::with_capacity(string.components.len());
+    let last = string.components.len() - 1;
+    for (k, c) in string.components.iter().enumerate() {
+        if c.bottom_m >= bit_md_m - 1e-9 {
+            break;
+        }
+        let mut c = c.clone();
+        if k == last || c.top_m() > bit_md_m {
+            c.length_m = bit_md_m - c.bottom_m;
+        }
+        let done = c.top_m() >= bit_md_m - 1e-9;
+        comps.push(c);
+        if done {
+            break;
+        }
+    }
+    DrillString { components: comps }
+}
+
+/// The case for one row of the chart: bit at `bit_md_m`, string refitted by
+/// [`string_at_depth`], operation set for `mode` with the chart's WOB and RPM (on-bottom rows
+/// take `op.wob_n`; off bottom WOB 0; sliding without ROP moves at
+/// [`SLIDING_NOMINAL_SPEED_M_S`]); a hook load given in the case is not used.
+pub fn case_for_row(base: &Case, string: &DrillString, bit_md_m: f64, mode: Mode, op: &ChartOperation) -> Case {
+    let mut c = base.clone();
+    c.string = string.clone();
+    set_row_operation(&mut c, bit_md_m, mode, op);
+    c
+}
+
+/// Set the operation of `case` for one row (see [`case_for_row`]); the string is not touched.
+pub fn set_row_operation(case: &mut Case, bit_md_m: f64, mode: Mode, op: &ChartOperation) {
+    let o = &mut case.operation;
+    o.mode = mode;
+    o.bit_md_m = bit_md_m;
+    o.hook_load_n = None;
+    o.wob_n = if mode.on_bottom() { op.wob_n } else { 0.0 };
+    o.rpm = op.rpm;
+    o.rop_m_s = if mode == Mode::Sliding && op.rop_m_s <= 0.0 {
+        SLIDING_NOMINAL_SPEED_M_S
+    } else {
+        op.rop_m_s
+    };
+}
+
+/// Check that every component of `string` (bit at `bit_md_m`) fits the hole where it sits (as
+/// the case reader does at the case's bit depth: a bit or stabilizer may be gauge within 1 mm);
+/// the error names the component, the MD and the diameters.
+pub fn check_fits(string: &DrillString, hole: &crate::geometry::HoleSize, bit_md_m: f64) -> Result<(), String> {
+    for c in &string.components {
+        let widest = c.contact_od_m.max(c.tool_joint_od_m.unwrap_or(0.0));
+        let allowance = if matches!(c.kind, ComponentKind::Bit | ComponentKind::Stabilizer) {
+            1e-3
+        } else {
+            0.0
+        };
+        let (top, bottom) = ((bit_md_m - c.top_m()).max(0.0), bit_md_m - c.bottom_m);
+        let mut md = top;
+        loop {
+            let d = hole.diameter_at(md);
+            if widest > d + allowance {
+                return Err(format!(
+                    "with the bit at {bit_md_m:.1} m, component `{}` ({:.3} in) is wider than the hole ({:.3} in) at MD {md:.1} m",
+                    c.name,
+                    widest / 0.0254,
+                    d / 0.0254
+                ));
+            }
+            if md >= bottom {
+                break;
+            }
+            md = (md + 1.0).min(bottom);
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::string::material::steel;
+    use crate::string::Component;
+
+    fn comp(kind: ComponentKind, bottom: f64, len: f64) -> Component {
+        Component {
+            kind,
+            name: kind.name().into(),
+            length_m: len,
+            bottom_m: bottom,
+            body_od_m: 0.127,
+            contact_od_m: 0.127,
+            id_m: 0.1,
+            tool_joint_od_m: None,
+            joint_length_m: 9.144,
+            material: steel(),
+            weight_air_n_per_m: 300.0,
+        }
+    }
+
+    #[test]
+    fn depth_list_includes_end_and_skips_surface() {
+        let d = depth_list(0.0, 100.0, 30.0, 0.0);
+        assert_eq!(d, vec![30.0, 60.0, 90.0, 100.0]);
+        let d = depth_list(0.0, 90.0, 30.0, 0.0);
+        assert_eq!(d, vec![30.0, 60.0, 90.0]);
+        assert!(depth_list(10.0, 5.0, 1.0, 0.0).is_empty());
+    }
+
+    #[test]
+    fn string_is_refitted_to_reach_surface() {
+        let s = DrillString {
+            components: vec![
+                comp(ComponentKind::Collar, 0.0, 50.0),
+                comp(ComponentKind::Hwdp, 50.0, 100.0),
+                comp(ComponentKind::Pipe, 150.0, 850.0),
+            ],
+        };
+        let deep = string_at_depth(&s, 2000.0);
+        assert_eq!(deep.components.len(), 3);
+        assert!((deep.length_m() - 2000.0).abs() < 1e-9);
+        let shallow = string_at_depth(&s, 120.0);
+        assert_eq!(shallow.components.len(), 2);
+        assert!((shallow.length_m() - 120.0).abs() < 1e-9);
+        assert_eq!(shallow.components[1].kind, ComponentKind::Hwdp);
+        let tiny = string_at_depth(&s, 30.0);
+        assert_eq!(tiny.components.len(), 1);
+        assert!((tiny.length_m() - 30.0).abs() < 1e-9);
+    }
+}

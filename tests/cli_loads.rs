@@ -1,0 +1,173 @@
+//! Command-line handling of `drillpath loads`: bad options and bad measured files exit non-zero
+//! with one `error:` line naming the option or the file, line and column, and leave no output
+//! file; a good run writes `loads.csv` with the interface's columns first.
+
+use std::path::Path;
+use std::process::{Command, Output};
+use tempfile::TempDir;
+
+const SURVEY: &str = "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n600,20,45\n1000,30,45\n";
+
+const CASE: &str = r#"name = "loads cli test"
+[well]
+survey = "survey.csv"
+hole = [
+  { to_md = "500 m", diameter = "12.25 in", friction = 0.2 },
+  { to_md = "1000 m", diameter = "8.5 in" },
+]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "drilling"
+wob = "50 kN"
+rpm = 60
+friction = 0.3
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "60 m"
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "29 kg/m"
+tool_joint_od = "6.625 in"
+grade = "S-135"
+"#;
+
+fn setup() -> TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("survey.csv"), SURVEY).unwrap();
+    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
+    dir
+}
+
+fn run(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .current_dir(dir)
+        .arg("loads")
+        .arg("case.toml")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Exit code 2, exactly one stderr line starting `error:` containing every `needles` item, no
+/// panic, and no `out/` directory content.
+fn assert_error(dir: &Path, out: &Output, needles: &[&str]) {
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    let lines: Vec<&str> = err.lines().collect();
+    assert_eq!(lines.len(), 1, "stderr: {err}");
+    assert!(lines[0].starts_with("error: "), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "`{n}` not in: {err}");
+    }
+    assert!(!dir.join("out/loads.csv").exists(), "partial output left behind");
+    assert!(!dir.join("out/calibration.csv").exists(), "partial output left behind");
+}
+
+#[test]
+fn good_run_writes_interface_columns() {
+    let dir = setup();
+    let out = run(dir.path(), &["--every", "100 m", "--out", "out"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert!(header.starts_with("bit_md_m,mode,hook_load_kN,surface_torque_kNm,max_contact_force_kN,buckled_length_m,"));
+    // 10 depths (100 ... 1000 m) x 5 load cases
+    assert_eq!(csv.lines().count(), 1 + 10 * 5);
+    assert!(!csv.contains("NaN") && !csv.contains("inf"));
+    // yield limits present (grade given): 5 in 19.5 lb/ft S-135 body 3167.4 kN
+    let last = csv.lines().last().unwrap();
+    assert!(last.contains(",3167."), "{last}");
+}
+
+#[test]
+fn bad_options_name_the_option() {
+    let dir = setup();
+    let out = run(dir.path(), &["--every", "0", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--every", "positive"]);
+    let out = run(dir.path(), &["--to", "1500 m", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--to", "below the surveyed hole"]);
+    let out = run(dir.path(), &["--to", "12 furlongs", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--to", "furlongs"]);
+    let out = run(dir.path(), &["--from", "900", "--to", "800", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--to", "above --from"]);
+    let out = run(dir.path(), &["--wob", "20 m", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--wob"]);
+}
+
+#[test]
+fn bad_measured_files_name_file_line_and_column() {
+    let dir = setup();
+    let cases: [(&str, &[&str]); 5] = [
+        (
+            "bit_md_m,mode,hook_load_kN\n500,trip_in,100\n600,trip_out,abc\n",
+            &["measured.csv", "line 3", "hook_load_kN", "not a number"],
+        ),
+        (
+            "bit_md_m,mode,hook_load_kN\n500,trip_in,100\n600,backwards,120\n",
+            &["measured.csv", "line 3", "mode", "unknown load case"],
+        ),
+        (
+            "# rig log\nbit_md_m,mode,hook_load_kN\n1500,trip_in,100\n",
+            &["measured.csv", "line 3", "bit_md_m", "outside the surveyed hole"],
+        ),
+        (
+            "bit_md_m,mode\n500,trip_in\n",
+            &["measured.csv", "line 1", "no hook load"],
+        ),
+        (
+            "bit_md_m,mode,hook_load_kN\n500,trip_in,-5\n",
+            &["measured.csv", "line 2", "hook_load_kN", "positive"],
+        ),
+    ];
+    for (text, needles) in cases {
+        std::fs::write(dir.path().join("measured.csv"), text).unwrap();
+        let out = run(dir.path(), &["--measured", "measured.csv", "--out", "out"]);
+        assert_error(dir.path(), &out, needles);
+    }
+    let out = run(dir.path(), &["--measured", "missing.csv", "--out", "out"]);
+    assert_error(dir.path(), &out, &["missing.csv", "cannot read"]);
+}
+
+#[test]
+fn unconstrained_calibration_is_an_error_not_a_number() {
+    // rotating-off-bottom hook loads without torque do not depend on friction
+    let dir = setup();
+    std::fs::write(
+        dir.path().join("measured.csv"),
+        "bit_md_m,mode,hook_load_kN\n800,rotating_off_bottom,150\n900,rotating_off_bottom,160\n",
+    )
+    .unwrap();
+    let out = run(dir.path(), &["--measured", "measured.csv", "--out", "out"]);
+    assert_error(dir.path(), &out, &["measured.csv", "nothing to fit"]);
+}
+
+#[test]
+fn calibration_writes_overlay() {
+    let dir = setup();
+    std::fs::write(
+        dir.path().join("measured.csv"),
+        "Bit depth [m],Load case,Hook load [kN],Torque [kN.m]\n\
+         700,trip_out,200,\n800,trip_out,225,\n900,trip_out,250,\n1000,trip_out,270,\n\
+         700,trip_in,160,\n800,trip_in,170,\n900,trip_in,180,\n1000,trip_in,190,\n\
+         1000,rotating_off_bottom,225,4\n",
+    )
+    .unwrap();
+    let out = run(
+        dir.path(),
+        &["--measured", "measured.csv", "--every", "100", "--out", "out"],
+    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let overlay = std::fs::read_to_string(dir.path().join("out/calibration.csv")).unwrap();
+    assert_eq!(overlay.lines().count(), 10);
+    assert!(overlay.starts_with("line,bit_md_m,mode,measured_hook_load_kN"));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/calibration.json")).unwrap()).unwrap();
+    assert_eq!(json["sections"].as_array().unwrap().len(), 2);
+    assert!(dir.path().join("out/loads.csv").exists());
+}
