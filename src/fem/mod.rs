@@ -6,6 +6,7 @@ pub mod beam;
 pub mod corotational;
 pub mod mesh;
 pub mod model;
+pub mod paper;
 pub mod results;
 pub mod rotation;
 pub mod solve;
