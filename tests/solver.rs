@@ -546,9 +546,9 @@ fn mirrored_well_flips_the_walk_force() {
 }
 
 #[test]
-fn paper_method_is_refused_not_ignored() {
-    // `[solver] method = "paper"` is not implemented: the solve must say so rather than run
-    // the default scheme under the user's choice.
+fn paper_method_runs_the_paper_scheme_not_the_default() {
+    // `[solver] method = "paper"` must run the paper's scheme (fem::paper::solve_paper), not
+    // the default one under the user's choice: `solve` returns exactly what solve_paper does.
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n",
         "[well]\nsurvey = \"survey.csv\"\nhole = [{ to_md = \"40 m\", diameter = \"8.5 in\" }]\n[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\n[solver]\nmethod = \"paper\"\n",
@@ -558,6 +558,12 @@ fn paper_method_is_refused_not_ignored() {
         method: case.solver.method,
         ..Default::default()
     };
-    let err = solve(&model, &ctl).err().expect("refused");
-    assert!(err.to_string().contains("paper"), "{err}");
+    let via_solve = solve(&model, &ctl).expect("paper scheme runs");
+    let direct = drillpath::fem::paper::solve_paper(&model, &ctl).expect("paper scheme runs");
+    assert!(via_solve.converged);
+    assert_eq!(via_solve.stats.iterations, direct.stats.iterations);
+    assert_eq!(via_solve.stats.residual_history, direct.stats.residual_history);
+    let a = extract(&model, &via_solve, case.mud.density_kg_m3);
+    let b = extract(&model, &direct, case.mud.density_kg_m3);
+    assert_eq!(a.bit.build_force_n, b.bit.build_force_n);
 }

@@ -7,6 +7,7 @@ pub mod bha;
 pub mod corotational;
 pub mod mesh;
 pub mod model;
+pub mod paper;
 pub mod results;
 pub mod rotation;
 pub mod solve;

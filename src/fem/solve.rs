@@ -210,20 +210,20 @@ fn merit(r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
 }
 
 /// Largest residual entry relative to the load scale.
-fn residual_norm(r: &[f64], scale: f64) -> f64 {
+pub(crate) fn residual_norm(r: &[f64], scale: f64) -> f64 {
     r.iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
 }
 
 /// Where a gap node sits relative to the hole: outward unit normal (global; the previous one
 /// when the node is on the axis), radial distance minus clearance, and the axis tangent.
-struct GapGeometry {
-    normal: Vec3,
-    gap: f64,
-    tangent: Vec3,
-    radial: f64,
+pub(crate) struct GapGeometry {
+    pub(crate) normal: Vec3,
+    pub(crate) gap: f64,
+    pub(crate) tangent: Vec3,
+    pub(crate) radial: f64,
 }
 
-fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
+pub(crate) fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
     let md = model.path.nearest_md(&state.x[i], state.md[i]);
     let p = model.path.point_at(md);
     let d = state.x[i] - p.position;
@@ -240,14 +240,14 @@ fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
 
 /// The global tangent and its factor: symmetric LDL^T, or LU when friction makes the
 /// consistent tangent unsymmetric.
-enum Linear {
+pub(crate) enum Linear {
     Symmetric(BandMatrix, BandLdlt),
     General(GeneralBand, BandLu),
 }
 
 impl Linear {
     /// LU when friction makes the consistent tangent unsymmetric, LDL^T otherwise.
-    fn for_model(model: &Model) -> Linear {
+    pub(crate) fn for_model(model: &Model) -> Linear {
         let n = model.dofs();
         if model.needs_unsymmetric() {
             Linear::General(GeneralBand::zeros(n, HALF_BANDWIDTH), BandLu::new(n, HALF_BANDWIDTH))
@@ -255,13 +255,13 @@ impl Linear {
             Linear::Symmetric(BandMatrix::zeros(n, HALF_BANDWIDTH), BandLdlt::new(n, HALF_BANDWIDTH))
         }
     }
-    fn sink(&mut self) -> &mut dyn StiffnessSink {
+    pub(crate) fn sink(&mut self) -> &mut dyn StiffnessSink {
         match self {
             Linear::Symmetric(k, _) => k,
             Linear::General(k, _) => k,
         }
     }
-    fn get(&self, i: usize, j: usize) -> f64 {
+    pub(crate) fn get(&self, i: usize, j: usize) -> f64 {
         match self {
             Linear::Symmetric(k, _) => k.get(i, j),
             Linear::General(k, _) => k.get(i, j),
@@ -279,7 +279,7 @@ impl Linear {
             Linear::General(k, f) => f.factor(k),
         }
     }
-    fn solve(&self, x: &mut [f64]) {
+    pub(crate) fn solve(&self, x: &mut [f64]) {
         match self {
             Linear::Symmetric(_, f) => f.solve_in_place(x),
             Linear::General(_, f) => f.solve_in_place(x),
@@ -321,7 +321,7 @@ impl Linear {
 
 /// Row of the bit's axial DOF over the free columns (for the hook-load equation), the WOB
 /// equation's residual `c`, and the residual with constrained entries zeroed.
-fn bordered_parts(
+pub(crate) fn bordered_parts(
     model: &Model,
     lin: &Linear,
     ev: &Evaluation,
@@ -348,7 +348,7 @@ fn bordered_parts(
 
 /// Apply the boundary conditions to the tangent and factor it; a zero pivot becomes a
 /// [`SolveError::Singular`] naming the node.
-fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) -> Result<(), SolveError> {
+pub(crate) fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) -> Result<(), SolveError> {
     for &d in constrained {
         lin.constrain(d);
     }
@@ -368,7 +368,7 @@ fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) 
 /// unconverged) if none converges.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
     if ctl.method == Method::Paper {
-        return Err(SolveError::NotImplemented("paper"));
+        return super::paper::solve_paper(model, ctl);
     }
     let t0 = Instant::now();
     // 1. Newton with the fully consistent co-rotational tangent, each step solving the contact

@@ -1,0 +1,255 @@
+//! The seed paper's contact scheme (`[solver] method = "paper"`, `fem::paper`) against
+//! independent references (Lubinski pendulum, statics) and against the default scheme
+//! (`method = "newton"`, interior-point contact Newton). Each test names its reference and
+//! tolerance.
+
+use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
+use drillpath::analytical::section::Tube;
+use drillpath::case::{Case, Method};
+use drillpath::fem::model::Model;
+use drillpath::fem::results::{extract, SolveResults};
+use drillpath::fem::solve::{solve, Solution, SolveControls};
+use drillpath::io::case_toml::{load_case, CaseOverrides};
+
+/// 6.5 in x 2-13/16 in steel collar, 8.5 in hole, 1.2 sg mud (physics.md 6.2).
+const OD: f64 = 6.5 * 0.0254;
+const ID: f64 = 2.8125 * 0.0254;
+const HOLE: f64 = 8.5 * 0.0254;
+
+/// Write `survey` and `case_toml` into a fresh directory and read the case as users do.
+fn load_temp_case(survey: &str, case_toml: &str) -> Case {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
+    std::fs::write(dir.path().join("case.toml"), case_toml).unwrap();
+    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
+}
+
+/// Solve `case` with `method`, gap tolerance `gap_tol` and an iteration limit.
+fn run(case: &Case, method: Method, gap_tol: f64, max_iterations: usize) -> (Solution, SolveResults) {
+    let model = Model::from_case(case);
+    let sol = solve(
+        &model,
+        &SolveControls {
+            max_iterations,
+            method,
+            gap_tolerance: gap_tol,
+            alpha: case.solver.alpha,
+            ..Default::default()
+        },
+    )
+    .expect("solve runs");
+    println!(
+        "{method:?}: converged {}, {} iterations, {} factorizations, last residual {:.1e}",
+        sol.converged,
+        sol.stats.iterations,
+        sol.stats.factorizations,
+        sol.stats.residual_history.last().copied().unwrap_or(f64::NAN)
+    );
+    let res = extract(&model, &sol, case.mud.density_kg_m3);
+    (sol, res)
+}
+
+/// Slick 6.5 in collar, 80 m, straight hole of inclination `inc` (deg), zero friction, sliding.
+fn pendulum_case(inc: f64, wob_kn: f64) -> Case {
+    let survey = format!("md_m,inc_deg,azi_deg\n0,{inc},45\n80,{inc},45\n");
+    let case = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "80 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+wob = "{wob_kn} kN"
+rop = "0 m/h"
+friction = 0.0
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+[solver]
+element_length = "0.25 m"
+bha_element_length = "0.25 m"
+method = "paper"
+"#
+    );
+    load_temp_case(&survey, &case)
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs().max(1e-12)
+}
+
+#[test]
+fn paper_scheme_matches_lubinski_and_the_default_scheme_on_the_pendulum() {
+    // References: (1) Lubinski (1953) pendulum with the axial force varying along the collar
+    // (analytical::pendulum), tolerance 0.5% on the bit side force and tilt; (2) the default
+    // scheme on the same model, both run with a tight gap tolerance (1e-6 of the clearance) so
+    // that the comparison measures the schemes and not the tolerance band: 1e-4 relative
+    // (measured <= 1e-5). Equilibrium of the whole string (physics.md 6.7): 1e-6.
+    let tube = Tube::new(OD, ID).unwrap();
+    let ei = 207e9 * tube.second_moment();
+    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
+    let r = (HOLE - OD) / 2.0;
+    for &(inc, wob) in &[(3.0_f64, 0.0), (10.0, 100.0), (30.0, 0.0), (60.0, 100.0)] {
+        let case = pendulum_case(inc, wob);
+        assert_eq!(case.solver.method, Method::Paper);
+        let (sp, p) = run(&case, Method::Paper, 1e-6, 1000);
+        let (sn, nw) = run(&case, Method::Newton, 1e-6, 1000);
+        assert!(sp.converged && sn.converged, "inc {inc} WOB {wob}: both converge");
+        let i = inc.to_radians();
+        let reference = variable_compression(ei, lateral_load(w_b, i), axial_gradient(w_b, i), wob * 1e3, r).unwrap();
+        let side = -p.bit.build_force_n;
+        println!(
+            "inc {inc:>4} WOB {wob:>5} kN: side force paper {side:.3} N, newton {:.3} N, Lubinski {:.3} N; tilt paper {:.6} deg, Lubinski {:.6} deg",
+            -nw.bit.build_force_n,
+            reference.side_force,
+            p.bit.tilt_inc_rad.to_degrees(),
+            reference.tilt.to_degrees()
+        );
+        assert!(rel(side, reference.side_force) < 0.005, "side force vs Lubinski");
+        assert!(rel(p.bit.tilt_inc_rad, reference.tilt) < 0.005, "tilt vs Lubinski");
+        assert!(rel(side, -nw.bit.build_force_n) < 1e-4, "side force vs newton");
+        assert!(rel(p.bit.tilt_inc_rad, nw.bit.tilt_inc_rad) < 1e-4, "tilt vs newton");
+        assert!(rel(p.hook_load_n, nw.hook_load_n) < 1e-6, "hook load vs newton");
+        let imbalance = p.force_imbalance_n.norm() / p.largest_force_n;
+        let moment = p.moment_imbalance_nm.norm() / (p.largest_force_n * 80.0);
+        assert!(
+            imbalance < 1e-6 && moment < 1e-6,
+            "equilibrium {imbalance:e} {moment:e}"
+        );
+        assert!(
+            (p.bit.wob_n - wob * 1e3).abs() < 1e-5 * (w_b * 80.0 + wob * 1e3),
+            "WOB enforced"
+        );
+    }
+}
+
+#[test]
+fn paper_scheme_at_the_default_tolerance_stays_within_half_a_percent() {
+    // Reference: Lubinski pendulum (as above), default gap tolerance 1e-4: the tolerance band
+    // lets the two schemes differ by up to ~0.1% here; the reference is met within 0.5%.
+    let tube = Tube::new(OD, ID).unwrap();
+    let ei = 207e9 * tube.second_moment();
+    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
+    let r = (HOLE - OD) / 2.0;
+    let case = pendulum_case(30.0, 100.0);
+    let (sp, p) = run(&case, Method::Paper, case.solver.tolerance, case.solver.max_iterations);
+    assert!(sp.converged);
+    let i = 30f64.to_radians();
+    let reference = variable_compression(ei, lateral_load(w_b, i), axial_gradient(w_b, i), 100e3, r).unwrap();
+    assert!(rel(-p.bit.build_force_n, reference.side_force) < 0.005);
+    assert!(sp.stats.max_penetration <= case.solver.tolerance);
+    assert_eq!(sp.stats.residual_history.len(), sp.stats.iterations + 1);
+}
+
+/// Short curved well (build from 20 to 44 deg over 120 m, 6 deg/30 m, turning right), bit,
+/// 6.5 in collars with an 8-3/8 in stabilizer 9 m above the bit, 5 in pipe on top.
+fn curved_case(mode: &str, rpm: f64, friction: f64) -> Case {
+    let survey = "md_m,inc_deg,azi_deg\n0,20,30\n60,32,36\n120,44,42\n";
+    let case = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "120 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "{mode}"
+wob = "30 kN"
+rpm = {rpm}
+rop = "5 m/h"
+friction = {friction}
+viscous_torque = false
+[[string]]
+type = "bit"
+od = "8.5 in"
+length = "0.3 m"
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "9 m"
+[[string]]
+type = "stabilizer"
+od = "8.375 in"
+body_od = "6.5 in"
+id = "2.8125 in"
+length = "1.5 m"
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "27 m"
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "29 kg/m"
+tool_joint_od = "6.625 in"
+[solver]
+element_length = "1 m"
+bha_element_length = "0.5 m"
+"#
+    );
+    load_temp_case(survey, &case)
+}
+
+#[test]
+fn paper_scheme_matches_the_default_scheme_in_a_curved_3d_well_without_friction() {
+    // Reference: the default scheme on the same model (3D: build and turn, stabilized BHA),
+    // frictionless sliding; tolerance 0.5% on build and walk force, hook load and tilt
+    // (measured ~1e-6), equilibrium 1e-6.
+    let case = curved_case("sliding", 0.0, 0.0);
+    let (sp, p) = run(&case, Method::Paper, 1e-4, 1000);
+    let (sn, nw) = run(&case, Method::Newton, 1e-4, 1000);
+    assert!(sp.converged && sn.converged);
+    println!(
+        "build {:.3} / {:.3} N, walk {:.3} / {:.3} N, hook {:.3} / {:.3} N",
+        p.bit.build_force_n,
+        nw.bit.build_force_n,
+        p.bit.walk_force_n,
+        nw.bit.walk_force_n,
+        p.hook_load_n,
+        nw.hook_load_n
+    );
+    assert!(rel(p.bit.build_force_n, nw.bit.build_force_n) < 0.005);
+    assert!(rel(p.bit.walk_force_n, nw.bit.walk_force_n) < 0.005);
+    assert!(rel(p.hook_load_n, nw.hook_load_n) < 0.005);
+    assert!(rel(p.bit.tilt_inc_rad, nw.bit.tilt_inc_rad) < 0.005);
+    assert!(p.force_imbalance_n.norm() / p.largest_force_n < 1e-6);
+}
+
+#[test]
+#[ignore = "open point: the paper scheme does not converge yet with rotary friction (see fem::paper docs)"]
+fn paper_scheme_matches_the_default_scheme_with_rotation_and_friction() {
+    // Reference: the default scheme; tolerance 0.5% on bit forces, hook load and surface torque.
+    let case = curved_case("drilling", 80.0, 0.25);
+    let (sp, p) = run(&case, Method::Paper, 1e-4, 1000);
+    let (sn, nw) = run(&case, Method::Newton, 1e-4, 1000);
+    assert!(sp.converged && sn.converged);
+    assert!(rel(p.bit.build_force_n, nw.bit.build_force_n) < 0.005);
+    assert!(rel(p.bit.walk_force_n, nw.bit.walk_force_n) < 0.005);
+    assert!(rel(p.hook_load_n, nw.hook_load_n) < 0.005);
+    assert!(rel(p.surface_torque_nm, nw.surface_torque_nm) < 0.005);
+}
+
+#[test]
+fn unconverged_paper_solve_is_flagged_with_the_switching_contacts() {
+    // The iteration limit is reached while the contact front is still moving (the soft-string
+    // start has the whole collar on the wall; the pendulum lifts off over ~20 m): the solve
+    // must end normally with converged == false, the nodes whose state changed named, and
+    // finite numbers (the CLI then refuses to print them as valid).
+    let case = pendulum_case(10.0, 0.0);
+    let (sp, res) = run(&case, Method::Paper, 1e-4, 8);
+    assert!(!sp.converged);
+    assert_eq!(sp.stats.iterations, 8);
+    assert!(!sp.stats.chattering_nodes.is_empty(), "switching nodes are named");
+    println!("switching nodes: {:?}", sp.stats.chattering_nodes);
+    assert!(sp.stats.residual_history.iter().all(|r| r.is_finite()));
+    assert!(res
+        .nodes
+        .iter()
+        .all(|n| n.contact_force_n.is_finite() && n.axial_force_n.is_finite()));
+}
