@@ -1,0 +1,186 @@
+//! Command-line handling of `drillpath predict` and `drillpath backanalyze`: bad options and
+//! unsuitable cases exit 2 with one `error:` line naming the option or key and leave no output;
+//! good runs write the interface's `trajectory.csv` columns and `summary.json` keys, no NaN.
+
+use std::path::Path;
+use std::process::{Command, Output};
+use tempfile::TempDir;
+
+/// Straight 20 deg hole with stations every 10 m below 200 m.
+fn survey() -> String {
+    let mut s = String::from("md_m,inc_deg,azi_deg\n0,20,30\n100,20,30\n200,20,30\n");
+    for k in 1..=4 {
+        s.push_str(&format!(
+            "{},{},{}\n",
+            200 + 10 * k,
+            20.0 + 0.1 * k as f64,
+            30.0 + 0.05 * k as f64
+        ));
+    }
+    s
+}
+
+const CASE: &str = r#"name = "predict cli test"
+[well]
+survey = "survey.csv"
+hole = [{ to_md = "1000 m", diameter = "8.5 in" }]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "drilling"
+bit_md = "200 m"
+wob = "80 kN"
+rpm = 60
+friction = 0.2
+[[string]]
+type = "bit"
+od = "8.5 in"
+length = "0.3 m"
+[[string]]
+type = "stabilizer"
+od = "8.5 in"
+body_od = "6.5 in"
+id = "2.8125 in"
+length = "1.5 m"
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "40 m"
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+[bit_rock]
+step = "2 m"
+"#;
+
+fn setup(case: &str) -> TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("survey.csv"), survey()).unwrap();
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    dir
+}
+
+fn run(dir: &Path, cmd: &str, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .current_dir(dir)
+        .arg(cmd)
+        .arg("case.toml")
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Exit code 2, one stderr line starting `error:` containing every needle, no panic, no `out/`.
+fn assert_error(dir: &Path, out: &Output, needles: &[&str]) {
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
+    let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+    assert_eq!(lines.len(), 1, "one line expected: {err}");
+    assert!(lines[0].starts_with("error:"), "{err}");
+    for n in needles {
+        assert!(lines[0].contains(n), "`{n}` missing in: {err}");
+    }
+    assert!(!dir.join("out").exists(), "no output on error");
+}
+
+#[test]
+fn predict_bad_options_are_named() {
+    let dir = setup(CASE);
+    let o = run(dir.path(), "predict", &["--from", "200", "--to", "150", "--out", "out"]);
+    assert_error(dir.path(), &o, &["--to", "150"]);
+    let o = run(dir.path(), "predict", &["--from", "500", "--to", "600", "--out", "out"]);
+    assert_error(dir.path(), &o, &["--from", "outside the survey"]);
+    let o = run(
+        dir.path(),
+        "predict",
+        &["--ahead", "10 m", "--step", "0.05 m", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["--step"]);
+    let o = run(dir.path(), "predict", &["--ahead", "10 kN", "--out", "out"]);
+    assert_error(dir.path(), &o, &["--ahead"]);
+    // neither --to nor --ahead: the argument parser refuses with its usage text
+    let o = run(dir.path(), "predict", &["--out", "out"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!dir.path().join("out").exists());
+}
+
+#[test]
+fn predict_refuses_cases_without_wob_on_bottom() {
+    let dir = setup(&CASE.replace("wob = \"80 kN\"", "hook_load = \"300 kN\""));
+    let o = run(dir.path(), "predict", &["--ahead", "10 m", "--out", "out"]);
+    assert_error(dir.path(), &o, &["operation.wob"]);
+    let dir = setup(&CASE.replace("mode = \"drilling\"", "mode = \"trip_in\""));
+    let o = run(dir.path(), "predict", &["--ahead", "10 m", "--out", "out"]);
+    assert_error(dir.path(), &o, &["operation.mode", "trip_in"]);
+}
+
+#[test]
+fn backanalyze_bad_options_are_named() {
+    let dir = setup(CASE);
+    let o = run(
+        dir.path(),
+        "backanalyze",
+        &["--calibrate", "--fit", "beta", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["--fit", "beta"]);
+    let o = run(dir.path(), "backanalyze", &["--split", "1.5", "--out", "out"]);
+    assert_error(dir.path(), &o, &["--split"]);
+    let o = run(
+        dir.path(),
+        "backanalyze",
+        &["--from", "230", "--calibrate", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["interval"]);
+}
+
+fn check_csv(text: &str, rows_at_least: usize) {
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN"
+    );
+    let rows: Vec<&str> = lines.collect();
+    assert!(rows.len() >= rows_at_least, "{} rows", rows.len());
+    for r in rows {
+        assert_eq!(r.split(',').count(), 15, "{r}");
+        assert!(!r.to_lowercase().contains("nan") && !r.contains("inf"), "{r}");
+    }
+}
+
+#[test]
+fn predict_tracking_writes_the_interface_outputs() {
+    let dir = setup(CASE);
+    let o = run(dir.path(), "predict", &["--from", "200", "--to", "240", "--out", "out"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
+    check_csv(&csv, 21);
+    // measured stations at 210..240 have measured and error columns filled
+    let measured = csv
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(6).is_some_and(|c| !c.is_empty()));
+    assert_eq!(measured.count(), 5);
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    assert_eq!(s["tracking"]["stations_compared"], 4);
+    assert!(s["tracking"]["inc_err_per_100m_deg"].as_f64().unwrap().is_finite());
+    assert!(s["rates"]["build_rate_deg_per_30m"].as_f64().unwrap().is_finite());
+}
+
+#[test]
+fn backanalyze_writes_errors_per_100m() {
+    let dir = setup(CASE);
+    let o = run(dir.path(), "backanalyze", &["--from", "200", "--out", "out"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
+    check_csv(&csv, 4);
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    assert_eq!(s["intervals"], 4);
+    assert!(s["inc_err_per_100m_deg"].as_f64().unwrap() >= 0.0);
+    assert!(s["azi_err_per_100m_deg"].as_f64().unwrap() >= 0.0);
+    assert!(s["bit_rock"]["lateral_drillability"].as_f64().is_some());
+}
