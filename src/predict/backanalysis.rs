@@ -91,7 +91,8 @@ pub fn intervals(path: &WellPath, plan: &IntervalPlan) -> Vec<Interval> {
 }
 
 /// Predict each interval with the law parameters `bit_rock`; `warm` holds one warm start per
-/// interval (reused between calls with other parameters, as calibration does).
+/// interval: the solved state at its start, kept between calls with other parameters (as
+/// calibration makes); on the first call each interval starts from the previous one's end.
 pub fn run_intervals(
     case: &Case,
     bit_rock: &BitRock,
@@ -102,12 +103,16 @@ pub fn run_intervals(
 ) -> Result<Vec<IntervalResult>, PredictError> {
     warm.resize_with(list.len(), || None);
     let mut out = Vec::with_capacity(list.len());
+    let mut last_end: WarmStart = None;
     for (k, iv) in list.iter().enumerate() {
         let start = hole_to(&case.well.path, iv.from_md_m)?;
-        if warm[k].is_none() && k > 0 {
-            warm[k] = warm[k - 1].clone();
-        }
-        let pred = predict_from(case, bit_rock, &start, iv.to_md_m, settings, &mut warm[k], &mut |_| {})?;
+        let mut w = match &warm[k] {
+            Some(_) => warm[k].clone(),
+            None => last_end.take(),
+        };
+        let pred = predict_from(case, bit_rock, &start, iv.to_md_m, settings, &mut w, &mut |_| {})?;
+        warm[k] = pred.start_warm.clone();
+        last_end = w;
         let end = pred.path.point_at(iv.to_md_m);
         out.push(IntervalResult {
             interval: *iv,

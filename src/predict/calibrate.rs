@@ -110,6 +110,12 @@ pub const BETA_START_MAX: f64 = 0.9;
 /// Levenberg-Marquardt iterations allowed.
 pub const MAX_LM_ITERATIONS: usize = 20;
 
+/// Damping increases tried per iteration before giving up.
+pub const MAX_LAMBDA_INCREASES: usize = 4;
+
+/// Relative decrease of the sum of squares below which the fit stops.
+pub const SSR_RELATIVE_TOLERANCE: f64 = 1e-4;
+
 /// Finite-difference step in the unbounded variables.
 pub const FD_STEP: f64 = 0.03;
 
@@ -197,7 +203,7 @@ pub fn calibrate(
         let jtj = &jt * &jac;
         let g = &jt * DVector::from_vec(r.clone());
         let mut improved = false;
-        for _ in 0..10 {
+        for _ in 0..MAX_LAMBDA_INCREASES {
             let mut a = jtj.clone();
             for d in 0..np {
                 a[(d, d)] += lambda * jtj[(d, d)].max(1e-12);
@@ -209,7 +215,7 @@ pub fn calibrate(
             let un: Vec<f64> = u.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
             let (rn, resn) = evaluate(&un, &mut warm)?;
             if ssr(&rn) < ssr(&r) {
-                let small = step.amax() < 1e-6 || (ssr(&r) - ssr(&rn)) < 1e-10 * ssr(&r).max(1e-30);
+                let small = step.amax() < 1e-4 || (ssr(&r) - ssr(&rn)) < SSR_RELATIVE_TOLERANCE * ssr(&r).max(1e-30);
                 u = un;
                 r = rn;
                 res = resn;

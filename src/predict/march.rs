@@ -87,6 +87,8 @@ pub struct Prediction {
     pub iterations: usize,
     /// Wall-clock time, s.
     pub seconds: f64,
+    /// The model and solved state at the start (a warm start for predicting again from there).
+    pub start_warm: WarmStart,
 }
 
 /// Why a prediction stopped.
@@ -204,11 +206,13 @@ fn solve_step(
     let md = model.bit_md_m;
     let wrap = |source| PredictError::Solve { md_m: md, source };
     if let Some(state) = warm {
-        let sol = solve_ip_from(model, state, ctl).map_err(wrap)?;
-        if sol.converged {
-            return Ok(sol);
+        // a failed warm start (not converged, or a singular system from a poor start) falls
+        // back to the cold start below
+        match solve_ip_from(model, state, ctl) {
+            Ok(sol) if sol.converged => return Ok(sol),
+            Ok(_) => tracing::info!(md, "warm-started solve did not converge; solving from scratch"),
+            Err(e) => tracing::info!(md, error = %e, "warm-started solve failed; solving from scratch"),
         }
-        tracing::info!(md, "warm-started solve did not converge; solving from scratch");
     } else {
         let mut state = model.initial_state();
         soft_string_start(model, &mut state, false);
@@ -398,7 +402,10 @@ pub fn predict_from(
     let dofs = first.model.dofs();
     let mut records = vec![(s, first.bit, direction_at(start, s, &first.bit), first.iterations)];
     *warm = Some((first.model, first.state));
+    let start_warm = warm.clone();
     let mut jac: Option<Matrix2<f64>> = None;
+    let mut last_turn = [0.0f64; 2];
+    let mut last_ds = step;
     // reference direction of the next chord: the last chord (the start tangent at first)
     let mut last_chord = start.point_at(from).tangent;
     let mut path = start.clone();
@@ -429,8 +436,13 @@ pub fn predict_from(
             let (ch, cr) = deviation(&reference, &chord);
             Ok((p, sol, [dh - ch, dr - cr], d))
         };
-        // predictor: the previous chord's direction (zero turn)
-        let mut turn = [0.0f64; 2];
+        // predictor: the previous step's turn per length (constant curvature), except after
+        // the first step, whose turn is the start transient
+        let mut turn = if hole_pred.chords.len() >= 2 {
+            [last_turn[0] * ds / last_ds, last_turn[1] * ds / last_ds]
+        } else {
+            [0.0f64; 2]
+        };
         let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
         step_iterations += sol1.iterations;
         let mut converged = false;
@@ -509,6 +521,8 @@ pub fn predict_from(
         }
         iterations += step_iterations;
         cur_step = (cur_step * 2.0).min(step);
+        last_turn = turn;
+        last_ds = ds;
         last_chord = chord_of(turn);
         hole_pred.chords.push((s1, last_chord));
         path = p1;
@@ -542,6 +556,7 @@ pub fn predict_from(
         dofs,
         iterations,
         seconds: t0.elapsed().as_secs_f64(),
+        start_warm,
     })
 }
 
