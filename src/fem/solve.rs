@@ -415,7 +415,7 @@ impl Linear {
     fn set_matrix(&mut self, from: &Linear) {
         match (self, from) {
             (Linear::Symmetric(k, _), Linear::Symmetric(f, _)) => k.copy_from(f),
-            (Linear::General(k, _), Linear::General(f, _)) => *k = f.clone(),
+            (Linear::General(k, _), Linear::General(f, _)) => k.copy_from(f),
             _ => unreachable!("matrix kinds match"),
         }
     }
