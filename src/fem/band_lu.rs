@@ -173,6 +173,8 @@ fn eliminate_fixed<const B: usize>(data: &mut [f64], k: usize, pivot: f64) {
 pub struct BandLu {
     f: GeneralBand,
     ok: bool,
+    /// Diagonal of the matrix being factored (reference for the zero-pivot test).
+    diag: Vec<f64>,
 }
 
 impl BandLu {
@@ -181,14 +183,27 @@ impl BandLu {
         BandLu {
             f: GeneralBand::zeros(n, b),
             ok: false,
+            diag: vec![0.0; n],
         }
     }
 
     /// Factor `a` = L U (unit lower L).
     pub fn factor(&mut self, a: &GeneralBand) -> Result<(), FactorError> {
-        self.f.data.copy_from_slice(&a.data);
+        self.factor_with(a, |_| {})
+    }
+
+    /// Factor `a` changed by `modify` (e.g. extra blocks and boundary conditions) without
+    /// changing `a`: the copy into the factor's storage is the only copy made.
+    pub fn factor_with(&mut self, a: &GeneralBand, modify: impl FnOnce(&mut GeneralBand)) -> Result<(), FactorError> {
+        self.f.copy_from(a);
+        modify(&mut self.f);
         self.ok = false;
         let (n, b, w) = (self.f.n, self.f.b, self.f.w);
+        self.diag.resize(n, 0.0);
+        for (k, d) in self.diag.iter_mut().enumerate() {
+            *d = self.f.data[k * w + b];
+        }
+        let diag = &self.diag;
         let data = &mut self.f.data;
         // columns whose whole band lies inside the matrix: a kernel with the node-chain
         // half-bandwidth fixed at compile time (fully unrolled), the rest generic
@@ -199,14 +214,14 @@ impl BandLu {
         };
         for k in 0..fixed_end {
             let pivot = data[k * w + b];
-            if !pivot.is_finite() || pivot.abs() <= 1e-14 * a.data[k * w + b].abs().max(f64::MIN_POSITIVE) {
+            if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
                 return Err(FactorError::ZeroPivot { column: k, pivot });
             }
             eliminate_fixed::<CHAIN_HALF_BANDWIDTH>(data, k, pivot);
         }
         for k in fixed_end..n {
             let pivot = data[k * w + b];
-            if !pivot.is_finite() || pivot.abs() <= 1e-14 * a.data[k * w + b].abs().max(f64::MIN_POSITIVE) {
+            if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
                 return Err(FactorError::ZeroPivot { column: k, pivot });
             }
             let hi = (k + b).min(n - 1);

@@ -419,6 +419,29 @@ impl Linear {
             _ => unreachable!("matrix kinds match"),
         }
     }
+    /// Factor the stored copy `base` plus what `add` assembles, with the DOFs `constrained`
+    /// held; this object's own matrix is left unspecified (LU: untouched, one copy made).
+    fn factor_modified(
+        &mut self,
+        base: &Linear,
+        constrained: &[usize],
+        mut add: impl FnMut(&mut dyn StiffnessSink),
+    ) -> Result<(), FactorError> {
+        if let (Linear::General(_, f), Linear::General(b, _)) = (&mut *self, base) {
+            return f.factor_with(b, |m| {
+                add(m);
+                for &d in constrained {
+                    m.constrain_dof(d);
+                }
+            });
+        }
+        self.set_matrix(base);
+        add(self.sink());
+        for &d in constrained {
+            self.constrain(d);
+        }
+        self.factor()
+    }
     /// `y += A x` with the stored copy's matrix `a`.
     fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64]) {
         let mut t = vec![0.0; x.len()];
@@ -471,14 +494,18 @@ fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained: &[usize]) 
     for &d in constrained {
         lin.constrain(d);
     }
-    if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
-        return Err(SolveError::Singular {
+    lin.factor().map_err(|e| singular(model, e))
+}
+
+/// A failed factorization as a [`SolveError::Singular`] naming the node.
+fn singular(model: &Model, e: FactorError) -> SolveError {
+    match e {
+        FactorError::ZeroPivot { column: dof, pivot } => SolveError::Singular {
             dof,
             node: model.nodes() - 1 - dof / 6,
             detail: format!("zero pivot {pivot:e}"),
-        });
+        },
     }
-    Ok(())
 }
 
 /// Solve the static problem from the model's initial state: first the interior-point contact
@@ -958,20 +985,23 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             }
             ip_iters += 1;
             // reduced matrix K + N diag(R/s) N^T
-            lin.set_matrix(&base);
-            for j in 0..m {
-                let dj = r_f[j] / s_v[j];
-                let nv = normals[j];
-                // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
-                let mut blk = [0.0; 36];
-                for r in 0..6 {
-                    for cc in 0..3 {
-                        blk[r * 6 + cc] = dj * eq_cols[j][r] * nv[cc];
+            let factored = lin.factor_modified(&base, &constrained, |sink| {
+                for j in 0..m {
+                    let dj = r_f[j] / s_v[j];
+                    let nv = normals[j];
+                    // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
+                    let mut blk = [0.0; 36];
+                    for r in 0..6 {
+                        for cc in 0..3 {
+                            blk[r * 6 + cc] = dj * eq_cols[j][r] * nv[cc];
+                        }
                     }
+                    sink.add_block(&dofs6[j], &blk, 6);
                 }
-                lin.sink().add_block(&dofs6[j], &blk, 6);
+            });
+            if let Err(e) = factored {
+                return Err(singular(model, e));
             }
-            constrain_and_factor(model, &mut lin, &constrained)?;
             stats.factorizations += 1;
             // the hook-load column: K^-1 e_top, shared by both solves of this factor
             let kbb = if bordered {
@@ -1047,7 +1077,6 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 s_v[j] += alpha * ds[j];
             }
         }
-        lin.set_matrix(&base);
         // geometric step with caps
         let mut ratio: f64 = 0.0;
         for i in 0..nn {
