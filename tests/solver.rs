@@ -377,8 +377,18 @@ bha_element_length = "0.5 m"
     drillpath::fem::solve::soft_string_start(&model, &mut state, false);
     let sol = drillpath::fem::solve::solve_ip_from(&model, state, &SolveControls::default()).unwrap();
     assert!(sol.converged);
-    println!("interior-point contact Newton: {} iterations", sol.stats.iterations);
+    println!(
+        "interior-point contact Newton: {} iterations, {} factorizations",
+        sol.stats.iterations, sol.stats.factorizations
+    );
     assert!(sol.stats.iterations <= 12, "{} iterations", sol.stats.iterations);
+    // warm-started Mehrotra interior point: a few factorizations per Newton step (it was ~20
+    // to 60 before; issue 3)
+    assert!(
+        sol.stats.factorizations <= 4 * sol.stats.iterations,
+        "{} factorizations",
+        sol.stats.factorizations
+    );
     let res = extract(&model, &sol, case.mud.density_kg_m3);
     let (ei, w_b, r) = collar_properties();
     let i = 30f64.to_radians();

@@ -287,6 +287,10 @@ pub fn smooth_start(model: &Model, state: &mut State) {
 /// `shift = clamp(IP_START_SHIFT * rn, 1e-6, 0.1)`.
 pub const IP_START_SHIFT: f64 = 0.1;
 
+/// Consecutive interior-point steps shorter than 1e-2 after which the contact subproblem of a
+/// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
+pub const IP_STALL_STEPS: usize = 5;
+
 /// Interior-point iterations allowed per Newton step.
 pub const MAX_IP_ITERATIONS: usize = 60;
 
@@ -956,6 +960,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let mut dr_aff = vec![0.0; m];
         let mut rc = vec![0.0; m];
         let mut ip_iters = 0usize;
+        let mut stalled = 0usize;
         for _ip in 0..MAX_IP_ITERATIONS {
             // residuals
             rd.copy_from_slice(&r0);
@@ -1068,6 +1073,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             let ddh = solve_dir(&rc, &lin, &mut rhs, &mut ds, &mut dr);
             let alpha = step_to_boundary(&r_f, &dr, &s_v, &ds, 0.995);
             tracing::trace!(rd_n, rp_n, mu_rel = mu / (scale * 1e-3), a_aff, sigma, alpha, "ip");
+            stalled = if alpha < 1e-2 { stalled + 1 } else { 0 };
             for (x, d) in du.iter_mut().zip(&rhs) {
                 *x += alpha * d;
             }
@@ -1075,6 +1081,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             for j in 0..m {
                 r_f[j] += alpha * dr[j];
                 s_v[j] += alpha * ds[j];
+            }
+            // a stalled interior point (friction makes the contact problem non-monotone) far
+            // from the solution: take the step found so far
+            if stalled >= IP_STALL_STEPS && eta > 1e-8 {
+                break;
             }
         }
         // geometric step with caps
