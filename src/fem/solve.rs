@@ -939,10 +939,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // grows with the outer residual (far from the solution the old contact set is a poor
         // guess, and pairs pinned at the boundary would block the interior-point steps)
         let shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
-        let r_floor = 1e-3;
         let mut r_f: Vec<f64> = qidx
             .iter()
-            .map(|&i| state.lambda[i].max(r_floor * scale / m.max(1) as f64) + shift * scale / m.max(1) as f64)
+            .map(|&i| state.lambda[i].max(0.0) + shift * scale / m.max(1) as f64)
             .collect();
         let mut s_v: Vec<f64> = (0..m)
             .map(|j| (-gaps0[j]).max(1e-6 * ev.clearance[qidx[j]].max(1e-3)) + shift * ev.clearance[qidx[j]].max(1e-3))
