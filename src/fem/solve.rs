@@ -346,8 +346,9 @@ struct GapGeometry {
     radial: f64,
 }
 
+/// `state.md[i]` must be the node's nearest axis point, as [`Model::evaluate`] leaves it.
 fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
-    let md = model.path.nearest_md(&state.x[i], state.md[i]);
+    let md = state.md[i];
     let p = model.path.point_at(md);
     let d = state.x[i] - p.position;
     let d = d - p.tangent * p.tangent.dot(&d);
@@ -447,13 +448,13 @@ impl Linear {
         self.factor()
     }
     /// `y += A x` with the stored copy's matrix `a`.
-    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64]) {
-        let mut t = vec![0.0; x.len()];
+    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64], work: &mut Vec<f64>) {
+        work.resize(x.len(), 0.0);
         match a {
-            Linear::Symmetric(k, _) => k.mul_vec(x, &mut t),
-            Linear::General(k, _) => k.mul_vec(x, &mut t),
+            Linear::Symmetric(k, _) => k.mul_vec(x, work),
+            Linear::General(k, _) => k.mul_vec(x, work),
         }
-        for (yi, ti) in y.iter_mut().zip(t) {
+        for (yi, ti) in y.iter_mut().zip(work.iter()) {
             *yi += ti;
         }
     }
@@ -958,12 +959,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let mut ds_aff = vec![0.0; m];
         let mut dr_aff = vec![0.0; m];
         let mut rc = vec![0.0; m];
+        let mut work = Vec::new();
         let mut ip_iters = 0usize;
         let mut stalled = 0usize;
         for _ip in 0..MAX_IP_ITERATIONS {
             // residuals
             rd.copy_from_slice(&r0);
-            lin.matrix_mul_add(&base, &du, &mut rd);
+            lin.matrix_mul_add(&base, &du, &mut rd, &mut work);
             for j in 0..m {
                 for k in 0..6 {
                     rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
