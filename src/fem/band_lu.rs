@@ -313,8 +313,8 @@ mod tests {
         // A x reproduces the right-hand side (checks mul_vec)
         let mut y = vec![0.0; n];
         a.mul_vec(&x, &mut y);
-        for i in 0..n {
-            assert!((y[i] - (i as f64).sin()).abs() < 1e-12, "A x at {i}");
+        for (i, yi) in y.iter().enumerate() {
+            assert!((yi - (i as f64).sin()).abs() < 1e-12, "A x at {i}");
         }
     }
 
