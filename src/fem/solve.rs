@@ -458,6 +458,16 @@ impl Linear {
             *yi += ti;
         }
     }
+    /// Solve for two right-hand sides at once (LU: one pass over the factor).
+    fn solve2(&self, x: &mut [f64], y: &mut [f64]) {
+        match self {
+            Linear::Symmetric(_, f) => {
+                f.solve_in_place(x);
+                f.solve_in_place(y);
+            }
+            Linear::General(_, f) => f.solve2_in_place(x, y),
+        }
+    }
     fn negative_pivots(&self) -> usize {
         match self {
             Linear::Symmetric(_, f) => f.negative_pivots(),
@@ -1009,19 +1019,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 return Err(singular(model, e));
             }
             stats.factorizations += 1;
-            // the hook-load column: K^-1 e_top, shared by both solves of this factor
-            let kbb = if bordered {
-                b_top.fill(0.0);
-                b_top[top_ax] = 1.0;
-                lin.solve(&mut b_top);
-                kb.iter().map(|&(d, v)| v * b_top[d]).sum::<f64>()
-            } else {
-                0.0
-            };
-            // one Newton solve of the (du, R, s) system for complementarity right-hand side
-            // `rc` (target of R ds + s dR): returns the hook-load step, fills du step in `rhs`
-            let solve_dir = |rc: &[f64], lin: &Linear, rhs: &mut [f64], ds: &mut [f64], dr: &mut [f64]| -> f64 {
-                // rhs = -rd - E S^-1 (rc + R rp)
+            // right-hand side of one Newton solve of the (du, R, s) system for the
+            // complementarity target `rc` (of R ds + s dR): -rd - E S^-1 (rc + R rp)
+            let build_rhs = |rc: &[f64], rhs: &mut [f64]| {
                 for (x, v) in rhs.iter_mut().zip(&rd) {
                     *x = -v;
                 }
@@ -1034,7 +1034,25 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 for &d in &constrained {
                     rhs[d] = 0.0;
                 }
-                lin.solve(rhs);
+            };
+            // Mehrotra predictor: the affine-scaling direction (no centering), solved together
+            // with the hook-load column K^-1 e_top (one pass over the factor for both)
+            for j in 0..m {
+                rc[j] = -r_f[j] * s_v[j];
+            }
+            build_rhs(&rc, &mut rhs);
+            let kbb = if bordered {
+                b_top.fill(0.0);
+                b_top[top_ax] = 1.0;
+                lin.solve2(&mut b_top, &mut rhs);
+                kb.iter().map(|&(d, v)| v * b_top[d]).sum::<f64>()
+            } else {
+                lin.solve(&mut rhs);
+                0.0
+            };
+            // with the solved `rhs`: the hook-load step (returned), the du step (in `rhs`),
+            // and the slack and multiplier steps
+            let finish = |rc: &[f64], rhs: &mut [f64], ds: &mut [f64], dr: &mut [f64]| -> f64 {
                 let dh = if bordered {
                     let kba: f64 = kb.iter().map(|&(d, v)| v * rhs[d]).sum();
                     let dh = if kbb.abs() > 1e-30 { (cb + kba) / kbb } else { 0.0 };
@@ -1051,11 +1069,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 }
                 dh
             };
-            // Mehrotra predictor: the affine-scaling direction (no centering) ...
-            for j in 0..m {
-                rc[j] = -r_f[j] * s_v[j];
-            }
-            solve_dir(&rc, &lin, &mut rhs, &mut ds_aff, &mut dr_aff);
+            finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
             let a_aff = step_to_boundary(&r_f, &dr_aff, &s_v, &ds_aff, 1.0);
             let mu_aff = (0..m)
                 .map(|j| (r_f[j] + a_aff * dr_aff[j]) * (s_v[j] + a_aff * ds_aff[j]))
@@ -1071,7 +1085,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             for j in 0..m {
                 rc[j] = -r_f[j] * s_v[j] + sigma * mu - dr_aff[j] * ds_aff[j];
             }
-            let ddh = solve_dir(&rc, &lin, &mut rhs, &mut ds, &mut dr);
+            build_rhs(&rc, &mut rhs);
+            lin.solve(&mut rhs);
+            let ddh = finish(&rc, &mut rhs, &mut ds, &mut dr);
             let alpha = step_to_boundary(&r_f, &dr, &s_v, &ds, 0.995);
             tracing::trace!(rd_n, rp_n, mu_rel = mu / (scale * 1e-3), a_aff, sigma, alpha, "ip");
             stalled = if alpha < 1e-2 { stalled + 1 } else { 0 };
