@@ -136,6 +136,9 @@ pub const MAX_STATUS_FLIPS: usize = 2;
 /// Halvings tried by the line search.
 pub const LINE_SEARCH_STEPS: usize = 8;
 
+/// Largest lateral motion of a gap node per interior-point Newton step, in clearances.
+pub const MAX_LATERAL_STEP_CLEARANCES: f64 = 2.0;
+
 /// Largest bending rotation increment allowed per iteration, rad.
 pub const MAX_BENDING_ROTATION_STEP: f64 = 0.02;
 
@@ -1110,6 +1113,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         for i in 0..nn {
             let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
             ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
+        }
+        // and lateral motion of the gap nodes to a few clearances: the linearized gaps bound
+        // only the motion along each node's current normal, so a long step can carry nodes
+        // around and through the wall
+        for &i in &qidx {
+            let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
+            ratio = ratio.max(lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3)));
         }
         let alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
         tracing::debug!(ip_iters, alpha, "interior-point iterations and step cap");
