@@ -206,14 +206,41 @@ impl BandLu {
     pub fn factor_with(&mut self, a: &GeneralBand, modify: impl FnOnce(&mut GeneralBand)) -> Result<(), FactorError> {
         self.f.copy_from(a);
         modify(&mut self.f);
+        self.eliminate(|_, _| {})
+    }
+
+    /// Factor `a` with each row finished by `finish_row(i, row)` just before the elimination
+    /// first touches it, in one streaming pass (the row is copied, changed and eliminated
+    /// while in cache). `row` is row `i` of the band storage: column `c` at offset
+    /// `c + b - i`, `b` the half-bandwidth. `a` is not changed.
+    pub fn factor_rows(
+        &mut self,
+        a: &GeneralBand,
+        mut finish_row: impl FnMut(usize, &mut [f64]),
+    ) -> Result<(), FactorError> {
+        assert!(
+            a.n == self.f.n && a.b == self.f.b,
+            "BandLu::factor_rows: shape mismatch"
+        );
+        let w = self.f.w;
+        self.eliminate(|i, row| {
+            row.copy_from_slice(&a.data[i * w..(i + 1) * w]);
+            finish_row(i, row);
+        })
+    }
+
+    /// The elimination; `load(i, row)` is called for every row before the first column
+    /// that updates it (rows `0..b` first, then row `k + b` before column `k`).
+    fn eliminate(&mut self, mut load: impl FnMut(usize, &mut [f64])) -> Result<(), FactorError> {
         self.ok = false;
         let (n, b, w) = (self.f.n, self.f.b, self.f.w);
         self.diag.resize(n, 0.0);
-        for (k, d) in self.diag.iter_mut().enumerate() {
-            *d = self.f.data[k * w + b];
-        }
-        let diag = &self.diag;
+        let diag = &mut self.diag;
         let data = &mut self.f.data;
+        for i in 0..b.min(n) {
+            load(i, &mut data[i * w..(i + 1) * w]);
+            diag[i] = data[i * w + b];
+        }
         // columns whose whole band lies inside the matrix: a kernel with the node-chain
         // half-bandwidth fixed at compile time (fully unrolled), the rest generic
         let fixed_end = if b == CHAIN_HALF_BANDWIDTH {
@@ -221,17 +248,19 @@ impl BandLu {
         } else {
             0
         };
-        for k in 0..fixed_end {
+        for k in 0..n {
+            if k + b < n {
+                let i = k + b;
+                load(i, &mut data[i * w..(i + 1) * w]);
+                diag[i] = data[i * w + b];
+            }
             let pivot = data[k * w + b];
             if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
                 return Err(FactorError::ZeroPivot { column: k, pivot });
             }
-            eliminate_fixed::<CHAIN_HALF_BANDWIDTH>(data, k, pivot);
-        }
-        for k in fixed_end..n {
-            let pivot = data[k * w + b];
-            if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
-                return Err(FactorError::ZeroPivot { column: k, pivot });
+            if k < fixed_end {
+                eliminate_fixed::<CHAIN_HALF_BANDWIDTH>(data, k, pivot);
+                continue;
             }
             let hi = (k + b).min(n - 1);
             let len = hi - k; // columns k+1 ..= hi
@@ -412,6 +441,43 @@ mod tests {
         lu.solve_in_place(&mut y1);
         assert_eq!(x2, x);
         assert_eq!(y2, y1);
+    }
+
+    #[test]
+    fn streaming_factor_equals_modify_then_factor() {
+        // factor_rows (each row changed just before its elimination) against factor_with
+        // (the whole matrix changed first): identical factors, bit for bit.
+        let (n, b) = (60, CHAIN_HALF_BANDWIDTH);
+        let mut a = GeneralBand::zeros(n, b);
+        for i in 0..n {
+            for j in i.saturating_sub(b)..=(i + b).min(n - 1) {
+                let v = if i == j {
+                    25.0
+                } else {
+                    ((i * 7 + j * 11) % 13) as f64 / 13.0 - 0.5
+                };
+                a.add(i, j, v);
+            }
+        }
+        // change: row i gets 0.1 (i % 5) at columns i-2..=i (within the band)
+        let extra = |i: usize, j: usize| 0.1 * (i % 5) as f64 * (j + 2 >= i && j <= i) as u8 as f64;
+        let mut f1 = BandLu::new(n, b);
+        f1.factor_with(&a, |m| {
+            for i in 0..n {
+                for j in i.saturating_sub(2)..=i {
+                    m.add(i, j, extra(i, j));
+                }
+            }
+        })
+        .unwrap();
+        let mut f2 = BandLu::new(n, b);
+        f2.factor_rows(&a, |i, row| {
+            for j in i.saturating_sub(2)..=i {
+                row[j + b - i] += extra(i, j);
+            }
+        })
+        .unwrap();
+        assert_eq!(f1.f.data, f2.f.data);
     }
 
     #[test]

@@ -427,19 +427,33 @@ impl Linear {
             _ => unreachable!("matrix kinds match"),
         }
     }
-    /// Factor the stored copy `base` plus what `add` assembles, with the DOFs `constrained`
-    /// held; this object's own matrix is left unspecified (LU: untouched, one copy made).
+    /// Factor the stored copy `base` plus the same additions given two ways: `add_row(i, row)`
+    /// adds to row `i` of the general band storage (column `c` at offset `c + hb - i`, `hb`
+    /// the half-bandwidth), `add` assembles them as blocks; the DOFs `constrained` are held
+    /// (row and column zeroed, diagonal `constraint_scale`). LU: one streaming pass, each row
+    /// copied, changed and eliminated while in cache; LDL^T: copy, assemble, factor. This
+    /// object's own matrix is left unspecified.
     fn factor_modified(
         &mut self,
         base: &Linear,
         constrained: &[usize],
+        constraint_scale: f64,
+        mut add_row: impl FnMut(usize, &mut [f64]),
         mut add: impl FnMut(&mut dyn StiffnessSink),
     ) -> Result<(), FactorError> {
         if let (Linear::General(_, f), Linear::General(b, _)) = (&mut *self, base) {
-            return f.factor_with(b, |m| {
-                add(m);
-                for &d in constrained {
-                    m.constrain_dof(d);
+            let hb = HALF_BANDWIDTH;
+            return f.factor_rows(b, |i, row| {
+                if constrained.contains(&i) {
+                    row.fill(0.0);
+                    row[hb] = constraint_scale;
+                    return;
+                }
+                add_row(i, row);
+                for &c in constrained {
+                    if c.abs_diff(i) <= hb {
+                        row[c + hb - i] = 0.0;
+                    }
                 }
             });
         }
@@ -862,6 +876,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         })
         .collect();
     let qidx: Vec<usize> = (0..nn).filter(|&i| managed[i]).collect();
+    // contact index of each node (usize::MAX: none)
+    let mut contact_at = vec![usize::MAX; nn];
+    for (j, &i) in qidx.iter().enumerate() {
+        contact_at[i] = j;
+    }
     let m = qidx.len();
     state.closed = Some(vec![false; nn]);
     state.free_law = None;
@@ -942,6 +961,18 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         // the base matrix K (before interior-point terms) is kept to rebuild each iteration
         let base = lin.clone_matrix();
+        // diagonal given to the constrained DOFs (any positive value: they are decoupled)
+        let constraint_scale = {
+            let (sum, cnt) = (0..n)
+                .map(|d| base.get(d, d).abs())
+                .filter(|v| *v > 0.0 && v.is_finite())
+                .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+            if cnt > 0 {
+                sum / cnt as f64
+            } else {
+                1.0
+            }
+        };
         // inexact Newton: the contact subproblem of an early, far-from-converged linearization
         // is solved only as accurately as that linearization deserves; near the solution the
         // tolerances tighten to the exact ones (see `ip_tolerance`)
@@ -1004,7 +1035,22 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             }
             ip_iters += 1;
             // reduced matrix K + N diag(R/s) N^T
-            let factored = lin.factor_modified(&base, &constrained, |sink| {
+            // row form: row i (DOF k of a contact node) gets D e_k g^T on the node's
+            // translation columns
+            let add_row = |i: usize, row: &mut [f64]| {
+                let j = contact_at[nn - 1 - i / 6];
+                if j == usize::MAX {
+                    return;
+                }
+                let k = i % 6;
+                let e = r_f[j] / s_v[j] * eq_cols[j][k];
+                // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
+                let off = HALF_BANDWIDTH - k;
+                for cc in 0..3 {
+                    row[off + cc] += e * normals[j][cc];
+                }
+            };
+            let factored = lin.factor_modified(&base, &constrained, constraint_scale, add_row, |sink| {
                 for j in 0..m {
                     let dj = r_f[j] / s_v[j];
                     let nv = normals[j];
