@@ -325,7 +325,7 @@ fn add_block_row(k: &mut Mat12, r: usize, row: &BlockRow) {
     }
 }
 
-/// `k[block column c] += col^T` for the block row `col` (i.e. block (i, c) += col[i]^T).
+/// `k[block column c] += col^T` for the block row `col` (block `(i, c)` gets `col[i]^T`).
 fn add_block_col_t(k: &mut Mat12, c: usize, col: &BlockRow) {
     for (i, b) in col.iter().enumerate() {
         let mut blk = k.fixed_view_mut::<3, 3>(3 * i, 3 * c);
@@ -472,7 +472,7 @@ pub fn perturbed(st: &ElementState, j: usize, h: f64) -> (Vec3, Vec3, Matrix3<f6
 }
 
 /// `(dB^T/dp_global) f_local` by central differences (f_local fixed): 24 evaluations of `B`.
-/// The test oracle of the analytic [`geometric_tangent`] (it was the production tangent before).
+/// The test oracle of the analytic `geometric_tangent` (it was the production tangent before).
 pub fn geometric_tangent_by_differences(st: &ElementState, l0: f64, fl: &SVector<f64, 7>) -> Mat12 {
     let mut kg = Mat12::zeros();
     let h = 1e-7;
