@@ -1,4 +1,4 @@
-//! Band LDLᵀ vs faer sparse LDLᵀ on drill-string chain matrices.
+//! Band LDLᵀ, band LU and faer sparse LDLᵀ on drill-string chain matrices.
 //!
 //! `cargo bench --bench band -- --warm-up-time 1 --measurement-time 2`
 
@@ -6,6 +6,7 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use drillpath::fem::band::{chain_test_matrix, BandLdlt};
+use drillpath::fem::band_lu::{BandLu, GeneralBand};
 use drillpath::fem::sparse_faer::FaerLdlt;
 
 fn bench_band(c: &mut Criterion) {
@@ -30,6 +31,26 @@ fn bench_band(c: &mut Criterion) {
             bch.iter(|| {
                 x.copy_from_slice(&b);
                 f.solve_in_place(black_box(&mut x));
+            })
+        });
+
+        // the same matrix in general band storage, LU (the friction path of the solver)
+        let hb = a.half_bandwidth();
+        let mut ga = GeneralBand::zeros(n, hb);
+        for i in 0..n {
+            for j in i.saturating_sub(hb)..=(i + hb).min(n - 1) {
+                ga.add(i, j, a.get(i, j));
+            }
+        }
+        let mut lu = BandLu::new(n, hb);
+        lu.factor(&ga).unwrap();
+        g.bench_with_input(BenchmarkId::new("lu_factor", n), &ga, |bch, ga| {
+            bch.iter(|| lu.factor(black_box(ga)).unwrap())
+        });
+        g.bench_function(BenchmarkId::new("lu_solve", n), |bch| {
+            bch.iter(|| {
+                x.copy_from_slice(&b);
+                lu.solve_in_place(black_box(&mut x));
             })
         });
 

@@ -1,33 +1,200 @@
-//! Whole-string solve timings (issue 3): a converged `solve` of example wells at default mesh.
+//! Whole-string solve timings (issue 3): converged `solve` at the default mesh of
+//! - a BHA-only model (~100 m: bit, near-bit stabilizer, collars, string stabilizer, collars,
+//!   42 m of HWDP; its top node is the top of the model) at 3,000 m in the 3,000 m well, cold
+//!   and warm-started from the previous solution after a 5% WOB change (what the trajectory
+//!   predictor does at each step);
+//! - a 3,000 m and an 8,000 m string (the same BHA, 140 m HWDP, 5 in drill pipe to surface)
+//!   in generated build-and-hold wells (vertical to 600 m, 2.5 deg/30 m to 35 deg resp.
+//!   60 deg, hold to TD; 12.25 in casing to 1,000 m, 8.5 in open hole), rotating on bottom;
+//! - two example wells (seed-daqing 727 m, s-shape 1,650 m).
+//!
+//! Before timing, each case prints one line `case: DOF, Newton iterations, factorizations`.
 //! Run: `cargo bench --bench solve -- --warm-up-time 1 --measurement-time 10`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use drillpath::case::Case;
 use drillpath::fem::model::Model;
-use drillpath::fem::solve::{solve, SolveControls};
+use drillpath::fem::solve::{solve, solve_ip_from, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use std::fmt::Write;
 use std::path::Path;
+
+/// Survey CSV of a build-and-hold well: vertical to 600 m, 2.5 deg/30 m at azimuth 45 deg to
+/// `hold_deg`, hold to `td_m`; stations every 30 m.
+fn build_and_hold_survey(td_m: f64, hold_deg: f64) -> String {
+    let mut s = String::from("md_m,inc_deg,azi_deg\n");
+    let mut md: f64 = 0.0;
+    while md < td_m + 1e-9 {
+        let inc = ((md - 600.0).max(0.0) * 2.5 / 30.0).min(hold_deg);
+        writeln!(s, "{md},{inc},45").unwrap();
+        md += 30.0;
+    }
+    if (md - 30.0 - td_m).abs() > 1e-9 {
+        writeln!(s, "{td_m},{hold_deg},45").unwrap();
+    }
+    s
+}
+
+/// The 8.5 in rotary BHA (~100 m with 42 m of HWDP when `hwdp_m` = 42).
+fn bha(hwdp_m: f64) -> String {
+    format!(
+        r#"
+[[string]]
+type = "bit"
+od = "8.5 in"
+length = "0.3 m"
+[[string]]
+type = "stabilizer"
+od = "8.5 in"
+body_od = "6.5 in"
+id = "2.8125 in"
+length = "1.6 m"
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "27.6 m"
+[[string]]
+type = "stabilizer"
+od = "8.4375 in"
+body_od = "6.5 in"
+id = "2.8125 in"
+length = "1.6 m"
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "27.6 m"
+[[string]]
+type = "hwdp"
+od = "5 in"
+id = "3 in"
+length = "{hwdp_m} m"
+weight = "49.3 lb/ft"
+tool_joint_od = "6.5 in"
+joint_length = "30 ft"
+"#
+    )
+}
+
+const DRILL_PIPE: &str = r#"
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "33.6 kg/m"
+tool_joint_od = "6.625 in"
+joint_length = "30 ft"
+"#;
+
+/// A generated case: `td_m` bit depth, `hold_deg` hold inclination, the string table.
+fn generated_case(td_m: f64, hold_deg: f64, strings: &str) -> Case {
+    let case = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [
+  {{ to_md = "1000 m", diameter = "12.25 in", friction = 0.2 }},
+  {{ to_md = "{td_m} m", diameter = "8.5 in" }},
+]
+[mud]
+density = "1.2 sg"
+plastic_viscosity = "20 cP"
+[operation]
+mode = "drilling"
+bit_md = "{td_m} m"
+wob = "100 kN"
+rpm = 60
+rop = "12 m/h"
+friction = 0.25
+{strings}
+[solver]
+element_length = "1 m"
+bha_element_length = "0.5 m"
+"#
+    );
+    let dir = tempfile::tempdir().expect("temporary directory");
+    std::fs::write(dir.path().join("survey.csv"), build_and_hold_survey(td_m, hold_deg)).expect("write survey");
+    std::fs::write(dir.path().join("case.toml"), case).expect("write case");
+    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).expect("generated case loads")
+}
+
+/// The case cut to its bottom-hole assembly and HWDP (components starting below 100 m from the
+/// bit): the top node of the model is then ~100 m above the bit, as in the predictor's BHA
+/// models (the input format itself requires strings that reach the surface).
+fn bha_only(mut case: Case) -> Case {
+    case.string.components.retain(|c| c.bottom_m < 100.0);
+    case
+}
+
+fn example_case(well: &str) -> Case {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("wells")
+        .join(well)
+        .join("case.toml");
+    load_case(&path, &CaseOverrides::default()).expect("example case loads")
+}
+
+fn controls(case: &Case) -> SolveControls {
+    SolveControls {
+        max_iterations: case.solver.max_iterations,
+        ..Default::default()
+    }
+}
 
 fn bench_solve(c: &mut Criterion) {
     let mut group = c.benchmark_group("solve");
     group.sample_size(10);
-    for well in ["seed-daqing", "s-shape"] {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("wells")
-            .join(well)
-            .join("case.toml");
-        let case = load_case(&path, &CaseOverrides::default()).expect("example case loads");
-        let model = Model::from_case(&case);
-        let ctl = SolveControls {
-            max_iterations: case.solver.max_iterations,
-            ..Default::default()
-        };
-        group.bench_function(well, |b| {
+    let cases = [
+        (
+            "bha_100m",
+            bha_only(generated_case(3000.0, 35.0, &(bha(42.0) + DRILL_PIPE))),
+        ),
+        ("string_3000m", generated_case(3000.0, 35.0, &(bha(140.0) + DRILL_PIPE))),
+        ("string_8000m", generated_case(8000.0, 60.0, &(bha(140.0) + DRILL_PIPE))),
+        ("seed-daqing", example_case("seed-daqing")),
+        ("s-shape", example_case("s-shape")),
+    ];
+    for (name, case) in &cases {
+        let model = Model::from_case(case);
+        let ctl = controls(case);
+        let sol = solve(&model, &ctl).expect("solves");
+        assert!(sol.converged, "{name} converges");
+        println!(
+            "{name}: {} m string, {} DOF, {} Newton iterations, {} factorizations",
+            case.string.length_m(),
+            model.dofs(),
+            sol.stats.iterations,
+            sol.stats.factorizations
+        );
+        group.bench_function(*name, |b| {
             b.iter(|| {
                 let sol = solve(&model, &ctl).expect("solves");
                 assert!(sol.converged);
                 sol.stats.iterations
             })
         });
+        if *name == "bha_100m" {
+            // warm start: the converged state of the solve above, WOB changed by 5%
+            let mut warm = model.clone();
+            warm.consistent_tangent = true;
+            warm.loads.wob_n *= 1.05;
+            let sol_w = solve_ip_from(&warm, sol.state.clone(), &ctl).expect("solves");
+            assert!(sol_w.converged, "warm BHA solve converges");
+            println!(
+                "bha_100m_warm: {} DOF, {} Newton iterations, {} factorizations",
+                warm.dofs(),
+                sol_w.stats.iterations,
+                sol_w.stats.factorizations
+            );
+            group.bench_function("bha_100m_warm", |b| {
+                b.iter(|| {
+                    let s = solve_ip_from(&warm, sol.state.clone(), &ctl).expect("solves");
+                    assert!(s.converged);
+                    s.stats.iterations
+                })
+            });
+        }
     }
     group.finish();
 }

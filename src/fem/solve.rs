@@ -136,6 +136,9 @@ pub const MAX_STATUS_FLIPS: usize = 2;
 /// Halvings tried by the line search.
 pub const LINE_SEARCH_STEPS: usize = 8;
 
+/// Largest lateral motion of a gap node per interior-point Newton step, in clearances.
+pub const MAX_LATERAL_STEP_CLEARANCES: f64 = 2.0;
+
 /// Largest bending rotation increment allowed per iteration, rad.
 pub const MAX_BENDING_ROTATION_STEP: f64 = 0.02;
 
@@ -193,6 +196,129 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     }
 }
 
+/// Torsional wind-up start: twist each node's triad about its hole tangent by the angle a
+/// soft-string torque balance gives (bit torque, wall friction of the current multipliers,
+/// mud drag), zero at the top where the twist is held. A rotating string several kilometres
+/// long winds up by many radians; starting untwisted, the Newton steps must carry that rotation
+/// and their bending-rotation cap makes them short. Only the start changes, not the solution.
+pub fn wind_up_start(model: &Model, state: &mut State) {
+    let nn = model.nodes();
+    let omega = model.loads.omega_rad_s;
+    // torque carried by element e (about -t), accumulated from the bit upward
+    let mut torque = model.loads.bit_torque_nm;
+    let mut twist_rate = vec![0.0; nn - 1];
+    for (e, rate) in twist_rate.iter_mut().enumerate() {
+        // node e is the lower end of element e
+        let i = e;
+        if omega > 0.0 && model.mesh.nodes[i].has_gap && model.friction[i] > 0.0 {
+            let rc = model.mesh.nodes[i].contact_od_m / 2.0;
+            let tangential = omega * rc;
+            let speed = (tangential * tangential + model.loads.axial_speed_m_s.powi(2)).sqrt();
+            if speed > 1e-12 {
+                torque += model.friction[i] * state.lambda[i] * rc * tangential / speed;
+            }
+        }
+        let l0 = model.sections[e].l0;
+        let md = 0.5 * (model.md_ref[e] + model.md_ref[e + 1]);
+        // half of the element's own drag counts at its centre
+        let t_mid = torque + 0.5 * model.mud_torque(e, md) * l0;
+        torque += model.mud_torque(e, md) * l0;
+        let gj = model.sections[e].gj;
+        *rate = if gj > 0.0 { t_mid / gj } else { 0.0 };
+    }
+    // twist about +t, zero at the top, decreasing toward the bit
+    let mut phi = 0.0;
+    for i in (0..nn - 1).rev() {
+        phi -= twist_rate[i] * model.sections[i].l0;
+        let t = model.basis[i].column(0).into_owned();
+        state.lam[i] = super::rotation::exp_so3(&(t * phi)) * state.lam[i];
+    }
+}
+
+/// Largest lateral slope of the smoothed start between neighbouring nodes (m of lateral offset
+/// per m along the string), see [`smooth_start`].
+pub const START_MAX_SLOPE: f64 = 0.005;
+
+/// Smooth the soft-string start: the soft-string model puts each node on its own side of the
+/// wall at its own clearance, so where the contact side flips (end of a build) or the
+/// clearance jumps (a stabilizer between collars) neighbouring nodes sit centimetres apart
+/// laterally on a 0.5-1 m element: the start then carries huge kinks (axial strains of 1%,
+/// bending moments of MN.m) that the first Newton steps spend their time undoing. Here the
+/// lateral offset of each node is limited to the offsets of its neighbours plus
+/// [`START_MAX_SLOPE`] times their distance (and to zero where the side turns by more than
+/// that allows), keeping each offset's direction. Multipliers are kept (they only seed
+/// friction and the interior point). Only the start changes, not the solution.
+pub fn smooth_start(model: &Model, state: &mut State) {
+    let nn = model.nodes();
+    let axis: Vec<_> = (0..nn).map(|i| model.path.point_at(model.md_ref[i]).position).collect();
+    let mut a: Vec<f64> = (0..nn).map(|i| (state.x[i] - axis[i]).norm()).collect();
+    let dir: Vec<Vec3> = (0..nn)
+        .map(|i| {
+            let d = state.x[i] - axis[i];
+            if a[i] > 0.0 {
+                d / a[i]
+            } else {
+                Vec3::zeros()
+            }
+        })
+        .collect();
+    let ds: Vec<f64> = (0..nn - 1).map(|e| model.sections[e].l0).collect();
+    // a side change: both nodes leave the wall (the passes below ramp their neighbours)
+    for (e, &l) in ds.iter().enumerate() {
+        let (i, j) = (e, e + 1);
+        if a[i] > 0.0 && a[j] > 0.0 {
+            let jump = (dir[i] * a[i] - dir[j] * a[j]).norm() - (a[i] - a[j]).abs();
+            if jump > START_MAX_SLOPE * l {
+                a[i] = 0.0;
+                a[j] = 0.0;
+            }
+        }
+    }
+    for (e, &l) in ds.iter().enumerate() {
+        a[e + 1] = a[e + 1].min(a[e] + START_MAX_SLOPE * l);
+    }
+    for e in (0..nn - 1).rev() {
+        a[e] = a[e].min(a[e + 1] + START_MAX_SLOPE * ds[e]);
+    }
+    for i in 0..nn {
+        state.x[i] = axis[i] + dir[i] * a[i];
+    }
+}
+
+/// Shift of the interior-point warm start off the boundary, per unit of outer residual:
+/// multipliers get `+ shift * load_scale / contacts`, slacks `+ shift * clearance`, with
+/// `shift = clamp(IP_START_SHIFT * rn, 1e-6, 0.1)`.
+pub const IP_START_SHIFT: f64 = 0.1;
+
+/// Consecutive interior-point steps shorter than 1e-2 after which the contact subproblem of a
+/// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
+pub const IP_STALL_STEPS: usize = 5;
+
+/// Interior-point iterations allowed per Newton step.
+pub const MAX_IP_ITERATIONS: usize = 60;
+
+/// Relative tolerance of the interior-point solve of one linearization whose outer residual
+/// (relative to the load scale) is `rn`: `min(1e-2 rn, rn^2)`, never below 1e-10 (the exact
+/// tolerance used at convergence).
+fn ip_tolerance(rn: f64) -> f64 {
+    (1e-2 * rn).min(rn * rn).max(1e-10)
+}
+
+/// Largest step in (0, 1] keeping `r + a dr` and `s + a ds` positive, times `tau`
+/// (fraction to the boundary).
+fn step_to_boundary(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64], tau: f64) -> f64 {
+    let mut a: f64 = 1.0;
+    for j in 0..r.len() {
+        if dr[j] < 0.0 {
+            a = a.min(-tau * r[j] / dr[j]);
+        }
+        if ds[j] < 0.0 {
+            a = a.min(-tau * s[j] / ds[j]);
+        }
+    }
+    a
+}
+
 /// Merit of a state: squared residual over free DOFs plus the WOB equation, forces in N and
 /// moments in N.m (1 m length scale).
 fn merit(r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
@@ -223,8 +349,9 @@ pub(crate) struct GapGeometry {
     pub(crate) radial: f64,
 }
 
-pub(crate) fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
-    let md = model.path.nearest_md(&state.x[i], state.md[i]);
+/// `state.md[i]` must be the node's nearest axis point, as [`Model::evaluate`] leaves it.
+fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
+    let md = state.md[i];
     let p = model.path.point_at(md);
     let d = state.x[i] - p.position;
     let d = d - p.tangent * p.tangent.dot(&d);
@@ -296,19 +423,66 @@ impl Linear {
     fn set_matrix(&mut self, from: &Linear) {
         match (self, from) {
             (Linear::Symmetric(k, _), Linear::Symmetric(f, _)) => k.copy_from(f),
-            (Linear::General(k, _), Linear::General(f, _)) => *k = f.clone(),
+            (Linear::General(k, _), Linear::General(f, _)) => k.copy_from(f),
             _ => unreachable!("matrix kinds match"),
         }
     }
-    /// `y += A x` with the stored copy's matrix `a`.
-    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64]) {
-        let mut t = vec![0.0; x.len()];
-        match a {
-            Linear::Symmetric(k, _) => k.mul_vec(x, &mut t),
-            Linear::General(k, _) => k.mul_vec(x, &mut t),
+    /// Factor the stored copy `base` plus the same additions given two ways: `add_row(i, row)`
+    /// adds to row `i` of the general band storage (column `c` at offset `c + hb - i`, `hb`
+    /// the half-bandwidth), `add` assembles them as blocks; the DOFs `constrained` are held
+    /// (row and column zeroed, diagonal `constraint_scale`). LU: one streaming pass, each row
+    /// copied, changed and eliminated while in cache; LDL^T: copy, assemble, factor. This
+    /// object's own matrix is left unspecified.
+    fn factor_modified(
+        &mut self,
+        base: &Linear,
+        constrained: &[usize],
+        constraint_scale: f64,
+        mut add_row: impl FnMut(usize, &mut [f64]),
+        mut add: impl FnMut(&mut dyn StiffnessSink),
+    ) -> Result<(), FactorError> {
+        if let (Linear::General(_, f), Linear::General(b, _)) = (&mut *self, base) {
+            let hb = HALF_BANDWIDTH;
+            return f.factor_rows(b, |i, row| {
+                if constrained.contains(&i) {
+                    row.fill(0.0);
+                    row[hb] = constraint_scale;
+                    return;
+                }
+                add_row(i, row);
+                for &c in constrained {
+                    if c.abs_diff(i) <= hb {
+                        row[c + hb - i] = 0.0;
+                    }
+                }
+            });
         }
-        for (yi, ti) in y.iter_mut().zip(t) {
+        self.set_matrix(base);
+        add(self.sink());
+        for &d in constrained {
+            self.constrain(d);
+        }
+        self.factor()
+    }
+    /// `y += A x` with the stored copy's matrix `a`.
+    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64], work: &mut Vec<f64>) {
+        work.resize(x.len(), 0.0);
+        match a {
+            Linear::Symmetric(k, _) => k.mul_vec(x, work),
+            Linear::General(k, _) => k.mul_vec(x, work),
+        }
+        for (yi, ti) in y.iter_mut().zip(work.iter()) {
             *yi += ti;
+        }
+    }
+    /// Solve for two right-hand sides at once (LU: one pass over the factor).
+    fn solve2(&self, x: &mut [f64], y: &mut [f64]) {
+        match self {
+            Linear::Symmetric(_, f) => {
+                f.solve_in_place(x);
+                f.solve_in_place(y);
+            }
+            Linear::General(_, f) => f.solve2_in_place(x, y),
         }
     }
     fn negative_pivots(&self) -> usize {
@@ -352,14 +526,18 @@ pub(crate) fn constrain_and_factor(model: &Model, lin: &mut Linear, constrained:
     for &d in constrained {
         lin.constrain(d);
     }
-    if let Err(FactorError::ZeroPivot { column: dof, pivot }) = lin.factor() {
-        return Err(SolveError::Singular {
+    lin.factor().map_err(|e| singular(model, e))
+}
+
+/// A failed factorization as a [`SolveError::Singular`] naming the node.
+fn singular(model: &Model, e: FactorError) -> SolveError {
+    match e {
+        FactorError::ZeroPivot { column: dof, pivot } => SolveError::Singular {
             dof,
             node: model.nodes() - 1 - dof / 6,
             detail: format!("zero pivot {pivot:e}"),
-        });
+        },
     }
-    Ok(())
 }
 
 /// Solve the static problem from the model's initial state: first the interior-point contact
@@ -377,6 +555,8 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
     consistent.consistent_tangent = true;
     let mut state = model.initial_state();
     soft_string_start(model, &mut state, false);
+    smooth_start(model, &mut state);
+    wind_up_start(model, &mut state);
     let mut sol = solve_ip_from(&consistent, state, ctl)?;
     sol.stats.attempts = 1;
     if sol.converged {
@@ -669,10 +849,14 @@ pub fn solve_from(
 }
 
 /// Newton iteration on the geometry whose every step solves the linearized contact problem of
-/// all (non-pin) gaps exactly by a primal-dual interior-point method on the band system:
-/// `K du + N R = -r0`, `N^T du + s = -g`, `R, s >= 0`, `R s = 0` (Mehrotra-type centering).
-/// Each interior-point iteration factors `K + N diag(R/s) N^T`, which keeps the band
-/// structure (a rank-one 3x3 block per gap). Friction is taken from the previous step's
+/// all (non-pin) gaps by a primal-dual interior-point method on the band system:
+/// `K du + N R = -r0`, `N^T du + s = -g`, `R, s >= 0`, `R s = 0`. Each interior-point
+/// iteration factors `K + N diag(R/s) N^T`, which keeps the band structure (a rank-one 3x3
+/// block per gap), and makes two solves with it (Mehrotra predictor-corrector: the affine
+/// direction sets the centering, the corrector adds the second-order complementarity term).
+/// The iteration is warm-started from the previous step's multipliers, shifted off the
+/// boundary in proportion to the outer residual ([`IP_START_SHIFT`]), and stopped at a
+/// tolerance tied to the outer residual (inexact Newton; exact near convergence). Friction is taken from the previous step's
 /// normal forces (lagged), the rotation of the contact normal enters as the circle stiffness
 /// `(R/s)(I - t t^T - n n^T)`.
 pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
@@ -692,6 +876,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         })
         .collect();
     let qidx: Vec<usize> = (0..nn).filter(|&i| managed[i]).collect();
+    // contact index of each node (usize::MAX: none)
+    let mut contact_at = vec![usize::MAX; nn];
+    for (j, &i) in qidx.iter().enumerate() {
+        contact_at[i] = j;
+    }
     let m = qidx.len();
     state.closed = Some(vec![false; nn]);
     state.free_law = None;
@@ -772,121 +961,214 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         // the base matrix K (before interior-point terms) is kept to rebuild each iteration
         let base = lin.clone_matrix();
+        // diagonal given to the constrained DOFs (any positive value: they are decoupled)
+        let constraint_scale = {
+            let (sum, cnt) = (0..n)
+                .map(|d| base.get(d, d).abs())
+                .filter(|v| *v > 0.0 && v.is_finite())
+                .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+            if cnt > 0 {
+                sum / cnt as f64
+            } else {
+                1.0
+            }
+        };
+        // inexact Newton: the contact subproblem of an early, far-from-converged linearization
+        // is solved only as accurately as that linearization deserves; near the solution the
+        // tolerances tighten to the exact ones (see `ip_tolerance`)
+        let eta = ip_tolerance(rn);
         // interior point on (du, R, s), du the step of this linearization
         let mut du = vec![0.0; n];
         let mut dh_total = 0.0;
+        // warm start from the previous multipliers, pushed off the boundary by a shift that
+        // grows with the outer residual (far from the solution the old contact set is a poor
+        // guess, and pairs pinned at the boundary would block the interior-point steps)
+        let shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
         let mut r_f: Vec<f64> = qidx
             .iter()
-            .map(|&i| state.lambda[i].max(1e-3 * scale / m.max(1) as f64))
+            .map(|&i| state.lambda[i].max(0.0) + shift * scale / m.max(1) as f64)
             .collect();
         let mut s_v: Vec<f64> = (0..m)
-            .map(|j| (-gaps0[j]).max(1e-6 * ev.clearance[qidx[j]].max(1e-3)))
+            .map(|j| (-gaps0[j]).max(1e-6 * ev.clearance[qidx[j]].max(1e-3)) + shift * ev.clearance[qidx[j]].max(1e-3))
             .collect();
-        for _ip in 0..60 {
+        let clr: Vec<f64> = qidx.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
+        let dofs6: Vec<[usize; 6]> = qidx.iter().map(|&i| std::array::from_fn(|k| model.dof(i, k))).collect();
+        let radial = |j: usize, u: &[f64]| -> f64 { (0..3).map(|k| normals[j][k] * u[dofs6[j][k]]).sum() };
+        let mut rd = vec![0.0; n];
+        let mut rp = vec![0.0; m];
+        let mut rhs = vec![0.0; n];
+        let mut b_top = vec![0.0; n];
+        let mut ds = vec![0.0; m];
+        let mut dr = vec![0.0; m];
+        let mut ds_aff = vec![0.0; m];
+        let mut dr_aff = vec![0.0; m];
+        let mut rc = vec![0.0; m];
+        let mut work = Vec::new();
+        let mut ip_iters = 0usize;
+        let mut stalled = 0usize;
+        for _ip in 0..MAX_IP_ITERATIONS {
             // residuals
-            let mut rd = r0.clone();
-            lin.matrix_mul_add(&base, &du, &mut rd);
-            for (j, &i) in qidx.iter().enumerate() {
+            rd.copy_from_slice(&r0);
+            lin.matrix_mul_add(&base, &du, &mut rd, &mut work);
+            for j in 0..m {
                 for k in 0..6 {
-                    rd[model.dof(i, k)] += r_f[j] * eq_cols[j][k];
+                    rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
                 }
             }
             rd[top_ax] += dh_total;
             for &d in &constrained {
                 rd[d] = 0.0;
             }
-            let radial =
-                |j: usize, u: &[f64]| -> f64 { (0..3).map(|k| normals[j][k] * u[model.dof(qidx[j], k)]).sum() };
-            let rp: Vec<f64> = (0..m).map(|j| radial(j, &du) + s_v[j] + gaps0[j]).collect();
+            for j in 0..m {
+                rp[j] = radial(j, &du) + s_v[j] + gaps0[j];
+            }
             let mu = (0..m).map(|j| r_f[j] * s_v[j]).sum::<f64>() / m.max(1) as f64;
             let rd_n = rd.iter().fold(0.0f64, |a, v| a.max(v.abs())) / scale;
-            let rp_n = (0..m)
-                .map(|j| rp[j].abs() / ev.clearance[qidx[j]].max(1e-3))
-                .fold(0.0, f64::max);
+            let rp_n = (0..m).map(|j| rp[j].abs() / clr[j]).fold(0.0, f64::max);
             let cb = if bordered {
                 c + kb.iter().map(|&(d, v)| v * du[d]).sum::<f64>()
             } else {
                 0.0
             };
-            if rd_n < 1e-10 && rp_n < 1e-9 && mu < 1e-12 * scale * 1e-3 && cb.abs() < 1e-10 * scale {
+            if rd_n < eta && rp_n < 10.0 * eta && mu < 1e-2 * eta * scale * 1e-3 && cb.abs() < eta * scale {
                 break;
             }
-            let sigma = 0.1;
+            ip_iters += 1;
             // reduced matrix K + N diag(R/s) N^T
-            lin.set_matrix(&base);
-            for (j, &i) in qidx.iter().enumerate() {
-                let dj = r_f[j] / s_v[j];
-                let nv = normals[j];
-                // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
-                let mut blk = [0.0; 36];
-                for r in 0..6 {
-                    for cc in 0..3 {
-                        blk[r * 6 + cc] = dj * eq_cols[j][r] * nv[cc];
+            // row form: row i (DOF k of a contact node) gets D e_k g^T on the node's
+            // translation columns
+            let add_row = |i: usize, row: &mut [f64]| {
+                let j = contact_at[nn - 1 - i / 6];
+                if j == usize::MAX {
+                    return;
+                }
+                let k = i % 6;
+                let e = r_f[j] / s_v[j] * eq_cols[j][k];
+                // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
+                let off = HALF_BANDWIDTH - k;
+                for cc in 0..3 {
+                    row[off + cc] += e * normals[j][cc];
+                }
+            };
+            let factored = lin.factor_modified(&base, &constrained, constraint_scale, add_row, |sink| {
+                for j in 0..m {
+                    let dj = r_f[j] / s_v[j];
+                    let nv = normals[j];
+                    // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
+                    let mut blk = [0.0; 36];
+                    for r in 0..6 {
+                        for cc in 0..3 {
+                            blk[r * 6 + cc] = dj * eq_cols[j][r] * nv[cc];
+                        }
+                    }
+                    sink.add_block(&dofs6[j], &blk, 6);
+                }
+            });
+            if let Err(e) = factored {
+                return Err(singular(model, e));
+            }
+            stats.factorizations += 1;
+            // right-hand side of one Newton solve of the (du, R, s) system for the
+            // complementarity target `rc` (of R ds + s dR): -rd - E S^-1 (rc + R rp)
+            let build_rhs = |rc: &[f64], rhs: &mut [f64]| {
+                for (x, v) in rhs.iter_mut().zip(&rd) {
+                    *x = -v;
+                }
+                for j in 0..m {
+                    let w = (rc[j] + r_f[j] * rp[j]) / s_v[j];
+                    for k in 0..6 {
+                        rhs[dofs6[j][k]] -= w * eq_cols[j][k];
                     }
                 }
-                let dofs: [usize; 6] = std::array::from_fn(|k| model.dof(i, k));
-                lin.sink().add_block(&dofs, &blk, 6);
-            }
-            constrain_and_factor(model, &mut lin, &constrained)?;
-            stats.factorizations += 1;
-            // rhs = -rd - N S^-1 (-rc + sigma mu + R rp)
-            let mut rhs: Vec<f64> = rd.iter().map(|v| -v).collect();
-            for (j, &i) in qidx.iter().enumerate() {
-                let w = (-r_f[j] * s_v[j] + sigma * mu + r_f[j] * rp[j]) / s_v[j];
-                for k in 0..6 {
-                    rhs[model.dof(i, k)] -= w * eq_cols[j][k];
+                for &d in &constrained {
+                    rhs[d] = 0.0;
                 }
+            };
+            // Mehrotra predictor: the affine-scaling direction (no centering), solved together
+            // with the hook-load column K^-1 e_top (one pass over the factor for both)
+            for j in 0..m {
+                rc[j] = -r_f[j] * s_v[j];
             }
-            for &d in &constrained {
-                rhs[d] = 0.0;
-            }
-            let mut ddu = rhs;
-            lin.solve(&mut ddu);
-            let ddh = if bordered {
-                let mut b = vec![0.0; n];
-                b[top_ax] = 1.0;
-                lin.solve(&mut b);
-                let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
-                let kba: f64 = kb.iter().map(|&(d, v)| v * ddu[d]).sum();
-                let dh = if kbb.abs() > 1e-30 { (cb + kba) / kbb } else { 0.0 };
-                for k in 0..n {
-                    ddu[k] -= dh * b[k];
+            build_rhs(&rc, &mut rhs);
+            let kbb = if bordered {
+                b_top.fill(0.0);
+                b_top[top_ax] = 1.0;
+                lin.solve2(&mut b_top, &mut rhs);
+                kb.iter().map(|&(d, v)| v * b_top[d]).sum::<f64>()
+            } else {
+                lin.solve(&mut rhs);
+                0.0
+            };
+            // with the solved `rhs`: the hook-load step (returned), the du step (in `rhs`),
+            // and the slack and multiplier steps
+            let finish = |rc: &[f64], rhs: &mut [f64], ds: &mut [f64], dr: &mut [f64]| -> f64 {
+                let dh = if bordered {
+                    let kba: f64 = kb.iter().map(|&(d, v)| v * rhs[d]).sum();
+                    let dh = if kbb.abs() > 1e-30 { (cb + kba) / kbb } else { 0.0 };
+                    for (x, bt) in rhs.iter_mut().zip(&b_top) {
+                        *x -= dh * bt;
+                    }
+                    dh
+                } else {
+                    0.0
+                };
+                for j in 0..m {
+                    ds[j] = -rp[j] - radial(j, rhs);
+                    dr[j] = (rc[j] - r_f[j] * ds[j]) / s_v[j];
                 }
                 dh
+            };
+            finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
+            let a_aff = step_to_boundary(&r_f, &dr_aff, &s_v, &ds_aff, 1.0);
+            let mu_aff = (0..m)
+                .map(|j| (r_f[j] + a_aff * dr_aff[j]) * (s_v[j] + a_aff * ds_aff[j]))
+                .sum::<f64>()
+                / m.max(1) as f64;
+            // ... sets the centering sigma = (mu_aff / mu)^3; the corrector adds the
+            // second-order term of the complementarity
+            let sigma = if mu > 0.0 {
+                (mu_aff / mu).clamp(0.0, 1.0).powi(3)
             } else {
                 0.0
             };
-            let ds: Vec<f64> = (0..m).map(|j| -rp[j] - radial(j, &ddu)).collect();
-            let dr: Vec<f64> = (0..m)
-                .map(|j| (-r_f[j] * s_v[j] + sigma * mu - r_f[j] * ds[j]) / s_v[j])
-                .collect();
-            // fraction to the boundary
-            let mut alpha: f64 = 1.0;
             for j in 0..m {
-                if dr[j] < 0.0 {
-                    alpha = alpha.min(-0.995 * r_f[j] / dr[j]);
-                }
-                if ds[j] < 0.0 {
-                    alpha = alpha.min(-0.995 * s_v[j] / ds[j]);
-                }
+                rc[j] = -r_f[j] * s_v[j] + sigma * mu - dr_aff[j] * ds_aff[j];
             }
-            for k in 0..n {
-                du[k] += alpha * ddu[k];
+            build_rhs(&rc, &mut rhs);
+            lin.solve(&mut rhs);
+            let ddh = finish(&rc, &mut rhs, &mut ds, &mut dr);
+            let alpha = step_to_boundary(&r_f, &dr, &s_v, &ds, 0.995);
+            tracing::trace!(rd_n, rp_n, mu_rel = mu / (scale * 1e-3), a_aff, sigma, alpha, "ip");
+            stalled = if alpha < 1e-2 { stalled + 1 } else { 0 };
+            for (x, d) in du.iter_mut().zip(&rhs) {
+                *x += alpha * d;
             }
             dh_total += alpha * ddh;
             for j in 0..m {
                 r_f[j] += alpha * dr[j];
                 s_v[j] += alpha * ds[j];
             }
+            // a stalled interior point (friction makes the contact problem non-monotone) far
+            // from the solution: take the step found so far
+            if stalled >= IP_STALL_STEPS && eta > 1e-8 {
+                break;
+            }
         }
-        lin.set_matrix(&base);
         // geometric step with caps
         let mut ratio: f64 = 0.0;
         for i in 0..nn {
             let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
             ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
         }
+        // and lateral motion of the gap nodes to a few clearances: the linearized gaps bound
+        // only the motion along each node's current normal, so a long step can carry nodes
+        // around and through the wall
+        for &i in &qidx {
+            let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
+            ratio = ratio.max(lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3)));
+        }
         let alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
+        tracing::debug!(ip_iters, alpha, "interior-point iterations and step cap");
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
         for (j, &i) in qidx.iter().enumerate() {

@@ -7,7 +7,7 @@ use crate::case::{BitRock, Case};
 use crate::fem::bha::{bha_model, default_cut_m};
 use crate::fem::model::{Model, State};
 use crate::fem::results::{extract, BitResult};
-use crate::fem::solve::{soft_string_start, solve, solve_ip_from, SolveControls};
+use crate::fem::solve::{solve, solve_ip_from, SolveControls};
 use crate::geometry::frame::inc_azi;
 use crate::geometry::{Frame, HoleSection, HoleSize, Station, Survey, Vec3, WellPath};
 use nalgebra::{Matrix2, Vector2};
@@ -196,8 +196,8 @@ pub fn transport_state(prev_model: &Model, prev: &State, model: &Model) -> State
     st
 }
 
-/// Solve the model warm-started from `warm` (or from the soft-string start); falls back to the
-/// full cold [`solve`] when the warm start does not converge.
+/// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
+/// full cold [`solve`] (its own start and fallbacks).
 fn solve_step(
     model: &Model,
     warm: Option<State>,
@@ -212,13 +212,6 @@ fn solve_step(
             Ok(sol) if sol.converged => return Ok(sol),
             Ok(_) => tracing::info!(md, "warm-started solve did not converge; solving from scratch"),
             Err(e) => tracing::info!(md, error = %e, "warm-started solve failed; solving from scratch"),
-        }
-    } else {
-        let mut state = model.initial_state();
-        soft_string_start(model, &mut state, false);
-        let sol = solve_ip_from(model, state, ctl).map_err(wrap)?;
-        if sol.converged {
-            return Ok(sol);
         }
     }
     let sol = solve(model, ctl).map_err(wrap)?;
