@@ -168,13 +168,18 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
     if let Some(c) = summary.get("calibration") {
         for f in c["parameters"]["fitted"].as_array().into_iter().flatten() {
             println!(
-                "  fitted {} = {:.5} +/- {}",
+                "  fitted {} = {:.5} +/- {}{}",
                 f["name"].as_str().unwrap_or("?"),
                 f["value"].as_f64().unwrap_or(f64::NAN),
                 f["std_dev"]
                     .as_f64()
                     .map(|v| format!("{v:.5}"))
-                    .unwrap_or_else(|| "n/a".into())
+                    .unwrap_or_else(|| "n/a".into()),
+                if f["identifiable"].as_bool() == Some(true) {
+                    ""
+                } else {
+                    "  (NOT identifiable from these intervals: the predictions barely depend on it)"
+                }
             );
         }
         let show = |k: &str, label: &str| {

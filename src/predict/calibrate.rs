@@ -90,6 +90,15 @@ impl FitParameter {
             FitParameter::RockAnisotropy => 0.5 * (1.0 - u.tanh().powi(2)),
         }
     }
+    /// Standard deviation above which a fitted value is reported as not identifiable (natural
+    /// units; about the parameter's useful range).
+    pub fn identifiable_below(self) -> f64 {
+        match self {
+            FitParameter::LateralDrillability => 0.5,
+            FitParameter::WalkAngle => 0.35,
+            FitParameter::RockAnisotropy => 0.25,
+        }
+    }
     /// Prior standard deviation of the weak prior toward the start value (natural units).
     fn prior_sigma(self) -> f64 {
         match self {
@@ -111,7 +120,10 @@ pub const BETA_START_MAX: f64 = 0.9;
 pub const MAX_LM_ITERATIONS: usize = 20;
 
 /// Damping increases tried per iteration before giving up.
-pub const MAX_LAMBDA_INCREASES: usize = 4;
+pub const MAX_LAMBDA_INCREASES: usize = 6;
+
+/// Largest change of an unbounded variable per iteration (trust region).
+pub const MAX_STEP_U: f64 = 1.5;
 
 /// Relative decrease of the sum of squares below which the fit stops.
 pub const SSR_RELATIVE_TOLERANCE: f64 = 1e-4;
@@ -125,7 +137,8 @@ pub struct Calibration {
     /// The fitted law.
     pub bit_rock: BitRock,
     /// Fitted parameters: (parameter, value, standard deviation), natural units (rad for the
-    /// walk angle).
+    /// walk angle). A standard deviation larger than [`FitParameter::identifiable_below`]
+    /// means the data do not determine the parameter.
     pub fitted: Vec<(FitParameter, f64, f64)>,
     /// Sum of squared residuals at the start and at the end ((deg/100 m)^2).
     pub ssr_start: f64,
@@ -208,10 +221,14 @@ pub fn calibrate(
             for d in 0..np {
                 a[(d, d)] += lambda * jtj[(d, d)].max(1e-12);
             }
-            let Some(step) = a.lu().solve(&(-&g)) else {
+            let Some(mut step) = a.lu().solve(&(-&g)) else {
                 lambda *= 10.0;
                 continue;
             };
+            // trust region in the unbounded variables
+            if step.amax() > MAX_STEP_U {
+                step *= MAX_STEP_U / step.amax();
+            }
             let un: Vec<f64> = u.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
             let (rn, resn) = evaluate(&un, &mut warm)?;
             if ssr(&rn) < ssr(&r) {

@@ -155,6 +155,7 @@ pub fn calibration_json(c: &Calibration) -> Result<Value, String> {
                 "name": if p == FitParameter::WalkAngle { "walk_angle_deg" } else { p.name() },
                 "value": finite(v)?,
                 "std_dev": if sd.is_finite() { json!(sd) } else { Value::Null },
+                "identifiable": sd.is_finite() && sd < if p == FitParameter::WalkAngle { p.identifiable_below().to_degrees() } else { p.identifiable_below() },
             }))
         })
         .collect::<Result<_, String>>()?;
