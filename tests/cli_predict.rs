@@ -184,3 +184,36 @@ fn backanalyze_writes_errors_per_100m() {
     assert!(s["azi_err_per_100m_deg"].as_f64().unwrap() >= 0.0);
     assert!(s["bit_rock"]["lateral_drillability"].as_f64().is_some());
 }
+
+/// Design comparison: two BHAs (the case and a copy whose near-bit stabilizer is replaced by a
+/// collar, a pendulum-like string) over the same interval give one comparison table; the
+/// stabilized one builds more (textbook, physics.md 7.5).
+#[test]
+fn predict_compares_several_bhas() {
+    let dir = setup(CASE);
+    let slick = CASE.replace("name = \"predict cli test\"", "name = \"slick\"").replace(
+        "type = \"stabilizer\"\nod = \"8.5 in\"\nbody_od = \"6.5 in\"",
+        "type = \"collar\"\nod = \"6.5 in\"",
+    );
+    std::fs::write(dir.path().join("slick.toml"), slick).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .current_dir(dir.path())
+        .args(["predict", "case.toml", "slick.toml", "--ahead", "20 m", "--out", "out"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let table = std::fs::read_to_string(dir.path().join("out/comparison.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = table.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2, "{table}");
+    assert_eq!(rows[0][0], "predict cli test");
+    assert_eq!(rows[1][0], "slick");
+    let build = |r: &Vec<&str>| r[3].parse::<f64>().unwrap();
+    assert!(build(&rows[0]) > build(&rows[1]), "{table}");
+    for k in 1..=2 {
+        let csv = std::fs::read_to_string(dir.path().join(format!("out/case{k}/trajectory.csv"))).unwrap();
+        check_csv(&csv, 10);
+    }
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    assert_eq!(s["cases"].as_array().unwrap().len(), 2);
+}
