@@ -1,5 +1,6 @@
 //! clap argument definitions (the raw layer; validated before any computation).
 
+pub use crate::report::display_units::UnitSystem;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -43,6 +44,21 @@ pub enum Command {
     ///
     /// Example: drillpath loads wells/j-shape/case.toml --every "30 m" --out results/
     Loads(LoadsArgs),
+    /// Write a commented starter case (well, BHA, mud, operation) and its survey CSV to edit.
+    ///
+    /// Example: drillpath init mywell/case.toml && drillpath solve mywell/case.toml
+    Init(InitArgs),
+}
+
+/// Arguments of `drillpath init`.
+#[derive(Debug, Args)]
+pub struct InitArgs {
+    /// Case file to write; survey.csv is written next to it.
+    #[arg(default_value = "case.toml")]
+    pub file: PathBuf,
+    /// Overwrite existing files.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `drillpath predict`.
@@ -72,6 +88,12 @@ pub struct PredictArgs {
     /// Print summary.json on stdout instead of the readable summary.
     #[arg(long)]
     pub json: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }
 
 /// Arguments of `drillpath backanalyze`.
@@ -109,6 +131,12 @@ pub struct BackanalyzeArgs {
     /// Print summary.json on stdout instead of the readable summary.
     #[arg(long)]
     pub json: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }
 
 /// Arguments of `drillpath solve`.
@@ -128,6 +156,12 @@ pub struct SolveArgs {
     /// Write results of a non-converged solve, flagged `converged: false`, instead of failing.
     #[arg(long)]
     pub allow_unconverged: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }
 
 /// Arguments of `drillpath survey`.

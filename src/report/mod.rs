@@ -1,6 +1,8 @@
 //! Outputs: CSV and JSON files with the interface's names, written atomically.
 
+pub mod display_units;
 pub mod loads_output;
+pub mod plots;
 pub mod predict_output;
 pub mod solve_output;
 pub mod survey_table;
