@@ -259,3 +259,33 @@ fn unwritable_report_is_one_error_and_no_file() {
     assert!(err.starts_with("error: ") && err.contains("blocker/r.html"), "{err}");
     assert!(!err.contains("panicked"));
 }
+
+/// Every option of every subcommand names its default in `--help` (clap's `[default: ..]` or one
+/// written in the help text), and every subcommand's help shows an example.
+#[test]
+fn every_option_lists_its_default_and_every_command_an_example() {
+    use clap::CommandFactory;
+    let mut cli = drillpath::cli::args::Cli::command();
+    cli.build();
+    let mut missing = Vec::new();
+    for sub in cli.get_subcommands() {
+        let about = sub
+            .get_long_about()
+            .or(sub.get_about())
+            .map(|s| s.to_string())
+            .unwrap_or_default();
+        if sub.get_name() != "help" && !about.contains("Example: drillpath") {
+            missing.push(format!("{}: no example", sub.get_name()));
+        }
+        for arg in sub.get_arguments() {
+            if arg.is_positional() || ["help", "version"].contains(&arg.get_id().as_str()) {
+                continue;
+            }
+            let help = arg.get_help().map(|s| s.to_string()).unwrap_or_default();
+            if arg.get_default_values().is_empty() && !help.contains("[default: ") {
+                missing.push(format!("{} --{}", sub.get_name(), arg.get_id()));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "options without a default in --help: {missing:?}");
+}

@@ -76,7 +76,10 @@ impl Page {
         for r in rows {
             self.body.push_str("<tr>");
             for c in r {
-                self.body.push_str(&format!("<td class=\"n\">{}</td>", escape(c)));
+                // numbers right-aligned, text left-aligned
+                let numeric = c.starts_with(|ch: char| ch.is_ascii_digit() || "+-.".contains(ch));
+                let class = if numeric { " class=\"n\"" } else { "" };
+                self.body.push_str(&format!("<td{class}>{}</td>", escape(c)));
             }
             self.body.push_str("</tr>\n");
         }
