@@ -126,3 +126,16 @@ pub fn check_finite_text(html: &str) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escapes_markup_and_rejects_non_finite_numbers() {
+        assert_eq!(escape("a<b & \"c\""), "a&lt;b &amp; &quot;c&quot;");
+        assert!(check_finite_text("<td>NaN kN</td>").is_err());
+        assert!(check_finite_text("<td>-inf</td>").is_err());
+        assert!(check_finite_text("<p>information, infinite</p>").is_ok());
+    }
+}

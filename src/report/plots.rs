@@ -269,3 +269,34 @@ pub fn render_blocks(chart: &Chart, blocks: &[Block]) -> Result<String, String> 
     }
     Ok(svg)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_points_are_an_error_not_a_plot() {
+        let c = Chart::new("t", "x", "y").with(Series::new("s", vec![(0.0, 1.0), (1.0, f64::NAN)], Style::Line, 0));
+        assert!(render(&c).unwrap_err().contains("non-finite"));
+        let empty = Chart::new("t", "x", "y");
+        assert!(render(&empty).is_err());
+    }
+
+    #[test]
+    fn a_chart_holds_its_series_name_and_one_polyline_per_line_series() {
+        let c = Chart::new("t", "x", "y")
+            .with(Series::new("first", vec![(0.0, 1.0), (1.0, 2.0)], Style::Line, 0))
+            .with(Series::new("second", vec![(0.0, 0.0), (1.0, 3.0)], Style::Line, 1));
+        let svg = render(&c).unwrap();
+        // plotters writes each label on its own line inside <text>
+        assert!(svg.contains("\nfirst\n") && svg.contains("\nsecond\n"));
+        // each series: its data line and its legend mark, in its palette colour
+        let lines = |colour: &str| {
+            svg.lines()
+                .filter(|l| l.starts_with("<polyline") && l.contains(&format!("stroke=\"{colour}\"")))
+                .count()
+        };
+        assert_eq!(lines("#0072B2"), 2);
+        assert_eq!(lines("#D55E00"), 2);
+    }
+}
