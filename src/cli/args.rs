@@ -1,5 +1,6 @@
 //! clap argument definitions (the raw layer; validated before any computation).
 
+pub use crate::report::display_units::UnitSystem;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
@@ -27,11 +28,12 @@ pub enum Command {
     Survey(SurveyArgs),
     /// Static whole-string solve at the bit depth: bit forces and tilt, contacts, hook load, torque.
     ///
-    /// Example: drillpath solve wells/j-shape/case.toml --out results/
+    /// Example: drillpath solve wells/j-shape/case.toml --out results/ --report solve.html
     Solve(SolveArgs),
     /// Forward-marching trajectory prediction (pre-drill design or tracking against the survey).
     ///
     /// Example: drillpath predict wells/seed-daqing/case.toml --from 292 --to 413 --out pred/
+    ///
     /// Several cases (e.g. candidate BHAs) give one comparison table of build and walk rates.
     Predict(PredictArgs),
     /// Post-drill back-analysis: predict each survey interval from the measured hole behind it.
@@ -43,6 +45,21 @@ pub enum Command {
     ///
     /// Example: drillpath loads wells/j-shape/case.toml --every "30 m" --out results/
     Loads(LoadsArgs),
+    /// Write a commented starter case (well, BHA, mud, operation) and its survey CSV to edit.
+    ///
+    /// Example: drillpath init mywell/case.toml && drillpath solve mywell/case.toml
+    Init(InitArgs),
+}
+
+/// Arguments of `drillpath init`.
+#[derive(Debug, Args)]
+pub struct InitArgs {
+    /// Case file to write; survey.csv is written next to it.
+    #[arg(default_value = "case.toml")]
+    pub file: PathBuf,
+    /// Overwrite existing files.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// Arguments of `drillpath predict`.
@@ -54,10 +71,10 @@ pub struct PredictArgs {
     /// Start MD: the hole is the survey up to here [default: the last survey station].
     #[arg(long, value_name = "MD")]
     pub from: Option<String>,
-    /// End MD of the prediction (e.g. "413 m", 1500ft).
+    /// End MD of the prediction (e.g. "413 m", 1500ft) [default: none; give --to or --ahead].
     #[arg(long, value_name = "MD", conflicts_with = "ahead", required_unless_present = "ahead")]
     pub to: Option<String>,
-    /// Length to drill ahead of --from instead of --to (e.g. "60 m").
+    /// Length to drill ahead of --from instead of --to (e.g. "60 m") [default: none].
     #[arg(long, value_name = "LENGTH")]
     pub ahead: Option<String>,
     /// Step length [default: the case's [bit_rock] step, 1 m].
@@ -66,12 +83,20 @@ pub struct PredictArgs {
     /// Distance from the bit where the stiff model is cut [default: automatic, see README].
     #[arg(long, value_name = "LENGTH")]
     pub cut: Option<String>,
-    /// Write trajectory.csv and summary.json (several cases: comparison.csv and one folder per case).
+    /// Write trajectory.csv and summary.json (several cases: comparison.csv and one folder per case)
+    /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Print summary.json on stdout instead of the readable summary.
     #[arg(long)]
     pub json: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
+    /// [default: no report].
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }
 
 /// Arguments of `drillpath backanalyze`.
@@ -103,12 +128,19 @@ pub struct BackanalyzeArgs {
     /// Step length [default: the case's [bit_rock] step, 1 m].
     #[arg(long, value_name = "LENGTH")]
     pub step: Option<String>,
-    /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate).
+    /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate) [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Print summary.json on stdout instead of the readable summary.
     #[arg(long)]
     pub json: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
+    /// [default: no report].
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }
 
 /// Arguments of `drillpath solve`.
@@ -122,12 +154,19 @@ pub struct SolveArgs {
     /// Print summary.json on stdout instead of the readable summary.
     #[arg(long)]
     pub json: bool,
-    /// Write summary.json and string.csv into this directory.
+    /// Write summary.json and string.csv into this directory [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Write results of a non-converged solve, flagged `converged: false`, instead of failing.
     #[arg(long)]
     pub allow_unconverged: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
+    /// [default: no report].
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }
 
 /// Arguments of `drillpath survey`.
@@ -135,7 +174,7 @@ pub struct SolveArgs {
 pub struct SurveyArgs {
     /// Case file (.toml) or survey CSV.
     pub input: PathBuf,
-    /// Write the positions CSV to this file (stdout shows the summary).
+    /// Write the positions CSV to this file (stdout shows the summary) [default: no file].
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Unit of a survey MD column whose header has none, e.g. ft [default: m, or the case file's survey_md_unit].
@@ -161,13 +200,14 @@ pub struct LoadsArgs {
     /// Bit depth step [default: 30 m].
     #[arg(long, value_name = "LENGTH")]
     pub every: Option<String>,
-    /// Write loads.csv (and calibration.csv, calibration.json with --measured) into this directory.
+    /// Write loads.csv (and calibration.csv, calibration.json with --measured) into this directory
+    /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Also run the stiff whole-string FEM for every row (slow; also on with [solver] fidelity = "whole").
     #[arg(long)]
     pub stiff: bool,
-    /// Measured hook loads (and torques) to fit the friction factor per hole section to.
+    /// Measured hook loads (and torques) to fit the friction factor per hole section to [default: none].
     #[arg(long, value_name = "FILE")]
     pub measured: Option<PathBuf>,
     /// Weight on bit of the drilling and sliding rows (e.g. "100 kN", "20 klbf") [default: the case's wob].

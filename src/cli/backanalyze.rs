@@ -149,6 +149,10 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         )
         .with_context(ctx)?;
     }
+    if let Some(file) = &a.report {
+        let split = a.calibrate.then_some(split_md);
+        crate::report::predict_report::write_backanalyze(file, &case, &results, split, a.units)?;
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());

@@ -2,6 +2,7 @@
 
 pub mod args;
 pub mod backanalyze;
+pub mod init;
 pub mod loads;
 pub mod predict;
 pub mod solve;
@@ -19,6 +20,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Predict(a) => predict::run(a),
         Command::Backanalyze(a) => backanalyze::run(a),
         Command::Loads(a) => loads::run(a),
+        Command::Init(a) => init::run(a.file, a.force),
     }
 }
 

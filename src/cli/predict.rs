@@ -190,6 +190,10 @@ pub fn run(a: PredictArgs) -> anyhow::Result<()> {
         )
         .with_context(ctx)?;
     }
+    if let Some(file) = &a.report {
+        let list: Vec<_> = runs.iter().map(|r| (&r.case, &r.pred)).collect();
+        crate::report::predict_report::write_predict(file, &list, a.units)?;
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());

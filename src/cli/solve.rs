@@ -68,6 +68,9 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         write_atomic(&dir.join("string.csv"), csv.as_bytes())
             .with_context(|| format!("cannot write {}", dir.display()))?;
     }
+    if let Some(file) = &a.report {
+        crate::report::solve_report::write(file, &case, &res, &sol.stats, sol.converged, a.units)?;
+    }
     if a.json {
         println!("{}", serde_json::to_string_pretty(&summary)?);
         return Ok(());

@@ -1,8 +1,15 @@
 //! Outputs: CSV and JSON files with the interface's names, written atomically.
 
+pub mod display_units;
+pub mod html;
+pub mod inputs;
 pub mod loads_output;
+pub mod plots;
 pub mod predict_output;
+pub mod predict_report;
+pub mod schematic;
 pub mod solve_output;
+pub mod solve_report;
 pub mod survey_table;
 
 use std::io::Write;

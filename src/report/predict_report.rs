@@ -1,0 +1,608 @@
+//! HTML reports of `drillpath predict` and `drillpath backanalyze`: inclination and azimuth
+//! against MD (predicted vs measured), plan view and vertical section, bit build/walk force and
+//! tilt against MD, and the errors against the measured stations.
+
+use super::display_units::UnitSystem;
+use super::html::{check_finite_text, Page};
+use super::inputs::echo_inputs;
+use super::plots::{render, Chart, Series, Style};
+use crate::case::Case;
+use crate::geometry::{Vec3, WellPath};
+use crate::predict::backanalysis::IntervalResult;
+use crate::predict::march::Prediction;
+use crate::predict::track::{interval_rates, tracking_errors, trajectory_rows};
+
+/// Ids of the figures of a predict report (the tests look for each).
+pub const PREDICT_FIGURES: &[&str] = &[
+    "inclination",
+    "azimuth",
+    "plan-view",
+    "vertical-section",
+    "bit-forces",
+    "bit-tilt",
+    "errors",
+];
+
+/// Ids of the figures of a backanalyze report.
+pub const BACKANALYZE_FIGURES: &[&str] = PREDICT_FIGURES;
+
+/// Measured stations of `path` between `from` and `to` MD: (md, inc rad, azi rad, position).
+fn measured(path: &WellPath, from: f64, to: f64) -> Vec<(f64, f64, f64, Vec3)> {
+    path.stations()
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.md_m >= from - 1e-6 && s.md_m <= to + 1e-6)
+        .map(|(k, s)| (s.md_m, s.inc_rad, s.azi_rad, path.station_position(k)))
+        .collect()
+}
+
+/// Azimuth in degrees kept continuous near `reference` (no jump at 0/360 within a plot).
+fn azi_deg(azi_rad: f64, reference_rad: f64) -> f64 {
+    let d = crate::geometry::survey::wrap_pi(azi_rad - reference_rad);
+    (reference_rad + d).to_degrees()
+}
+
+struct Trajectories<'a> {
+    units: UnitSystem,
+    /// Section azimuth, rad.
+    section_azi: f64,
+    /// Reference azimuth for continuous azimuth plots, rad.
+    azi_ref: f64,
+    measured: &'a [(f64, f64, f64, Vec3)],
+}
+
+impl Trajectories<'_> {
+    fn vs(&self, p: &Vec3) -> f64 {
+        p.x * self.section_azi.cos() + p.y * self.section_azi.sin()
+    }
+    /// Inclination, azimuth, plan and section charts with the measured series added.
+    fn charts(&self) -> [Chart; 4] {
+        let du = self.units.depth();
+        let md = format!("MD [{}]", du.label);
+        let m = self.measured;
+        let inc = Chart::new("Inclination", &md, "inclination [deg]").with(Series::new(
+            "measured",
+            m.iter().map(|s| (du.show(s.0), s.1.to_degrees())).collect(),
+            Style::Points,
+            6,
+        ));
+        let azi = Chart::new("Azimuth", &md, "azimuth [deg]").with(Series::new(
+            "measured",
+            m.iter().map(|s| (du.show(s.0), azi_deg(s.2, self.azi_ref))).collect(),
+            Style::Points,
+            6,
+        ));
+        let mut plan = Chart::new(
+            "Plan view",
+            &format!("east [{}]", du.label),
+            &format!("north [{}]", du.label),
+        )
+        .with(Series::new(
+            "measured",
+            m.iter().map(|s| (du.show(s.3.y), du.show(s.3.x))).collect(),
+            Style::LinePoints,
+            6,
+        ));
+        plan.equal_aspect = true;
+        plan.size = (860, 520);
+        let mut sec = Chart::new(
+            &format!(
+                "Vertical section along azimuth {:.1} deg",
+                self.section_azi.to_degrees().rem_euclid(360.0)
+            ),
+            &format!("vertical section [{}]", du.label),
+            &format!("TVD [{}]", du.label),
+        )
+        .with(Series::new(
+            "measured",
+            m.iter().map(|s| (du.show(self.vs(&s.3)), du.show(s.3.z))).collect(),
+            Style::LinePoints,
+            6,
+        ));
+        sec.equal_aspect = true;
+        sec.y_down = true;
+        sec.size = (860, 520);
+        [inc, azi, plan, sec]
+    }
+}
+
+/// The predict report's HTML text for one or several cases predicted over the same interval.
+pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Result<String, String> {
+    let (first_case, first) = *runs.first().ok_or("no prediction to report")?;
+    let (du, fu) = (units.depth(), units.force());
+    let title = if runs.len() == 1 {
+        format!("drillpath predict: {}", first_case.name)
+    } else {
+        format!("drillpath predict: {} cases compared", runs.len())
+    };
+    let mut page = Page::new(&title);
+    page.heading("Key results");
+    let mut rows = Vec::new();
+    for (case, pred) in runs {
+        let rt = interval_rates(pred);
+        let end = pred.steps.last().ok_or("empty prediction")?;
+        let trows = trajectory_rows(pred, Some(&case.well.path));
+        let tr = tracking_errors(&trows, pred.from_md_m);
+        rows.push(vec![
+            case.name.clone(),
+            format!("{} - {}", du.fmt(pred.from_md_m, 1), du.fmt(pred.to_md_m, 1)),
+            units.dogleg().fmt(rt.build_rate_rad_per_30m / 30.0, 3),
+            units.dogleg().fmt(rt.walk_rate_rad_per_30m / 30.0, 3),
+            format!(
+                "{:.3} / {:.3} deg",
+                end.inc_rad.to_degrees(),
+                end.azi_rad.to_degrees().rem_euclid(360.0)
+            ),
+            fu.fmt(rt.mean_build_force_n, 3),
+            fu.fmt(rt.mean_walk_force_n, 3),
+            tr.map(|t| {
+                format!(
+                    "{:+.3} / {:+.3} deg ({} stations)",
+                    t.end_inc_err_rad.to_degrees(),
+                    t.end_azi_err_rad.to_degrees(),
+                    t.stations
+                )
+            })
+            .unwrap_or_else(|| "no measured stations".into()),
+        ]);
+    }
+    page.table(
+        &[
+            "case".into(),
+            "interval".into(),
+            "build rate".into(),
+            "walk rate".into(),
+            "end inc / azi".into(),
+            "mean build force".into(),
+            "mean walk force".into(),
+            "end error inc / azi".into(),
+        ],
+        &rows,
+    );
+    page.note("build force + = toward the high side, walk force + = to the right; errors are predicted - measured.");
+
+    let from = first.from_md_m;
+    let to = runs.iter().map(|r| r.1.to_md_m).fold(first.to_md_m, f64::max);
+    let context = (to - from).max(30.0);
+    let meas = measured(&first_case.well.path, from - context, to);
+    let start = first.path.point_at(from);
+    let tj = Trajectories {
+        units,
+        section_azi: start.azi_rad,
+        azi_ref: start.azi_rad,
+        measured: &meas,
+    };
+    let [mut inc, mut azi, mut plan, mut sec] = tj.charts();
+    let md = format!("MD [{}]", du.label);
+    let mut forces = Chart::new("Bit side forces", &md, &format!("force [{}]", fu.label));
+    forces.zero_line = true;
+    let mut tilt = Chart::new("Bit tilt", &md, "tilt [deg]");
+    tilt.zero_line = true;
+    let mut errors = Chart::new(
+        "Errors at the measured stations (predicted - measured)",
+        &md,
+        "error [deg]",
+    );
+    errors.zero_line = true;
+    let mut any_error = false;
+    for (k, (case, pred)) in runs.iter().enumerate() {
+        let label = |what: &str| {
+            if runs.len() == 1 {
+                what.to_string()
+            } else {
+                format!("{what}: {}", case.name)
+            }
+        };
+        let c = if k == 0 { 0 } else { k + 1 };
+        let n = 200usize;
+        let pts: Vec<_> = (0..=n)
+            .map(|i| {
+                pred.path
+                    .point_at(pred.from_md_m + (pred.to_md_m - pred.from_md_m) * i as f64 / n as f64)
+            })
+            .collect();
+        inc = inc.with(Series::new(
+            &label("predicted"),
+            pts.iter().map(|p| (du.show(p.md_m), p.inc_rad.to_degrees())).collect(),
+            Style::Line,
+            c,
+        ));
+        azi = azi.with(Series::new(
+            &label("predicted"),
+            pts.iter()
+                .map(|p| (du.show(p.md_m), azi_deg(p.azi_rad, tj.azi_ref)))
+                .collect(),
+            Style::Line,
+            c,
+        ));
+        plan = plan.with(Series::new(
+            &label("predicted"),
+            pts.iter()
+                .map(|p| (du.show(p.position.y), du.show(p.position.x)))
+                .collect(),
+            Style::Line,
+            c,
+        ));
+        sec = sec.with(Series::new(
+            &label("predicted"),
+            pts.iter()
+                .map(|p| (du.show(tj.vs(&p.position)), du.show(p.position.z)))
+                .collect(),
+            Style::Line,
+            c,
+        ));
+        let steps = &pred.steps;
+        forces = forces
+            .with(Series::new(
+                &label("build force"),
+                steps
+                    .iter()
+                    .map(|s| (du.show(s.md_m), fu.show(s.bit.build_force_n)))
+                    .collect(),
+                Style::LinePoints,
+                2 * k,
+            ))
+            .with(Series::new(
+                &label("walk force"),
+                steps
+                    .iter()
+                    .map(|s| (du.show(s.md_m), fu.show(s.bit.walk_force_n)))
+                    .collect(),
+                Style::LinePoints,
+                2 * k + 1,
+            ));
+        tilt = tilt
+            .with(Series::new(
+                &label("tilt inclination"),
+                steps
+                    .iter()
+                    .map(|s| (du.show(s.md_m), s.bit.tilt_inc_rad.to_degrees()))
+                    .collect(),
+                Style::LinePoints,
+                2 * k,
+            ))
+            .with(Series::new(
+                &label("tilt azimuth"),
+                steps
+                    .iter()
+                    .map(|s| (du.show(s.md_m), s.bit.tilt_azi_rad.to_degrees()))
+                    .collect(),
+                Style::LinePoints,
+                2 * k + 1,
+            ));
+        let trows = trajectory_rows(pred, Some(&case.well.path));
+        let errs: Vec<(f64, (f64, f64))> = trows
+            .iter()
+            .filter(|r| r.md_m > pred.from_md_m + 1e-6)
+            .filter_map(|r| r.errors().map(|e| (r.md_m, e)))
+            .collect();
+        any_error |= !errs.is_empty();
+        errors = errors
+            .with(Series::new(
+                &label("inclination error"),
+                errs.iter().map(|(m, e)| (du.show(*m), e.0.to_degrees())).collect(),
+                Style::LinePoints,
+                2 * k,
+            ))
+            .with(Series::new(
+                &label("azimuth error"),
+                errs.iter().map(|(m, e)| (du.show(*m), e.1.to_degrees())).collect(),
+                Style::LinePoints,
+                2 * k + 1,
+            ));
+    }
+    page.heading("Trajectory");
+    page.figure(
+        "inclination",
+        &render(&inc)?,
+        "predicted (line) and measured survey stations (points)",
+    );
+    page.figure(
+        "azimuth",
+        &render(&azi)?,
+        "predicted (line) and measured survey stations (points)",
+    );
+    page.figure(
+        "plan-view",
+        &render(&plan)?,
+        "north against east, same scale on both axes",
+    );
+    page.figure(
+        "vertical-section",
+        &render(&sec)?,
+        "TVD against the horizontal distance along the azimuth at the start, same scale on both axes",
+    );
+    page.heading("Bit");
+    page.figure("bit-forces", &render(&forces)?, "bit side forces at each solved step");
+    page.figure(
+        "bit-tilt",
+        &render(&tilt)?,
+        "bit tilt against the hole axis at each solved step",
+    );
+    page.heading("Errors");
+    if any_error {
+        page.figure(
+            "errors",
+            &render(&errors)?,
+            "predicted minus measured at the survey stations drilled ahead",
+        );
+    } else {
+        // keep the figure (tests and readers expect it), with the zero line only
+        let mut empty = Chart::new(
+            "Errors: no measured stations in the predicted interval",
+            &md,
+            "error [deg]",
+        )
+        .with(Series::new(
+            "no measured stations",
+            vec![(du.show(from), 0.0), (du.show(to), 0.0)],
+            Style::Thin,
+            7,
+        ));
+        empty.zero_line = true;
+        page.figure(
+            "errors",
+            &render(&empty)?,
+            "a pre-drill prediction has nothing to compare with",
+        );
+    }
+    for (case, pred) in runs {
+        echo_inputs(&mut page, case, pred.from_md_m, units)?;
+    }
+    let html = page.finish();
+    check_finite_text(&html)?;
+    Ok(html)
+}
+
+/// The backanalyze report's HTML text; `split_md_m` marks where calibration ends (with --calibrate).
+pub fn backanalyze_report(
+    case: &Case,
+    results: &[IntervalResult],
+    split_md_m: Option<f64>,
+    units: UnitSystem,
+) -> Result<String, String> {
+    let (du, fu) = (units.depth(), units.force());
+    let (f, l) = (
+        results.first().ok_or("no interval to report")?,
+        results.last().ok_or("no interval")?,
+    );
+    let mut page = Page::new(&format!("drillpath backanalyze: {}", case.name));
+    page.heading("Key results");
+    let stats = crate::predict::backanalysis::error_stats(results);
+    let mut kv = vec![
+        ("intervals".to_string(), results.len().to_string()),
+        (
+            "range".into(),
+            format!(
+                "{} - {}",
+                du.fmt(f.interval.from_md_m, 1),
+                du.fmt(l.interval.to_md_m, 1)
+            ),
+        ),
+        (
+            "mean |inclination error| per 100 m".into(),
+            format!("{:.3} deg", stats.inc_mean_abs_per_100m_rad.to_degrees()),
+        ),
+        (
+            "mean |azimuth error| per 100 m".into(),
+            format!("{:.3} deg", stats.azi_mean_abs_per_100m_rad.to_degrees()),
+        ),
+        (
+            "RMS error per 100 m, inclination / azimuth".into(),
+            format!(
+                "{:.3} / {:.3} deg",
+                stats.inc_rms_per_100m_rad.to_degrees(),
+                stats.azi_rms_per_100m_rad.to_degrees()
+            ),
+        ),
+    ];
+    if let Some(s) = split_md_m {
+        kv.push((
+            "calibration".into(),
+            format!("fitted on the intervals above {}, scored below", du.fmt(s, 1)),
+        ));
+    }
+    page.key_values(&kv);
+    let meas = measured(&case.well.path, f.interval.from_md_m, l.interval.to_md_m);
+    let azi_ref = f.interval.measured.1;
+    let tj = Trajectories {
+        units,
+        section_azi: case.well.path.point_at(l.interval.to_md_m).azi_rad,
+        azi_ref,
+        measured: &meas,
+    };
+    let [mut inc, mut azi, mut plan, mut sec] = tj.charts();
+    let end = |r: &IntervalResult| du.show(r.interval.to_md_m);
+    inc = inc.with(Series::new(
+        "predicted (interval ends)",
+        results.iter().map(|r| (end(r), r.inc_rad.to_degrees())).collect(),
+        Style::Points,
+        1,
+    ));
+    azi = azi.with(Series::new(
+        "predicted (interval ends)",
+        results.iter().map(|r| (end(r), azi_deg(r.azi_rad, azi_ref))).collect(),
+        Style::Points,
+        1,
+    ));
+    plan = plan.with(Series::new(
+        "predicted (interval ends)",
+        results
+            .iter()
+            .map(|r| (du.show(r.position.y), du.show(r.position.x)))
+            .collect(),
+        Style::Points,
+        1,
+    ));
+    sec = sec.with(Series::new(
+        "predicted (interval ends)",
+        results
+            .iter()
+            .map(|r| (du.show(tj.vs(&r.position)), du.show(r.position.z)))
+            .collect(),
+        Style::Points,
+        1,
+    ));
+    let md = format!("MD [{}]", du.label);
+    let start = |r: &IntervalResult| du.show(r.interval.from_md_m);
+    let mut forces = Chart::new(
+        "Bit side forces at the interval starts",
+        &md,
+        &format!("force [{}]", fu.label),
+    )
+    .with(Series::new(
+        "build force",
+        results
+            .iter()
+            .map(|r| (start(r), fu.show(r.bit_start.build_force_n)))
+            .collect(),
+        Style::LinePoints,
+        0,
+    ))
+    .with(Series::new(
+        "walk force",
+        results
+            .iter()
+            .map(|r| (start(r), fu.show(r.bit_start.walk_force_n)))
+            .collect(),
+        Style::LinePoints,
+        1,
+    ));
+    forces.zero_line = true;
+    let mut tilt = Chart::new("Bit tilt at the interval starts", &md, "tilt [deg]")
+        .with(Series::new(
+            "tilt inclination",
+            results
+                .iter()
+                .map(|r| (start(r), r.bit_start.tilt_inc_rad.to_degrees()))
+                .collect(),
+            Style::LinePoints,
+            0,
+        ))
+        .with(Series::new(
+            "tilt azimuth",
+            results
+                .iter()
+                .map(|r| (start(r), r.bit_start.tilt_azi_rad.to_degrees()))
+                .collect(),
+            Style::LinePoints,
+            1,
+        ));
+    tilt.zero_line = true;
+    let per100 = |e: f64, r: &IntervalResult| e.to_degrees() * 100.0 / r.length_m().max(1e-9);
+    let mut errors = Chart::new(
+        "Per-interval errors (predicted - measured) per 100 m",
+        &md,
+        "error [deg/100 m]",
+    )
+    .with(Series::new(
+        "inclination error",
+        results.iter().map(|r| (end(r), per100(r.inc_err_rad(), r))).collect(),
+        Style::LinePoints,
+        0,
+    ))
+    .with(Series::new(
+        "azimuth error",
+        results.iter().map(|r| (end(r), per100(r.azi_err_rad(), r))).collect(),
+        Style::LinePoints,
+        1,
+    ));
+    errors.zero_line = true;
+    page.heading("Trajectory");
+    page.figure(
+        "inclination",
+        &render(&inc)?,
+        "measured stations and the predicted value at each interval's end",
+    );
+    page.figure(
+        "azimuth",
+        &render(&azi)?,
+        "measured stations and the predicted value at each interval's end",
+    );
+    page.figure(
+        "plan-view",
+        &render(&plan)?,
+        "north against east, same scale on both axes",
+    );
+    page.figure(
+        "vertical-section",
+        &render(&sec)?,
+        "TVD against the horizontal distance along the azimuth at the last station, same scale on both axes",
+    );
+    page.heading("Bit");
+    page.figure(
+        "bit-forces",
+        &render(&forces)?,
+        "bit side forces on the measured hole at each interval's start",
+    );
+    page.figure("bit-tilt", &render(&tilt)?, "bit tilt at each interval's start");
+    page.heading("Errors");
+    page.figure(
+        "errors",
+        &render(&errors)?,
+        "error at each interval's end divided by its length",
+    );
+    let rows: Vec<Vec<String>> = results
+        .iter()
+        .map(|r| {
+            vec![
+                format!(
+                    "{} - {}",
+                    du.fmt(r.interval.from_md_m, 1),
+                    du.fmt(r.interval.to_md_m, 1)
+                ),
+                format!(
+                    "{:.3} / {:.3}",
+                    r.interval.measured.0.to_degrees(),
+                    r.interval.measured.1.to_degrees()
+                ),
+                format!(
+                    "{:.3} / {:.3}",
+                    r.inc_rad.to_degrees(),
+                    r.azi_rad.to_degrees().rem_euclid(360.0)
+                ),
+                format!(
+                    "{:+.3} / {:+.3}",
+                    r.inc_err_rad().to_degrees(),
+                    r.azi_err_rad().to_degrees()
+                ),
+                fu.fmt(r.bit_start.build_force_n, 3),
+                fu.fmt(r.bit_start.walk_force_n, 3),
+            ]
+        })
+        .collect();
+    page.table(
+        &[
+            "interval".into(),
+            "measured inc / azi [deg]".into(),
+            "predicted inc / azi [deg]".into(),
+            "error inc / azi [deg]".into(),
+            "build force".into(),
+            "walk force".into(),
+        ],
+        &rows,
+    );
+    echo_inputs(&mut page, case, f.interval.from_md_m, units)?;
+    let html = page.finish();
+    check_finite_text(&html)?;
+    Ok(html)
+}
+
+/// Build the predict report and write it atomically to `file`.
+pub fn write_predict(file: &std::path::Path, runs: &[(&Case, &Prediction)], units: UnitSystem) -> anyhow::Result<()> {
+    let html = predict_report(runs, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
+    super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+}
+
+/// Build the backanalyze report and write it atomically to `file`.
+pub fn write_backanalyze(
+    file: &std::path::Path,
+    case: &Case,
+    results: &[IntervalResult],
+    split_md_m: Option<f64>,
+    units: UnitSystem,
+) -> anyhow::Result<()> {
+    let html = backanalyze_report(case, results, split_md_m, units)
+        .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
+    super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+}

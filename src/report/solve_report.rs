@@ -1,0 +1,286 @@
+//! HTML report of `drillpath solve`: inputs, key results and plots along the string.
+
+use super::display_units::UnitSystem;
+use super::html::{check_finite_text, Page};
+use super::inputs::echo_inputs;
+use super::plots::{render, Chart, Series, Style};
+use super::schematic::shown_length_m;
+use super::solve_output::CONTACT_THRESHOLD_N;
+use crate::case::Case;
+use crate::fem::results::SolveResults;
+use crate::fem::solve::SolveStats;
+
+/// Ids of the solve report's figures (the tests look for each).
+pub const SOLVE_FIGURES: &[&str] = &[
+    "bha-schematic",
+    "contact-force",
+    "deflection-high",
+    "deflection-right",
+    "axial-force",
+    "torque",
+    "bending-stress",
+];
+
+/// Contact nodes closer than this along the string form one contact zone, m.
+pub const ZONE_GAP_M: f64 = 1.5;
+
+/// Bending stress at the outer fibre, Pa: M (OD/2) / I of the body at distance `x_m` from the bit.
+pub fn bending_stress_pa(case: &Case, x_m: f64, moment_nm: f64) -> f64 {
+    let c = case.string.component_at(x_m.max(0.0));
+    let i = c.inertia_m4();
+    if i > 0.0 {
+        moment_nm * c.body_od_m / 2.0 / i
+    } else {
+        0.0
+    }
+}
+
+/// The report's HTML text.
+pub fn solve_report(
+    case: &Case,
+    res: &SolveResults,
+    stats: &SolveStats,
+    converged: bool,
+    units: UnitSystem,
+) -> Result<String, String> {
+    let (du, su, fu, tu, pu) = (
+        units.depth(),
+        units.small_length(),
+        units.force(),
+        units.torque(),
+        units.stress(),
+    );
+    let b = &res.bit;
+    let mut page = Page::new(&format!("drillpath solve: {}", case.name));
+    if !converged {
+        page.warning("NOT CONVERGED: the results below are flagged and not valid.");
+    }
+    page.heading("Key results");
+    let contacts: Vec<_> = res
+        .nodes
+        .iter()
+        .filter(|n| n.contact_force_n > CONTACT_THRESHOLD_N)
+        .collect();
+    let max_contact = contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
+    let mut kv = vec![
+        ("bit MD".to_string(), du.fmt(b.md_m, 2)),
+        ("weight on bit".into(), fu.fmt(b.wob_n, 2)),
+        ("bit build force (+ = up)".into(), fu.fmt(b.build_force_n, 3)),
+        ("bit walk force (+ = right)".into(), fu.fmt(b.walk_force_n, 3)),
+        (
+            "bit tilt, inclination".into(),
+            format!("{:+.4} deg", b.tilt_inc_rad.to_degrees()),
+        ),
+        (
+            "bit tilt, azimuth".into(),
+            format!("{:+.4} deg", b.tilt_azi_rad.to_degrees()),
+        ),
+        ("bit torque".into(), tu.fmt(b.torque_nm, 2)),
+        ("hook load".into(), fu.fmt(res.hook_load_n, 1)),
+        ("surface torque".into(), tu.fmt(res.surface_torque_nm, 2)),
+        ("contact nodes".into(), contacts.len().to_string()),
+        ("largest contact force".into(), fu.fmt(max_contact, 2)),
+    ];
+    kv.push((
+        "solver".into(),
+        format!(
+            "{} ({} iterations, {} factorizations, {:.3} s)",
+            if converged { "converged" } else { "NOT converged" },
+            stats.iterations,
+            stats.factorizations,
+            stats.seconds
+        ),
+    ));
+    kv.push((
+        "equilibrium error".into(),
+        format!(
+            "{:.1e} of the largest force",
+            res.force_imbalance_n.norm() / res.largest_force_n.max(1.0)
+        ),
+    ));
+    page.key_values(&kv);
+    // contact zones in the shown bottom of the string: runs of neighbouring contact nodes
+    let shown = shown_length_m(&case.string);
+    let mut zones: Vec<Vec<&crate::fem::results::NodeResult>> = Vec::new();
+    for n in contacts.iter().filter(|n| b.md_m - n.md_m < shown) {
+        match zones.last_mut() {
+            Some(z) if z.last().is_some_and(|p| (p.md_m - n.md_m).abs() < ZONE_GAP_M) => z.push(n),
+            _ => zones.push(vec![n]),
+        }
+    }
+    let near: Vec<Vec<String>> = zones
+        .iter()
+        .map(|z| {
+            let (lo, hi) = (b.md_m - z[0].md_m, b.md_m - z[z.len() - 1].md_m);
+            let total: f64 = z.iter().map(|n| n.contact_force_n).sum();
+            let peak = z
+                .iter()
+                .copied()
+                .fold(z[0], |a, n| if n.contact_force_n > a.contact_force_n { n } else { a });
+            vec![
+                if z.len() == 1 {
+                    du.fmt(lo, 2)
+                } else {
+                    format!("{} - {}", du.fmt(lo, 2), du.fmt(hi, 2))
+                },
+                z.len().to_string(),
+                fu.fmt(total, 2),
+                fu.fmt(peak.contact_force_n, 2),
+                format!("{:.0} deg", peak.contact_angle_deg),
+            ]
+        })
+        .collect();
+    if !near.is_empty() {
+        page.note("contact zones in the BHA (angle of the largest force: 0 = high side, 90 = right):");
+        page.table(
+            &[
+                "above the bit".into(),
+                "nodes".into(),
+                "total normal force".into(),
+                "largest".into(),
+                "angle".into(),
+            ],
+            &near,
+        );
+    }
+
+    echo_inputs(&mut page, case, b.md_m, units)?;
+
+    page.heading("Along the string");
+    let md_label = format!("MD [{}]", du.label);
+    let along = |f: &dyn Fn(&crate::fem::results::NodeResult) -> f64| -> Vec<(f64, f64)> {
+        res.nodes.iter().map(|n| (du.show(n.md_m), f(n))).collect()
+    };
+    let contact = Chart::new(
+        "Wall contact force",
+        &md_label,
+        &format!("contact force [{}]", fu.label),
+    )
+    .with(Series::new(
+        "contact force",
+        along(&|n| fu.show(n.contact_force_n)),
+        Style::Line,
+        1,
+    ));
+    page.figure(
+        "contact-force",
+        &render(&contact)?,
+        "normal force of the wall on the string at each node",
+    );
+
+    let bha_len = shown_length_m(&case.string);
+    let bha: Vec<_> = res.nodes.iter().filter(|n| b.md_m - n.md_m <= bha_len + 1e-9).collect();
+    let x = |n: &crate::fem::results::NodeResult| du.show(b.md_m - n.md_m);
+    for (id, title, dir, f) in [
+        (
+            "deflection-high",
+            "BHA deflection in the hole: high side",
+            "toward the high side",
+            (|n: &crate::fem::results::NodeResult| n.disp_high_m) as fn(&crate::fem::results::NodeResult) -> f64,
+        ),
+        (
+            "deflection-right",
+            "BHA deflection in the hole: right side",
+            "toward the right side",
+            |n: &crate::fem::results::NodeResult| n.disp_right_m,
+        ),
+    ] {
+        let mut c = Chart::new(
+            title,
+            &format!("distance from the bit [{}]", du.label),
+            &format!("displacement {dir} [{}]", su.label),
+        )
+        .with(Series::new(
+            "wall (+ radial clearance)",
+            bha.iter().map(|n| (x(n), su.show(n.clearance_m))).collect(),
+            Style::Thin,
+            6,
+        ))
+        .with(Series::new(
+            "wall (- radial clearance)",
+            bha.iter().map(|n| (x(n), -su.show(n.clearance_m))).collect(),
+            Style::Thin,
+            7,
+        ))
+        .with(Series::new(
+            "string axis",
+            bha.iter().map(|n| (x(n), su.show(f(n)))).collect(),
+            Style::LinePoints,
+            0,
+        ));
+        c.zero_line = true;
+        page.figure(
+            id,
+            &render(&c)?,
+            &format!(
+                "displacement of the string axis from the hole axis, exaggerated: {} across against {} along",
+                su.label, du.label
+            ),
+        );
+    }
+
+    let axial = Chart::new(
+        "Effective axial force (tension +)",
+        &md_label,
+        &format!("axial force [{}]", fu.label),
+    )
+    .with(Series::new(
+        "axial force",
+        along(&|n| fu.show(n.axial_force_n)),
+        Style::Line,
+        0,
+    ));
+    let mut axial = axial;
+    axial.zero_line = true;
+    page.figure(
+        "axial-force",
+        &render(&axial)?,
+        "effective axial force; negative is compression",
+    );
+    let torque = Chart::new("Torque", &md_label, &format!("torque [{}]", tu.label)).with(Series::new(
+        "torque",
+        along(&|n| tu.show(n.torque_nm)),
+        Style::Line,
+        2,
+    ));
+    page.figure("torque", &render(&torque)?, "torque carried by the string");
+    let stress = Chart::new(
+        "Bending stress and von Mises stress",
+        &md_label,
+        &format!("stress [{}]", pu.label),
+    )
+    .with(Series::new(
+        "bending stress",
+        along(&|n| pu.show(bending_stress_pa(case, b.md_m - n.md_m, n.bending_moment_nm))),
+        Style::Line,
+        3,
+    ))
+    .with(Series::new(
+        "von Mises",
+        along(&|n| pu.show(n.von_mises_pa)),
+        Style::Line,
+        4,
+    ));
+    page.figure(
+        "bending-stress",
+        &render(&stress)?,
+        "bending stress M (OD/2)/I of the body section; von Mises at the outer fibre",
+    );
+    let html = page.finish();
+    check_finite_text(&html)?;
+    Ok(html)
+}
+
+/// Build the report and write it atomically to `file`.
+pub fn write(
+    file: &std::path::Path,
+    case: &Case,
+    res: &SolveResults,
+    stats: &SolveStats,
+    converged: bool,
+    units: UnitSystem,
+) -> anyhow::Result<()> {
+    let html = solve_report(case, res, stats, converged, units)
+        .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
+    super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+}
