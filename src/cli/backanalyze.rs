@@ -4,7 +4,9 @@
 use super::args::BackanalyzeArgs;
 use super::parse_length_option;
 use super::predict::{length_opt, load_for_prediction, progress_done, progress_line, settings_for};
-use crate::predict::backanalysis::{error_stats, intervals, run_intervals, Interval, IntervalPlan};
+use crate::predict::backanalysis::{
+    error_stats, intervals, run_intervals, run_intervals_skipping, Interval, IntervalPlan,
+};
 use crate::predict::calibrate::{calibrate, FitParameter};
 use crate::predict::law::LawParams;
 use crate::predict::march::{MIN_MODEL_LENGTH_M, MIN_STEP_M};
@@ -87,11 +89,45 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
     let t0 = std::time::Instant::now();
     let fail = |e: crate::predict::march::PredictError| anyhow::anyhow!("{name}: {e}");
     let mut warm = Vec::new();
-    let base = run_intervals(&case, &case.bit_rock, &list, &settings, &mut warm, |k, n| {
-        progress_line(&format!("backanalyze {name}: interval {k}/{n}"))
-    });
+    let (base, skipped) = run_intervals_skipping(
+        &case,
+        &case.bit_rock,
+        &list,
+        &settings,
+        &mut warm,
+        |k, n| progress_line(&format!("backanalyze {name}: interval {k}/{n}")),
+        false,
+    );
     progress_done();
-    let base = base.map_err(fail)?;
+    if base.is_empty() {
+        let (iv, e) = &skipped[0];
+        bail!(
+            "{name}: no interval could be predicted; the first ({:.1}-{:.1} m): {e}",
+            iv.from_md_m,
+            iv.to_md_m
+        );
+    }
+    // calibration and scoring use the intervals that could be predicted with the case's law
+    let list: Vec<Interval> = base.iter().map(|r| r.interval).collect();
+    let mut warm: Vec<_> = warm
+        .into_iter()
+        .zip(crate::predict::backanalysis::intervals(
+            survey,
+            &IntervalPlan {
+                from_md_m: from,
+                to_md_m: to,
+                horizon_m: horizon,
+            },
+        ))
+        .filter(|(_, iv)| list.iter().any(|l| l.from_md_m == iv.from_md_m))
+        .map(|(w, _)| w)
+        .collect();
+    if a.calibrate && list.len() < min_intervals {
+        bail!(
+            "{name}: only {} interval(s) could be predicted; calibration needs {min_intervals}",
+            list.len()
+        );
+    }
     let ncal = ((list.len() as f64 * a.split).round() as usize).clamp(2, list.len() - 2);
     let split_md = list[ncal].from_md_m;
     let stats_all = error_stats(&base);
@@ -106,6 +142,7 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         "inc_err_per_100m_deg": stats_all.inc_mean_abs_per_100m_rad.to_degrees(),
         "azi_err_per_100m_deg": stats_all.azi_mean_abs_per_100m_rad.to_degrees(),
         "errors": error_stats_json(&stats_all).map_err(|e| anyhow::anyhow!("internal error: {e}"))?,
+        "skipped_intervals": skipped.iter().map(|(iv, e)| json!({"from_md_m": iv.from_md_m, "to_md_m": iv.to_md_m, "reason": e.to_string()})).collect::<Vec<_>>(),
         "bit_rock": law_json(&case.bit_rock.law, &LawParams::at(&case.bit_rock, from), case.bit_rock.formations.len()).map_err(|e| anyhow::anyhow!("internal error: {e}"))?,
     });
     let mut results = base.clone();
@@ -158,6 +195,12 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!("backanalyze: {} ({})", case.name, name);
+    for (iv, e) in &skipped {
+        println!(
+            "  WARNING: interval {:.1}-{:.1} m skipped (not in the errors): {e}",
+            iv.from_md_m, iv.to_md_m
+        );
+    }
     println!(
         "  {} intervals from {:.1} m to {:.1} m (step {:.2} m): mean |error| per 100 m: inclination {:.3} deg, azimuth {:.3} deg (RMS {:.3} and {:.3})",
         base.len(),

@@ -93,38 +93,71 @@ pub fn intervals(path: &WellPath, plan: &IntervalPlan) -> Vec<Interval> {
 /// Predict each interval with the law parameters `bit_rock`; `warm` holds one warm start per
 /// interval: the solved state at its start, kept between calls with other parameters (as
 /// calibration makes); on the first call each interval starts from the previous one's end.
+/// The first interval that cannot be predicted stops the run with its error.
 pub fn run_intervals(
     case: &Case,
     bit_rock: &BitRock,
     list: &[Interval],
     settings: &MarchSettings,
     warm: &mut Vec<WarmStart>,
-    mut progress: impl FnMut(usize, usize),
+    progress: impl FnMut(usize, usize),
 ) -> Result<Vec<IntervalResult>, PredictError> {
+    let (done, mut failed) = run_intervals_skipping(case, bit_rock, list, settings, warm, progress, true);
+    match failed.pop() {
+        Some((_, e)) => Err(e),
+        None => Ok(done),
+    }
+}
+
+/// As [`run_intervals`], but an interval that cannot be predicted (a string solve that does not
+/// converge, an implicit step that finds no direction) is set aside with its error and the run
+/// goes on (unless `stop_at_first`). Returns the predicted intervals and the failed ones.
+#[allow(clippy::type_complexity)]
+pub fn run_intervals_skipping(
+    case: &Case,
+    bit_rock: &BitRock,
+    list: &[Interval],
+    settings: &MarchSettings,
+    warm: &mut Vec<WarmStart>,
+    mut progress: impl FnMut(usize, usize),
+    stop_at_first: bool,
+) -> (Vec<IntervalResult>, Vec<(Interval, PredictError)>) {
     warm.resize_with(list.len(), || None);
     let mut out = Vec::with_capacity(list.len());
+    let mut failed = Vec::new();
     let mut last_end: WarmStart = None;
     for (k, iv) in list.iter().enumerate() {
-        let start = hole_to(&case.well.path, iv.from_md_m)?;
         let mut w = match &warm[k] {
             Some(_) => warm[k].clone(),
             None => last_end.take(),
         };
-        let pred = predict_from(case, bit_rock, &start, iv.to_md_m, settings, &mut w, &mut |_| {})?;
-        warm[k] = pred.start_warm.clone();
-        last_end = w;
-        let end = pred.path.point_at(iv.to_md_m);
-        out.push(IntervalResult {
-            interval: *iv,
-            inc_rad: end.inc_rad,
-            azi_rad: end.azi_rad,
-            position: end.position,
-            bit_start: pred.steps[0].bit,
-            bit_end: pred.steps[pred.steps.len() - 1].bit,
-        });
+        let pred = hole_to(&case.well.path, iv.from_md_m)
+            .and_then(|start| predict_from(case, bit_rock, &start, iv.to_md_m, settings, &mut w, &mut |_| {}));
+        match pred {
+            Ok(pred) => {
+                warm[k] = pred.start_warm.clone();
+                last_end = w;
+                let end = pred.path.point_at(iv.to_md_m);
+                out.push(IntervalResult {
+                    interval: *iv,
+                    inc_rad: end.inc_rad,
+                    azi_rad: end.azi_rad,
+                    position: end.position,
+                    bit_start: pred.steps[0].bit,
+                    bit_end: pred.steps[pred.steps.len() - 1].bit,
+                });
+            }
+            Err(e) => {
+                tracing::warn!(from = iv.from_md_m, to = iv.to_md_m, error = %e, "interval skipped");
+                failed.push((*iv, e));
+                if stop_at_first {
+                    break;
+                }
+            }
+        }
         progress(k + 1, list.len());
     }
-    Ok(out)
+    (out, failed)
 }
 
 /// Error statistics over intervals (all per 100 m of interval length).
