@@ -242,7 +242,11 @@ fn extremes_inclination_exact_values() {
     assert_eq!(run("inclination 0 (vertical 1000 m)", &vertical), Outcome::Converged);
     for inc in [90.0, 120.0, 180.0] {
         let mut spec = Spec::new(build_hold(300.0, 6.0, inc, 100.0, 30.0));
-        spec.max_iterations = 100; // beyond 90 deg the solve may stop: keep the test short
+        if inc > 90.0 {
+            // beyond 90 deg the solve may stop (120 and 180 did not converge in 300 iterations
+            // either): 50 keep the test short
+            spec.max_iterations = 50;
+        }
         let o = run(&format!("inclination exactly {inc} deg"), &spec);
         if inc <= 90.0 {
             assert_eq!(o, Outcome::Converged, "a horizontal hold must converge");
@@ -257,7 +261,9 @@ fn extremes_dogleg_30_deg_per_30_m() {
     for mode in ["sliding", "drilling"] {
         let mut spec = Spec::new(build_hold(200.0, 30.0, 90.0, 20.0, 0.0));
         spec.mode = mode;
-        spec.max_iterations = 100;
+        if mode == "drilling" {
+            spec.max_iterations = 50; // did not converge in 300 either: keep the test short
+        }
         run(&format!("DLS 30 deg/30 m, {mode}"), &spec);
     }
 }
@@ -292,12 +298,14 @@ fn extremes_wob_to_three_times_helical() {
     let f_h = helical_chen_lin_cheatham(ei, w_b, std::f64::consts::FRAC_PI_2, (8.5 - 5.0) * 0.0254 / 2.0).unwrap();
     // (k, friction): below the sinusoidal onset without friction the solve must converge;
     // with sliding friction the compression grows up the horizontal and the solve may stop
-    // (100 iterations keep the test short).
+    // (50 iterations keep the test short; none of them converged in 300 either).
     for (k, friction) in [(0.0, 0.25), (0.5, 0.0), (0.5, 0.25), (1.0, 0.25), (3.0, 0.25)] {
         let mut spec = Spec::new(build_hold(300.0, 6.0, 90.0, 300.0, 0.0));
         spec.mode = "sliding";
         spec.friction = friction;
-        spec.max_iterations = 100;
+        if k > 0.0 && friction > 0.0 {
+            spec.max_iterations = 50;
+        }
         spec.wob_kn = k * f_h / 1e3;
         let o = run(
             &format!("WOB {k} x helical ({:.0} kN), friction {friction}", spec.wob_kn),

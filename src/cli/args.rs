@@ -128,6 +128,9 @@ pub struct SolveArgs {
     /// Write results of a non-converged solve, flagged `converged: false`, instead of failing.
     #[arg(long)]
     pub allow_unconverged: bool,
+    /// Model fidelity: auto, soft, bha, hybrid, whole [default: the case's [solver] fidelity].
+    #[arg(long, value_name = "LEVEL")]
+    pub fidelity: Option<String>,
 }
 
 /// Arguments of `drillpath survey`.

@@ -5,6 +5,7 @@ pub mod backanalyze;
 pub mod loads;
 pub mod predict;
 pub mod solve;
+pub mod solve_levels;
 pub mod survey;
 
 use crate::error::InputError;

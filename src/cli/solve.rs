@@ -27,6 +27,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     if case.string.components.is_empty() {
         bail!("{}: the case has no [[string]] components to solve", a.case.display());
     }
+    let choice = super::solve_levels::choice(&a, &case)?;
+    if choice.level != crate::fidelity::Level::Whole {
+        return super::solve_levels::run(&a, &case, choice);
+    }
     let model = Model::from_case(&case);
     let ctl = SolveControls {
         max_iterations: case.solver.max_iterations,
@@ -56,9 +60,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             if chatter.is_empty() { "none".into() } else { chatter.join(", ") }
         );
     }
-    let summary = summary_json(&res, &sol.stats, sol.converged, model.dofs(), model.nodes() - 1)
+    let mut summary = summary_json(&res, &sol.stats, sol.converged, model.dofs(), model.nodes() - 1)
         .map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let csv = string_csv(&res).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    let csv = super::solve_levels::annotate_whole(&case, &choice, &model, &res, sol.stats.seconds, &mut summary, csv)?;
     if let Some(dir) = &a.out {
         write_atomic(
             &dir.join("summary.json"),
@@ -75,6 +80,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     let b = &res.bit;
     let contacts: Vec<_> = res.nodes.iter().filter(|n| n.contact_force_n > 1.0).collect();
     println!("solve: {} ({})", case.name, a.case.display());
+    println!("  fidelity whole: {}", choice.reason);
     if !sol.converged {
         println!("  WARNING: NOT CONVERGED - results below are flagged and not valid");
     }

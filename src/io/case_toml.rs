@@ -658,11 +658,12 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         None | Some("auto") => Fidelity::Auto,
         Some("soft") => Fidelity::Soft,
         Some("bha") => Fidelity::Bha,
+        Some("hybrid") => Fidelity::Hybrid,
         Some("whole") => Fidelity::Whole,
         Some(other) => {
             return Err(s.error(
                 "fidelity",
-                format!("unknown fidelity `{other}` (expected auto, soft, bha, whole)"),
+                format!("unknown fidelity `{other}` (expected auto, soft, bha, hybrid, whole)"),
             ))
         }
     };

@@ -1,5 +1,6 @@
 //! Outputs: CSV and JSON files with the interface's names, written atomically.
 
+pub mod levels_output;
 pub mod loads_output;
 pub mod predict_output;
 pub mod solve_output;
