@@ -12,6 +12,7 @@
 
 #![warn(missing_docs)]
 
+pub mod accuracy;
 pub mod analytical;
 pub mod buckling_marks;
 pub mod case;

@@ -256,3 +256,52 @@ fn fidelity_cli_levels_write_the_interface_files() {
         "{err}"
     );
 }
+
+#[test]
+fn accuracy_preset_in_case_file_and_on_the_command_line() {
+    // Reference: the preset table of src/accuracy.rs; explicit keys win over `[solver]
+    // accuracy`; `--accuracy` wins over the case; unknown names are one clear error.
+    use drillpath::accuracy::Accuracy;
+    let src = Path::new("wells/seed-daqing");
+    let text: String = std::fs::read_to_string(src.join("case.toml"))
+        .unwrap()
+        .lines()
+        .filter(|l| {
+            !l.starts_with("element_length") && !l.starts_with("bha_element_length") && !l.starts_with("tolerance")
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(src.join("survey.csv"), dir.path().join("survey.csv")).unwrap();
+    let write = |solver: &str| {
+        let t = text.replace("[solver]\n", &format!("[solver]\n{solver}\n"));
+        std::fs::write(dir.path().join("case.toml"), t).unwrap();
+        load_case(&dir.path().join("case.toml"), &CaseOverrides::default())
+    };
+    let precise = write("accuracy = \"precise\"").unwrap();
+    let k = Accuracy::Precise.knobs();
+    assert_eq!(precise.solver.element_length_m, k.element_length_m);
+    assert_eq!(precise.solver.bha_element_length_m, k.bha_element_length_m);
+    assert_eq!(precise.solver.tolerance, k.tolerance);
+    let explicit = write("accuracy = \"precise\"\nelement_length = \"2 m\"").unwrap();
+    assert_eq!(explicit.solver.element_length_m, 2.0);
+    assert_eq!(explicit.solver.tolerance, k.tolerance);
+    let err = write("accuracy = \"medium\"").unwrap_err().to_string();
+    assert!(
+        err.contains("accuracy") && err.contains("medium") && err.contains("case.toml"),
+        "{err}"
+    );
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .args(["solve", "wells/seed-daqing/case.toml", "--accuracy", "fast", "--json"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let fast_elements = s["solver"]["elements"].as_u64().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .args(["solve", "wells/seed-daqing/case.toml", "--json"])
+        .output()
+        .unwrap();
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(fast_elements < s["solver"]["elements"].as_u64().unwrap());
+}

@@ -128,9 +128,13 @@ pub struct SolveArgs {
     /// Write results of a non-converged solve, flagged `converged: false`, instead of failing.
     #[arg(long)]
     pub allow_unconverged: bool,
-    /// Model fidelity: auto, soft, bha, hybrid, whole [default: the case's [solver] fidelity].
+    /// Model fidelity: auto, soft, bha, hybrid, whole (default: fidelity in the case file).
     #[arg(long, value_name = "LEVEL")]
     pub fidelity: Option<String>,
+    /// Accuracy preset: fast, default, precise (sets element lengths and contact tolerance,
+    /// overriding the case file).
+    #[arg(long, value_name = "PRESET")]
+    pub accuracy: Option<String>,
 }
 
 /// Arguments of `drillpath survey`.

@@ -17,7 +17,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(|t| parse_length_option("--bit-md", t))
         .transpose()?;
-    let case = load_case(
+    let mut case = load_case(
         &a.case,
         &CaseOverrides {
             survey_md_unit: None,
@@ -27,7 +27,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     if case.string.components.is_empty() {
         bail!("{}: the case has no [[string]] components to solve", a.case.display());
     }
-    let choice = super::solve_levels::choice(&a, &case)?;
+    let choice = super::solve_levels::configure(&a, &mut case)?;
     if choice.level != crate::fidelity::Level::Whole {
         return super::solve_levels::run(&a, &case, choice);
     }

@@ -13,8 +13,18 @@ use crate::report::levels_output::{
 use crate::report::write_atomic;
 use anyhow::{bail, Context};
 
-/// The level `solve` runs: `--fidelity` over the case's `[solver] fidelity`.
-pub fn choice(a: &SolveArgs, case: &Case) -> Result<Choice, InputError> {
+/// Apply `--accuracy` to `case` and choose the level `solve` runs: `--fidelity` over the
+/// case's `[solver] fidelity`.
+pub fn configure(a: &SolveArgs, case: &mut Case) -> Result<Choice, InputError> {
+    if let Some(t) = a.accuracy.as_deref() {
+        let preset = crate::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
+            InputError::option(
+                "--accuracy",
+                format!("unknown accuracy `{t}` (expected {})", crate::accuracy::NAMES),
+            )
+        })?;
+        preset.apply(&mut case.solver);
+    }
     let requested = match a.fidelity.as_deref() {
         None => case.solver.fidelity,
         Some(t) => parse(t.trim())
