@@ -163,7 +163,8 @@ pub struct LevelResult {
     pub fem: Option<FemPart>,
     /// Soft-string part: the whole string (soft) or from the cut up (hybrid).
     pub soft: Option<SoftStringResult>,
-    /// Cut distance above the bit of the stiff part, m (bha, hybrid).
+    /// Cut distance above the bit of the stiff part, m (bha, hybrid; None when the string is
+    /// not longer than the cut and the stiff part is the whole string).
     pub cut_m: Option<f64>,
     /// Bit forces and tilt (not with soft).
     pub bit: Option<BitResult>,
@@ -270,7 +271,7 @@ pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResu
             let is_cut = matches!(model.top, TopCondition::Cut { .. });
             let part = fem_part(model, case, ctl)?;
             out.fill_from_fem(&part);
-            out.cut_m = Some(cut);
+            out.cut_m = is_cut.then_some(cut);
             if !is_cut {
                 // the string is not longer than the cut: the stiff part is the whole string
                 out.hook_load_n = Some(part.results.hook_load_n);

@@ -159,7 +159,9 @@ pub fn fidelity_json(lr: &LevelResult, case: &Case) -> Result<Value, String> {
         .as_ref()
         .filter(|_| matches!(c.level, Level::Bha | Level::Hybrid) && lr.cut_m.is_some())
         .map(|f| f.model.mesh.nodes[coupling_node(case, &f.model)].s_m);
+    let whole_stiff = matches!(c.level, Level::Bha | Level::Hybrid) && lr.cut_m.is_none();
     let (surface, missing): (&str, Vec<&str>) = match c.level {
+        _ if whole_stiff => ("stiff whole string (not longer than the cut)", vec![]),
         Level::Soft => (
             "soft string",
             vec![
@@ -190,6 +192,16 @@ pub fn fidelity_json(lr: &LevelResult, case: &Case) -> Result<Value, String> {
         "not_computed": missing,
         "seconds": finite(lr.seconds)?,
     }))
+}
+
+/// Last node of the stiff part whose results are reported: the coupling node of a cut model,
+/// else the top.
+fn last_reported(case: &Case, lr: &LevelResult, part: &FemPart) -> usize {
+    if lr.cut_m.is_some() && lr.choice.level != Level::Whole {
+        coupling_node(case, &part.model)
+    } else {
+        part.model.nodes() - 1
+    }
 }
 
 /// One `string.csv` row of a soft-string point (columns the soft string does not compute
@@ -230,11 +242,7 @@ pub fn levels_csv(case: &Case, lr: &LevelResult) -> Result<(String, Vec<Mark>), 
     csv.push('\n');
     let mut all_marks = Vec::new();
     if let Some(part) = &lr.fem {
-        let last = if lr.cut_m.is_some() && lr.choice.level != Level::Whole {
-            coupling_node(case, &part.model)
-        } else {
-            part.model.nodes() - 1
-        };
+        let last = last_reported(case, lr, part);
         let partial = crate::fem::results::SolveResults {
             nodes: part.results.nodes[..=last].to_vec(),
             ..part.results.clone()
@@ -262,7 +270,7 @@ pub fn levels_summary(case: &Case, lr: &LevelResult, marks: &[Mark]) -> Result<V
     let md = case.operation.bit_md_m;
     let contacts: Vec<Value> = match &lr.fem {
         Some(part) => {
-            let last = coupling_node(case, &part.model);
+            let last = last_reported(case, lr, part);
             part.results.nodes[..=last]
                 .iter()
                 .filter(|n| n.contact_force_n > CONTACT_THRESHOLD_N)
