@@ -166,6 +166,8 @@ pub enum Fidelity {
     Soft,
     /// Stiff bottom-hole assembly only.
     Bha,
+    /// Stiff bottom-hole assembly plus soft string above the cut.
+    Hybrid,
     /// Whole stiff string.
     Whole,
 }

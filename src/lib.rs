@@ -12,12 +12,15 @@
 
 #![warn(missing_docs)]
 
+pub mod accuracy;
 pub mod analytical;
+pub mod buckling_marks;
 pub mod case;
 pub mod cli;
 pub mod contact;
 pub mod error;
 pub mod fem;
+pub mod fidelity;
 pub mod geometry;
 pub mod io;
 pub mod loads;

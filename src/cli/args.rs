@@ -167,6 +167,13 @@ pub struct SolveArgs {
     /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
+    /// Model fidelity: auto, soft, bha, hybrid, whole (default: fidelity in the case file).
+    #[arg(long, value_name = "LEVEL")]
+    pub fidelity: Option<String>,
+    /// Accuracy preset: fast, default, precise (sets element lengths and contact tolerance,
+    /// overriding the case file).
+    #[arg(long, value_name = "PRESET")]
+    pub accuracy: Option<String>,
 }
 
 /// Arguments of `drillpath survey`.

@@ -6,6 +6,7 @@ pub mod init;
 pub mod loads;
 pub mod predict;
 pub mod solve;
+pub mod solve_levels;
 pub mod survey;
 
 use crate::error::InputError;

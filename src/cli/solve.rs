@@ -17,7 +17,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         .as_deref()
         .map(|t| parse_length_option("--bit-md", t))
         .transpose()?;
-    let case = load_case(
+    let mut case = load_case(
         &a.case,
         &CaseOverrides {
             survey_md_unit: None,
@@ -26,6 +26,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     )?;
     if case.string.components.is_empty() {
         bail!("{}: the case has no [[string]] components to solve", a.case.display());
+    }
+    let choice = super::solve_levels::configure(&a, &mut case)?;
+    if choice.level != crate::fidelity::Level::Whole {
+        return super::solve_levels::run(&a, &case, choice);
     }
     let model = Model::from_case(&case);
     let ctl = SolveControls {
@@ -56,9 +60,10 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             if chatter.is_empty() { "none".into() } else { chatter.join(", ") }
         );
     }
-    let summary = summary_json(&res, &sol.stats, sol.converged, model.dofs(), model.nodes() - 1)
+    let mut summary = summary_json(&res, &sol.stats, sol.converged, model.dofs(), model.nodes() - 1)
         .map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let csv = string_csv(&res).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    let csv = super::solve_levels::annotate_whole(&case, &choice, &model, &res, sol.stats.seconds, &mut summary, csv)?;
     if let Some(dir) = &a.out {
         write_atomic(
             &dir.join("summary.json"),
@@ -78,6 +83,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     let b = &res.bit;
     let contacts: Vec<_> = res.nodes.iter().filter(|n| n.contact_force_n > 1.0).collect();
     println!("solve: {} ({})", case.name, a.case.display());
+    println!("  fidelity whole: {}", choice.reason);
     if !sol.converged {
         println!("  WARNING: NOT CONVERGED - results below are flagged and not valid");
     }

@@ -348,6 +348,7 @@ const BIT_ROCK_KEYS: &[&str] = &[
 ];
 /// Keys accepted in the solver table (checked before any is read, so a typo is named).
 const SOLVER_KEYS: &[&str] = &[
+    "accuracy",
     "element_length",
     "bha_element_length",
     "tolerance",
@@ -643,7 +644,16 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
 
 fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     s.check_known(SOLVER_KEYS)?;
-    let d = SolverSettings::default();
+    let mut d = SolverSettings::default();
+    if let Some(name) = s.string("accuracy")? {
+        let preset = crate::accuracy::Accuracy::parse(&name).ok_or_else(|| {
+            s.error(
+                "accuracy",
+                format!("unknown accuracy `{name}` (expected {})", crate::accuracy::NAMES),
+            )
+        })?;
+        preset.apply(&mut d);
+    }
     let el = s
         .positive("element_length", D::Length, "m", false)?
         .unwrap_or(d.element_length_m);
@@ -658,11 +668,12 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         None | Some("auto") => Fidelity::Auto,
         Some("soft") => Fidelity::Soft,
         Some("bha") => Fidelity::Bha,
+        Some("hybrid") => Fidelity::Hybrid,
         Some("whole") => Fidelity::Whole,
         Some(other) => {
             return Err(s.error(
                 "fidelity",
-                format!("unknown fidelity `{other}` (expected auto, soft, bha, whole)"),
+                format!("unknown fidelity `{other}` (expected auto, soft, bha, hybrid, whole)"),
             ))
         }
     };

@@ -3,6 +3,7 @@
 pub mod display_units;
 pub mod html;
 pub mod inputs;
+pub mod levels_output;
 pub mod loads_output;
 pub mod plots;
 pub mod predict_output;

@@ -1,0 +1,125 @@
+//! Accuracy presets (issue 5): element length, contact tolerance and prediction step set
+//! together. `[solver] accuracy = "fast" | "default" | "precise"` gives the defaults of
+//! `element_length`, `bha_element_length` and `tolerance` (keys given explicitly win);
+//! `drillpath solve --accuracy` overrides all three. The prediction step of a preset is used
+//! by the trade-off benchmark (`examples/tradeoff.rs`); `predict` keeps `[bit_rock] step`.
+//!
+//! | preset    | element_length | bha_element_length | tolerance | prediction step |
+//! |-----------|----------------|--------------------|-----------|-----------------|
+//! | `fast`    | 3 m            | 1 m                | 1e-3      | 2 m             |
+//! | `default` | 1 m            | 0.5 m              | 1e-4      | 1 m             |
+//! | `precise` | 0.5 m          | 0.3 m              | 1e-5      | 0.5 m           |
+//!
+//! `precise` uses 0.3 m, not 0.25 m, in the bottom-hole assembly: with 0.25 m the cut
+//! (`bha`) model of the j-shape and horizontal examples does not converge (open point).
+
+use crate::case::SolverSettings;
+
+/// An accuracy preset.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Accuracy {
+    /// Coarse mesh, loose contact tolerance.
+    Fast,
+    /// The documented defaults.
+    Default,
+    /// Fine mesh, tight contact tolerance (the benchmark's reference).
+    Precise,
+}
+
+/// The knobs a preset sets, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Knobs {
+    /// Longest pipe element, m.
+    pub element_length_m: f64,
+    /// Longest element in the bottom-hole assembly, m.
+    pub bha_element_length_m: f64,
+    /// Contact gap tolerance relative to the clearance.
+    pub tolerance: f64,
+    /// Prediction step, m.
+    pub step_m: f64,
+}
+
+/// Accepted names, for messages.
+pub const NAMES: &str = "fast, default, precise";
+
+impl Accuracy {
+    /// All presets, coarse first.
+    pub const ALL: [Accuracy; 3] = [Accuracy::Fast, Accuracy::Default, Accuracy::Precise];
+
+    /// Parse a preset name.
+    pub fn parse(name: &str) -> Option<Accuracy> {
+        Some(match name {
+            "fast" => Accuracy::Fast,
+            "default" => Accuracy::Default,
+            "precise" => Accuracy::Precise,
+            _ => return None,
+        })
+    }
+
+    /// Name as in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Accuracy::Fast => "fast",
+            Accuracy::Default => "default",
+            Accuracy::Precise => "precise",
+        }
+    }
+
+    /// The preset's knobs (table in the module documentation).
+    pub fn knobs(self) -> Knobs {
+        match self {
+            Accuracy::Fast => Knobs {
+                element_length_m: 3.0,
+                bha_element_length_m: 1.0,
+                tolerance: 1e-3,
+                step_m: 2.0,
+            },
+            Accuracy::Default => Knobs {
+                element_length_m: 1.0,
+                bha_element_length_m: 0.5,
+                tolerance: 1e-4,
+                step_m: 1.0,
+            },
+            Accuracy::Precise => Knobs {
+                element_length_m: 0.5,
+                bha_element_length_m: 0.3,
+                tolerance: 1e-5,
+                step_m: 0.5,
+            },
+        }
+    }
+
+    /// Set the preset's element lengths and tolerance in `s`.
+    pub fn apply(self, s: &mut SolverSettings) {
+        let k = self.knobs();
+        s.element_length_m = k.element_length_m;
+        s.bha_element_length_m = k.bha_element_length_m;
+        s.tolerance = k.tolerance;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reference: the documented defaults of `[solver]` (SolverSettings::default, interface.md):
+    /// the `default` preset must equal them; presets are ordered fast -> precise on every knob.
+    #[test]
+    fn default_preset_is_the_documented_default() {
+        let d = SolverSettings::default();
+        let k = Accuracy::Default.knobs();
+        assert_eq!(
+            (k.element_length_m, k.bha_element_length_m, k.tolerance),
+            (d.element_length_m, d.bha_element_length_m, d.tolerance)
+        );
+        for w in Accuracy::ALL.windows(2) {
+            let (a, b) = (w[0].knobs(), w[1].knobs());
+            assert!(a.element_length_m > b.element_length_m && a.bha_element_length_m > b.bha_element_length_m);
+            assert!(a.tolerance > b.tolerance && a.step_m > b.step_m);
+        }
+        for p in Accuracy::ALL {
+            assert_eq!(Accuracy::parse(p.name()), Some(p));
+        }
+        assert_eq!(Accuracy::parse("medium"), None);
+    }
+}

@@ -1,0 +1,347 @@
+//! Fidelity levels of a static string solve (issue 5): what model runs, and why.
+//!
+//! | level    | model                                                         | gives |
+//! |----------|---------------------------------------------------------------|-------|
+//! | `soft`   | soft-string torque and drag over the whole string ([`crate::softstring`]) | hook load, surface torque, axial force and torque along the string, buckling check; **no** bit side forces, tilt or bending |
+//! | `bha`    | stiff FEM of the bottom part, cut where it lies on the wall ([`crate::fem::bha`]) | bit forces and tilt, contacts and bending below the cut; **no** surface values |
+//! | `hybrid` | `bha` + soft string from the cut to the surface, started from the FEM's axial force and torque at the cut | all of `bha`, plus hook load and surface torque |
+//! | `whole`  | stiff FEM of the whole string (the seed paper's model)        | everything |
+//!
+//! The coupling of `hybrid`: the soft-string integration starts at the coupling node
+//! ([`coupling_node`], half way between the highest stabilizer and the cut, away from the
+//! cut's clamp) with `F = F_c` (the FEM's effective axial force there, tension positive) and
+//! `M = T_c` (the FEM's torque there), and runs up the string above it with the same friction,
+//! speeds and mud. Without axial motion and rotation the hook load is then
+//! `sum w_b dTVD - WOB` to round-off for both parts (physics.md 6.5 exact check (a)).
+//!
+//! `auto` picks per command ([`choose`]): `solve` reports the whole string (contacts, bending
+//! and stresses along it, hook load and surface torque) and runs `whole`; prediction needs bit
+//! forces only and runs `bha`; the torque-and-drag chart needs surface values at many depths and
+//! runs `soft`.
+
+use crate::case::{Case, Fidelity};
+use crate::fem::bha::{bha_model, default_cut_m};
+use crate::fem::model::{Model, TopCondition};
+use crate::fem::results::{extract, BitResult, SolveResults};
+use crate::fem::solve::{solve, SolveControls, SolveError, SolveStats};
+use crate::softstring::{self, soft_string, SoftStringInput, SoftStringResult};
+use crate::string::DrillString;
+use std::time::Instant;
+
+/// The model actually run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Level {
+    /// Soft string over the whole length.
+    Soft,
+    /// Stiff bottom-hole assembly only.
+    Bha,
+    /// Stiff bottom-hole assembly plus soft string above the cut.
+    Hybrid,
+    /// Stiff whole string.
+    Whole,
+}
+
+impl Level {
+    /// Name as in `[solver] fidelity` and `summary.json`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Soft => "soft",
+            Level::Bha => "bha",
+            Level::Hybrid => "hybrid",
+            Level::Whole => "whole",
+        }
+    }
+}
+
+/// What a command asks of the model (for `auto`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Purpose {
+    /// `drillpath solve`: bit forces, contacts along the string, hook load and surface torque.
+    Solve,
+    /// `drillpath predict` / `backanalyze`: bit forces and tilt at many bit positions.
+    Predict,
+    /// `drillpath loads`: hook load and surface torque at many depths.
+    Loads,
+}
+
+/// The level chosen and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choice {
+    /// What the user asked for (case file or `--fidelity`).
+    pub requested: Fidelity,
+    /// What runs.
+    pub level: Level,
+    /// One sentence: why this level.
+    pub reason: String,
+}
+
+/// Parse a fidelity name (`auto`, `soft`, `bha`, `hybrid`, `whole`).
+pub fn parse(name: &str) -> Option<Fidelity> {
+    Some(match name {
+        "auto" => Fidelity::Auto,
+        "soft" => Fidelity::Soft,
+        "bha" => Fidelity::Bha,
+        "hybrid" => Fidelity::Hybrid,
+        "whole" => Fidelity::Whole,
+        _ => return None,
+    })
+}
+
+/// Accepted names, for messages.
+pub const NAMES: &str = "auto, soft, bha, hybrid, whole";
+
+/// The level for `requested` on a command with `purpose` (see the module documentation).
+pub fn choose(requested: Fidelity, purpose: Purpose) -> Choice {
+    let (level, reason) = match requested {
+        Fidelity::Soft => (Level::Soft, "requested: soft string (no bending, no bit side forces)"),
+        Fidelity::Bha => (
+            Level::Bha,
+            "requested: stiff bottom-hole assembly only (no hook load or surface torque)",
+        ),
+        Fidelity::Hybrid => (
+            Level::Hybrid,
+            "requested: stiff bottom-hole assembly, soft string from the coupling point (half way to the cut) to the surface",
+        ),
+        Fidelity::Whole => (Level::Whole, "requested: stiff whole string"),
+        Fidelity::Auto => match purpose {
+            Purpose::Solve => (
+                Level::Whole,
+                "auto: solve reports the whole string (contacts, bending and stresses along it, hook load and surface torque), which needs the stiff whole-string model",
+            ),
+            Purpose::Predict => (
+                Level::Bha,
+                "auto: prediction needs the bit forces and tilt only, which depend on the stiff bottom part",
+            ),
+            Purpose::Loads => (
+                Level::Soft,
+                "auto: the torque-and-drag chart needs hook load and surface torque at many depths, which the soft string gives",
+            ),
+        },
+    };
+    Choice {
+        requested,
+        level,
+        reason: reason.to_string(),
+    }
+}
+
+/// The part of `string` above `cut_m` from the bit, with positions measured from the cut
+/// (the component crossing the cut shortened); empty if the string is not longer.
+pub fn upper_part(string: &DrillString, cut_m: f64) -> DrillString {
+    let mut components = Vec::new();
+    for c in &string.components {
+        if c.top_m() <= cut_m + 1e-9 {
+            continue;
+        }
+        let mut c = c.clone();
+        let bottom = c.bottom_m.max(cut_m);
+        c.length_m = c.top_m() - bottom;
+        c.bottom_m = bottom - cut_m;
+        components.push(c);
+    }
+    DrillString { components }
+}
+
+/// The stiff part of a level's result.
+pub struct FemPart {
+    /// The model solved (whole string, or cut at the top).
+    pub model: Model,
+    /// Whether the solve converged.
+    pub converged: bool,
+    /// Solver statistics.
+    pub stats: SolveStats,
+    /// Post-processed results (for a cut model `hook_load_n` and `surface_torque_nm` are the
+    /// axial force and torque at the cut).
+    pub results: SolveResults,
+}
+
+/// The result of one solve at a fidelity level, SI. Values a level does not compute are None.
+pub struct LevelResult {
+    /// The level and why.
+    pub choice: Choice,
+    /// Stiff part (bha, hybrid, whole).
+    pub fem: Option<FemPart>,
+    /// Soft-string part: the whole string (soft) or from the cut up (hybrid).
+    pub soft: Option<SoftStringResult>,
+    /// Cut distance above the bit of the stiff part, m (bha, hybrid; None when the string is
+    /// not longer than the cut and the stiff part is the whole string).
+    pub cut_m: Option<f64>,
+    /// Bit forces and tilt (not with soft).
+    pub bit: Option<BitResult>,
+    /// Weight on bit, N (always known: the input, or the soft string's with a hook-load input).
+    pub wob_n: f64,
+    /// Bit torque, N.m.
+    pub bit_torque_nm: f64,
+    /// Hook load, N (not with bha).
+    pub hook_load_n: Option<f64>,
+    /// Surface torque, N.m (not with bha).
+    pub surface_torque_nm: Option<f64>,
+    /// Whether every part converged (the soft string always does).
+    pub converged: bool,
+    /// Wall-clock time of the whole computation, s.
+    pub seconds: f64,
+}
+
+/// Why a level could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum FidelityError {
+    /// The stiff solve failed.
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    /// The combination is not supported.
+    #[error("{0}")]
+    Unsupported(String),
+}
+
+/// Solver controls of `case`'s `[solver]` table.
+pub fn controls(case: &Case) -> SolveControls {
+    SolveControls {
+        max_iterations: case.solver.max_iterations,
+        gap_tolerance: case.solver.tolerance,
+        method: case.solver.method,
+        alpha: case.solver.alpha,
+        ..Default::default()
+    }
+}
+
+/// Cut distance above the bit for `case` (the rule of [`crate::fem::bha`]).
+pub fn cut_for(case: &Case) -> f64 {
+    let md = case.operation.bit_md_m;
+    default_cut_m(
+        &case.string,
+        case.well.hole.diameter_at(md),
+        case.well.path.point_at(md).inc_rad,
+        case.mud.density_kg_m3,
+    )
+}
+
+fn fem_part(model: Model, case: &Case, ctl: &SolveControls) -> Result<FemPart, SolveError> {
+    let sol = solve(&model, ctl)?;
+    let results = extract(&model, &sol, case.mud.density_kg_m3);
+    Ok(FemPart {
+        model,
+        converged: sol.converged,
+        stats: sol.stats,
+        results,
+    })
+}
+
+/// Run `case` at the level of `choice` with solver controls `ctl`.
+pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResult, FidelityError> {
+    let t0 = Instant::now();
+    let op = &case.operation;
+    let mut out = LevelResult {
+        choice,
+        fem: None,
+        soft: None,
+        cut_m: None,
+        bit: None,
+        wob_n: op.wob_n,
+        bit_torque_nm: 0.0,
+        hook_load_n: None,
+        surface_torque_nm: None,
+        converged: true,
+        seconds: 0.0,
+    };
+    match out.choice.level {
+        Level::Soft => {
+            let s = softstring::from_case(case, case.solver.element_length_m);
+            out.wob_n = -s.points[0].tension_n;
+            out.bit_torque_nm = s.points[0].torque_nm;
+            out.hook_load_n = Some(s.hook_load_n);
+            out.surface_torque_nm = Some(s.surface_torque_nm);
+            out.soft = Some(s);
+        }
+        Level::Whole => {
+            let part = fem_part(Model::from_case(case), case, ctl)?;
+            out.fill_from_fem(&part);
+            out.hook_load_n = Some(part.results.hook_load_n);
+            out.surface_torque_nm = Some(part.results.surface_torque_nm);
+            out.fem = Some(part);
+        }
+        Level::Bha | Level::Hybrid => {
+            if op.hook_load_n.is_some() {
+                return Err(FidelityError::Unsupported(format!(
+                    "fidelity `{}` needs the WOB as input (the hook load is given): use soft or whole",
+                    out.choice.level.name()
+                )));
+            }
+            let cut = cut_for(case);
+            let model = bha_model(case, &case.well.path, &case.well.hole, op.bit_md_m, cut);
+            let is_cut = matches!(model.top, TopCondition::Cut { .. });
+            let part = fem_part(model, case, ctl)?;
+            out.fill_from_fem(&part);
+            out.cut_m = is_cut.then_some(cut);
+            if !is_cut {
+                // the string is not longer than the cut: the stiff part is the whole string
+                out.hook_load_n = Some(part.results.hook_load_n);
+                out.surface_torque_nm = Some(part.results.surface_torque_nm);
+            } else if out.choice.level == Level::Hybrid {
+                let s = soft_above(case, &part);
+                out.hook_load_n = Some(s.hook_load_n);
+                out.surface_torque_nm = Some(s.surface_torque_nm);
+                out.soft = Some(s);
+            }
+            out.fem = Some(part);
+        }
+    }
+    out.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+impl LevelResult {
+    fn fill_from_fem(&mut self, part: &FemPart) {
+        self.bit = Some(part.results.bit);
+        self.wob_n = part.results.bit.wob_n;
+        self.bit_torque_nm = part.results.bit.torque_nm;
+        self.converged = part.converged;
+    }
+}
+
+/// Index of the node of the stiff part where the soft string takes over (and above which its
+/// results are not reported): half way between the highest stabilizer and the cut. The cut's
+/// clamp (position on the wall, axis parallel to the hole) disturbs the string within about a
+/// tangency length below it (a spurious contact couple next to the cut node), while the bit
+/// forces depend on the string within a few tangency lengths of the stabilizers: half way
+/// keeps three tangency lengths from both (with the default cut rule).
+pub fn coupling_node(case: &Case, model: &Model) -> usize {
+    let top = model.nodes() - 1;
+    let cut = model.mesh.nodes[top].s_m;
+    let s_stab = case
+        .string
+        .stabilizer_contacts_m()
+        .into_iter()
+        .fold(0.0, f64::max)
+        .min(cut);
+    let s_c = s_stab + 0.5 * (cut - s_stab);
+    (0..=top)
+        .min_by(|&a, &b| {
+            let da = (model.mesh.nodes[a].s_m - s_c).abs();
+            let db = (model.mesh.nodes[b].s_m - s_c).abs();
+            da.total_cmp(&db)
+        })
+        .unwrap_or(top)
+}
+
+/// The soft string from the coupling node of the stiff part `part` ([`coupling_node`]) to the
+/// surface, started from the FEM's effective axial force and torque there.
+pub fn soft_above(case: &Case, part: &FemPart) -> SoftStringResult {
+    let m = &part.model;
+    let k = coupling_node(case, m);
+    let upper = upper_part(&case.string, m.mesh.nodes[k].s_m);
+    let op = &case.operation;
+    let node = &part.results.nodes[k];
+    soft_string(&SoftStringInput {
+        path: &case.well.path,
+        hole: &case.well.hole,
+        string: &upper,
+        mud_density_kg_m3: case.mud.density_kg_m3,
+        bit_md_m: m.md_ref[k],
+        wob_n: -node.axial_force_n,
+        bit_torque_nm: node.torque_nm,
+        axial_speed_m_s: op.axial_speed_m_s(),
+        omega_rad_s: op.omega_rad_s(),
+        friction: op.friction,
+        max_element_m: case.solver.element_length_m,
+    })
+}

@@ -1,0 +1,307 @@
+//! Fidelity levels (issue 5) against independent references: the whole-string FEM (bit
+//! forces, hook load, torque), the exact hanging-weight hook load (physics.md 6.5 (a)).
+//!
+//! Run with `cargo test --release --test fidelity -- --nocapture` to see the numbers.
+
+use drillpath::case::{Case, Fidelity, Mode};
+use drillpath::fidelity::{choose, controls, run, upper_part, Level, LevelResult, Purpose};
+use drillpath::io::case_toml::{load_case, CaseOverrides};
+use std::path::Path;
+
+fn example(name: &str) -> Case {
+    load_case(
+        &Path::new("wells").join(name).join("case.toml"),
+        &CaseOverrides::default(),
+    )
+    .unwrap()
+}
+
+fn at(case: &Case, level: Fidelity) -> LevelResult {
+    let r = run(case, choose(level, Purpose::Solve), &controls(case)).unwrap();
+    assert!(r.converged, "{level:?} did not converge");
+    r
+}
+
+const EXAMPLES: [&str; 5] = ["j-shape", "s-shape", "horizontal", "seed-daqing", "forge-16a"];
+
+#[test]
+fn fidelity_bha_and_hybrid_bit_forces_match_whole() {
+    // Reference: the whole-string FEM on the example wells. Tolerance: 1% of the bit's lateral
+    // force magnitude on build and walk force, 1% of the tilt magnitude (the issue's bit-force
+    // target); measured: below 0.02%.
+    for name in EXAMPLES {
+        let case = example(name);
+        let whole = at(&case, Fidelity::Whole);
+        let wb = whole.bit.unwrap();
+        let lateral = wb.build_force_n.hypot(wb.walk_force_n);
+        let tilt = wb.tilt_inc_rad.hypot(wb.tilt_azi_rad);
+        for level in [Fidelity::Bha, Fidelity::Hybrid] {
+            let r = at(&case, level);
+            let b = r.bit.unwrap();
+            let (eb, ew) = (
+                (b.build_force_n - wb.build_force_n) / lateral,
+                (b.walk_force_n - wb.walk_force_n) / lateral,
+            );
+            let (ti, ta) = (
+                (b.tilt_inc_rad - wb.tilt_inc_rad) / tilt,
+                (b.tilt_azi_rad - wb.tilt_azi_rad) / tilt,
+            );
+            println!(
+                "{name:<12} {:<6} {:.4} s (whole {:.4} s): build {:+.3} kN ({:+.4}%), walk {:+.3} kN ({:+.4}%), tilt errors {:+.4}% / {:+.4}%",
+                r.choice.level.name(),
+                r.seconds,
+                whole.seconds,
+                b.build_force_n / 1e3,
+                100.0 * eb,
+                b.walk_force_n / 1e3,
+                100.0 * ew,
+                100.0 * ti,
+                100.0 * ta
+            );
+            for e in [eb, ew, ti, ta] {
+                assert!(
+                    e.abs() < 0.01,
+                    "{name} {level:?}: bit error {:.3}% of the lateral force/tilt",
+                    100.0 * e
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn fidelity_surface_values_against_whole() {
+    // Reference: the whole-string FEM. Tolerances: hook load 0.2% (soft string and FEM agree
+    // on the weight; friction differs by the contact pattern; measured < 0.06%); surface torque
+    // 10% (the soft string overstates the torque of pipe lying in straight sections by
+    // sqrt(1 + f^2), physics.md 6.6, 3% at f = 0.25, and differs in curved ones; measured
+    // -2.4% to +8.5%, hybrid above soft where the stiff BHA carries more torque).
+    for name in EXAMPLES {
+        let case = example(name);
+        let whole = at(&case, Fidelity::Whole);
+        let (h, t) = (whole.hook_load_n.unwrap(), whole.surface_torque_nm.unwrap());
+        for level in [Fidelity::Soft, Fidelity::Hybrid] {
+            let r = at(&case, level);
+            let eh = r.hook_load_n.unwrap() / h - 1.0;
+            let et = r.surface_torque_nm.unwrap() / t - 1.0;
+            println!(
+                "{name:<12} {:<6} hook load {:.2} kN ({:+.3}%), surface torque {:.3} kN.m ({:+.2}%)",
+                r.choice.level.name(),
+                r.hook_load_n.unwrap() / 1e3,
+                100.0 * eh,
+                r.surface_torque_nm.unwrap() / 1e3,
+                100.0 * et
+            );
+            assert!(
+                eh.abs() < 0.002,
+                "{name} {level:?}: hook load off by {:.3}%",
+                100.0 * eh
+            );
+            assert!(
+                et.abs() < 0.10,
+                "{name} {level:?}: surface torque off by {:.2}%",
+                100.0 * et
+            );
+        }
+    }
+}
+
+#[test]
+fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
+    // Reference: physics.md 6.5 exact check (a): rotating with no axial motion, the hook load
+    // is sum(w_b dTVD) over the string (exact for the soft string). Tolerance 1e-6 relative for
+    // hybrid and soft (the FEM part's residual tolerance is 1e-7 of the load scale; its BHA lies
+    // in the straight hold); the whole FEM is printed for comparison and held to 2e-4 (measured
+    // +8.2e-5 on this well: an open point, physics.md 6.5 calls the check exact for the FEM too).
+    let mut case = example("j-shape");
+    case.operation.mode = Mode::RotatingOffBottom;
+    case.operation.wob_n = 0.0;
+    let bit = case.operation.bit_md_m;
+    let rho = case.mud.density_kg_m3;
+    let hanging: f64 = case
+        .string
+        .components
+        .iter()
+        .map(|c| {
+            let tvd = |s: f64| case.well.path.point_at(bit - s).position.z;
+            c.buoyed_weight_n_per_m(rho) * (tvd(c.bottom_m) - tvd(c.top_m()))
+        })
+        .sum();
+    for level in [Fidelity::Hybrid, Fidelity::Soft, Fidelity::Whole] {
+        let r = at(&case, level);
+        let e = r.hook_load_n.unwrap() / hanging - 1.0;
+        println!(
+            "{:<6} hook load {:.4} kN, sum w_b dTVD {:.4} kN ({e:+.2e})",
+            r.choice.level.name(),
+            r.hook_load_n.unwrap() / 1e3,
+            hanging / 1e3
+        );
+        let tol = if level == Fidelity::Whole { 2e-4 } else { 1e-6 };
+        assert!(e.abs() < tol, "{level:?}: {e:e}");
+    }
+}
+
+#[test]
+fn fidelity_levels_report_only_what_they_compute() {
+    // Reference: the level table of src/fidelity.rs: soft has no bit side forces, bha no
+    // surface values; auto picks per command.
+    let case = example("seed-daqing");
+    let soft = at(&case, Fidelity::Soft);
+    assert!(soft.bit.is_none() && soft.fem.is_none() && soft.hook_load_n.is_some());
+    let bha = at(&case, Fidelity::Bha);
+    assert!(bha.bit.is_some() && bha.hook_load_n.is_none() && bha.surface_torque_nm.is_none());
+    assert!(bha.cut_m.unwrap() < case.string.length_m());
+    assert_eq!(choose(Fidelity::Auto, Purpose::Solve).level, Level::Whole);
+    assert_eq!(choose(Fidelity::Auto, Purpose::Predict).level, Level::Bha);
+    assert_eq!(choose(Fidelity::Auto, Purpose::Loads).level, Level::Soft);
+    assert_eq!(choose(Fidelity::Hybrid, Purpose::Predict).level, Level::Hybrid);
+}
+
+#[test]
+fn fidelity_upper_part_complements_truncated() {
+    // Reference: the string's own components: bottom part + upper part = whole string in
+    // length and weight, upper part contiguous from 0. Tolerance 1e-9 m / 1e-9 relative.
+    let case = example("j-shape");
+    let s = &case.string;
+    for cut in [0.0, 1.0, 30.0, 57.3, 200.0, s.length_m()] {
+        let lo = s.truncated(cut);
+        let up = upper_part(s, cut);
+        assert!((lo.length_m() + up.length_m() - s.length_m()).abs() < 1e-9);
+        let w = |d: &drillpath::string::DrillString| {
+            d.components
+                .iter()
+                .map(|c| c.weight_air_n_per_m * c.length_m)
+                .sum::<f64>()
+        };
+        assert!(((w(&lo) + w(&up)) / w(s) - 1.0).abs() < 1e-9, "cut {cut}");
+        let mut x = 0.0;
+        for c in &up.components {
+            assert!((c.bottom_m - x).abs() < 1e-9 && c.length_m > 0.0);
+            x = c.top_m();
+        }
+    }
+}
+
+#[test]
+fn fidelity_cli_levels_write_the_interface_files() {
+    // Reference: interface.md `solve` outputs: summary.json keys (null where the level does not
+    // compute a value), string.csv header + buckling columns, no NaN; `--fidelity` overrides
+    // the case; an unknown level is one clear error naming the option, non-zero exit.
+    use std::process::Command;
+    let exe = env!("CARGO_BIN_EXE_drillpath");
+    let case = "wells/seed-daqing/case.toml";
+    for level in ["soft", "bha", "hybrid", "whole"] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = Command::new(exe)
+            .args(["solve", case, "--fidelity", level, "--out"])
+            .arg(dir.path())
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{level}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(stdout.contains(&format!("fidelity {level}")), "{stdout}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
+        assert_eq!(s["fidelity"]["used"], level);
+        assert!(s["buckling"]["sinusoidal_length_m"].is_number());
+        for key in [
+            "md_m",
+            "wob_kN",
+            "build_force_kN",
+            "walk_force_kN",
+            "tilt_inc_deg",
+            "tilt_azi_deg",
+            "torque_kNm",
+        ] {
+            let v = &s["bit"][key];
+            assert!(
+                v.is_number() || (level == "soft" && v.is_null()),
+                "{level} bit.{key} = {v}"
+            );
+        }
+        for key in ["hook_load_kN", "torque_kNm"] {
+            let v = &s["surface"][key];
+            assert!(
+                v.is_number() || (level == "bha" && v.is_null()),
+                "{level} surface.{key} = {v}"
+            );
+        }
+        assert!(s["solver"]["converged"].as_bool().unwrap());
+        let csv = std::fs::read_to_string(dir.path().join("string.csv")).unwrap();
+        let mut lines = csv.lines();
+        let header = lines.next().unwrap();
+        assert!(header.starts_with("md_m,north_m,east_m,tvd_m,disp_high_mm,disp_right_mm,clearance_mm,contact_force_kN,contact_angle_deg,axial_force_kN,torque_kNm,bending_moment_kNm,von_mises_MPa,"));
+        assert!(header.ends_with(",sinusoidal_onset_kN,helical_onset_kN,buckling"));
+        let n = header.split(',').count();
+        let mut rows = 0;
+        for l in lines {
+            assert_eq!(l.split(',').count(), n, "{level}: {l}");
+            assert!(!l.to_lowercase().contains("nan") && !l.contains("inf"), "{level}: {l}");
+            rows += 1;
+        }
+        assert!(rows > 10, "{level}: {rows} rows");
+    }
+    let out = Command::new(exe)
+        .args(["solve", case, "--fidelity", "fast"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--fidelity") && err.contains("fast") && !err.contains("panicked"),
+        "{err}"
+    );
+}
+
+#[test]
+fn accuracy_preset_in_case_file_and_on_the_command_line() {
+    // Reference: the preset table of src/accuracy.rs; explicit keys win over `[solver]
+    // accuracy`; `--accuracy` wins over the case; unknown names are one clear error.
+    use drillpath::accuracy::Accuracy;
+    let src = Path::new("wells/seed-daqing");
+    let text: String = std::fs::read_to_string(src.join("case.toml"))
+        .unwrap()
+        .lines()
+        .filter(|l| {
+            !l.starts_with("element_length") && !l.starts_with("bha_element_length") && !l.starts_with("tolerance")
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(src.join("survey.csv"), dir.path().join("survey.csv")).unwrap();
+    let write = |solver: &str| {
+        let t = text.replace("[solver]\n", &format!("[solver]\n{solver}\n"));
+        std::fs::write(dir.path().join("case.toml"), t).unwrap();
+        load_case(&dir.path().join("case.toml"), &CaseOverrides::default())
+    };
+    let precise = write("accuracy = \"precise\"").unwrap();
+    let k = Accuracy::Precise.knobs();
+    assert_eq!(precise.solver.element_length_m, k.element_length_m);
+    assert_eq!(precise.solver.bha_element_length_m, k.bha_element_length_m);
+    assert_eq!(precise.solver.tolerance, k.tolerance);
+    let explicit = write("accuracy = \"precise\"\nelement_length = \"2 m\"").unwrap();
+    assert_eq!(explicit.solver.element_length_m, 2.0);
+    assert_eq!(explicit.solver.tolerance, k.tolerance);
+    let err = write("accuracy = \"medium\"").unwrap_err().to_string();
+    assert!(
+        err.contains("accuracy") && err.contains("medium") && err.contains("case.toml"),
+        "{err}"
+    );
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .args(["solve", "wells/seed-daqing/case.toml", "--accuracy", "fast", "--json"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let fast_elements = s["solver"]["elements"].as_u64().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_drillpath"))
+        .args(["solve", "wells/seed-daqing/case.toml", "--json"])
+        .output()
+        .unwrap();
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(fast_elements < s["solver"]["elements"].as_u64().unwrap());
+}
