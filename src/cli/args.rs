@@ -167,11 +167,11 @@ pub struct SolveArgs {
     /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
-    /// Model fidelity: auto, soft, bha, hybrid, whole (default: fidelity in the case file).
+    /// Model fidelity: auto, soft, bha, hybrid, whole [default: the case's [solver] fidelity, auto].
     #[arg(long, value_name = "LEVEL")]
     pub fidelity: Option<String>,
     /// Accuracy preset: fast, default, precise (sets element lengths and contact tolerance,
-    /// overriding the case file).
+    /// overriding the case file) [default: the case's [solver] accuracy, or its own settings].
     #[arg(long, value_name = "PRESET")]
     pub accuracy: Option<String>,
 }
