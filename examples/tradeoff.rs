@@ -15,7 +15,8 @@
 
 use drillpath::accuracy::Accuracy;
 use drillpath::case::{Case, Fidelity};
-use drillpath::fidelity::{choose, controls, run, LevelResult, Purpose};
+use drillpath::fem::solve::SolveControls;
+use drillpath::fidelity::{choose, run, LevelResult, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::predict::march::{predict, MarchSettings};
 use drillpath::report::write_atomic;
@@ -46,7 +47,12 @@ fn timed(case: &Case, level: Fidelity) -> (f64, LevelResult) {
     let mut total = 0.0;
     loop {
         let t0 = Instant::now();
-        let r = run(case, choose(level, Purpose::Solve), &controls(case)).expect("solve failed");
+        let r = run(
+            case,
+            choose(level, Purpose::Solve),
+            &SolveControls::from_settings(&case.solver),
+        )
+        .expect("solve failed");
         let dt = t0.elapsed().as_secs_f64();
         times.push(dt);
         total += dt;

@@ -193,17 +193,6 @@ pub enum FidelityError {
     Unsupported(String),
 }
 
-/// Solver controls of `case`'s `[solver]` table.
-pub fn controls(case: &Case) -> SolveControls {
-    SolveControls {
-        max_iterations: case.solver.max_iterations,
-        gap_tolerance: case.solver.tolerance,
-        method: case.solver.method,
-        alpha: case.solver.alpha,
-        ..Default::default()
-    }
-}
-
 /// Cut distance above the bit for `case` (the rule of [`crate::fem::bha`]).
 pub fn cut_for(case: &Case) -> f64 {
     let md = case.operation.bit_md_m;

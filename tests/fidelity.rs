@@ -4,7 +4,8 @@
 //! Run with `cargo test --release --test fidelity -- --nocapture` to see the numbers.
 
 use drillpath::case::{Case, Fidelity, Mode};
-use drillpath::fidelity::{choose, controls, run, upper_part, Level, LevelResult, Purpose};
+use drillpath::fem::solve::SolveControls;
+use drillpath::fidelity::{choose, run, upper_part, Level, LevelResult, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use std::path::Path;
 
@@ -17,7 +18,12 @@ fn example(name: &str) -> Case {
 }
 
 fn at(case: &Case, level: Fidelity) -> LevelResult {
-    let r = run(case, choose(level, Purpose::Solve), &controls(case)).unwrap();
+    let r = run(
+        case,
+        choose(level, Purpose::Solve),
+        &SolveControls::from_settings(&case.solver),
+    )
+    .unwrap();
     assert!(r.converged, "{level:?} did not converge");
     r
 }

@@ -32,13 +32,7 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         return super::solve_levels::run(&a, &case, choice);
     }
     let model = Model::from_case(&case);
-    let ctl = SolveControls {
-        max_iterations: case.solver.max_iterations,
-        gap_tolerance: case.solver.tolerance,
-        method: case.solver.method,
-        alpha: case.solver.alpha,
-        ..Default::default()
-    };
+    let ctl = SolveControls::from_settings(&case.solver);
     let sol = solve(&model, &ctl).with_context(|| format!("{}: solve failed", a.case.display()))?;
     let res = extract(&model, &sol, case.mud.density_kg_m3);
     if !sol.converged && !a.allow_unconverged {

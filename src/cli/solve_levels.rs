@@ -6,7 +6,7 @@ use crate::case::Case;
 use crate::error::InputError;
 use crate::fem::model::Model;
 use crate::fem::results::SolveResults;
-use crate::fidelity::{choose, controls, parse, run as run_level, Choice, Level, LevelResult, Purpose, NAMES};
+use crate::fidelity::{choose, parse, run as run_level, Choice, Level, LevelResult, Purpose, NAMES};
 use crate::report::levels_output::{
     append_buckling_columns, buckling_json, levels_csv, levels_summary, requested_name,
 };
@@ -70,7 +70,12 @@ pub fn annotate_whole(
 
 /// Run `case` at a level other than `whole` and write/print its outputs.
 pub fn run(a: &SolveArgs, case: &Case, choice: Choice) -> anyhow::Result<()> {
-    let lr = run_level(case, choice, &controls(case)).with_context(|| format!("{}: solve failed", a.case.display()))?;
+    let lr = run_level(
+        case,
+        choice,
+        &crate::fem::solve::SolveControls::from_settings(&case.solver),
+    )
+    .with_context(|| format!("{}: solve failed", a.case.display()))?;
     if !lr.converged && !a.allow_unconverged {
         let it = lr.fem.as_ref().map(|f| f.stats.iterations).unwrap_or(0);
         bail!(

@@ -11,7 +11,7 @@ use super::band::{BandLdlt, BandMatrix, FactorError};
 use super::band_lu::{BandLu, GeneralBand};
 use super::model::StiffnessSink;
 use super::model::{Evaluation, Model, State, HALF_BANDWIDTH};
-use crate::case::Method;
+use crate::case::{Method, SolverSettings};
 use crate::geometry::Vec3;
 use std::time::Instant;
 
@@ -28,6 +28,19 @@ pub struct SolveControls {
     pub method: Method,
     /// Paper scheme's alpha.
     pub alpha: f64,
+}
+
+impl SolveControls {
+    /// Controls from a case's `[solver]` table (iteration limit, gap tolerance, scheme, alpha).
+    pub fn from_settings(s: &SolverSettings) -> SolveControls {
+        SolveControls {
+            max_iterations: s.max_iterations,
+            gap_tolerance: s.tolerance,
+            method: s.method,
+            alpha: s.alpha,
+            ..SolveControls::default()
+        }
+    }
 }
 
 impl Default for SolveControls {

@@ -61,22 +61,11 @@ impl StiffOutcome {
     }
 }
 
-/// Solver controls from the case's `[solver]` table.
-pub fn controls(case: &Case) -> SolveControls {
-    SolveControls {
-        max_iterations: case.solver.max_iterations,
-        gap_tolerance: case.solver.tolerance,
-        method: case.solver.method,
-        alpha: case.solver.alpha,
-        ..Default::default()
-    }
-}
-
 /// Stiff solve of `case` (string and operation set for the row), warm-started from `warm` when
 /// given; returns the outcome and the converged state (for the next warm start).
 pub fn stiff_row(case: &Case, warm: Option<State>) -> (StiffOutcome, Option<State>) {
     let model = Model::from_case(case);
-    let ctl = controls(case);
+    let ctl = SolveControls::from_settings(&case.solver);
     let mut iterations = 0;
     let t0 = std::time::Instant::now();
     if let Some(state) = warm {

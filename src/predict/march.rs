@@ -37,13 +37,7 @@ impl MarchSettings {
         MarchSettings {
             step_m: case.bit_rock.step_m,
             cut_m: None,
-            controls: SolveControls {
-                max_iterations: case.solver.max_iterations,
-                gap_tolerance: case.solver.tolerance,
-                method: case.solver.method,
-                alpha: case.solver.alpha,
-                ..SolveControls::default()
-            },
+            controls: SolveControls::from_settings(&case.solver),
         }
     }
 }
