@@ -116,7 +116,7 @@ fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
     let tracking = tracking_errors(&rows, from);
     let end = pred.steps.last().expect("a prediction has a start record");
     let law = LawParams::at(&case.bit_rock, from);
-    let fin = crate::report::predict_output::finite;
+    let fin = crate::report::finite;
     let summary = (|| -> Result<serde_json::Value, String> {
         Ok(json!({
             "case": case.name,

@@ -3,8 +3,8 @@
 //! string table of the `soft`, `bha` and `hybrid` levels (values a level does not compute are
 //! `null` in JSON and empty cells in CSV).
 
-use super::num;
 use super::solve_output::{CONTACT_THRESHOLD_N, STRING_HEADER};
+use super::{finite, num};
 use crate::buckling_marks::{marks, zones, BuckleState, Mark};
 use crate::case::{Case, Fidelity};
 use crate::fidelity::{coupling_node, FemPart, Level, LevelResult};
@@ -14,14 +14,6 @@ use serde_json::{json, Value};
 /// Columns appended to `string.csv` after the interface's (kN; empty where the component
 /// cannot buckle).
 pub const BUCKLING_COLUMNS: &str = "sinusoidal_onset_kN,helical_onset_kN,buckling";
-
-fn finite(x: f64) -> Result<f64, String> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(format!("non-finite value {x} in summary"))
-    }
-}
 
 fn opt(x: Option<f64>, scale: f64) -> Result<Value, String> {
     x.map(|v| finite(v * scale).map(Value::from))

@@ -1,7 +1,7 @@
 //! Outputs of `drillpath loads`: `loads.csv` (interface.md columns first, then extensions),
 //! the calibration overlay `calibration.csv` and `calibration.json`.
 
-use super::num;
+use super::{finite, num};
 use crate::loads::calibrate::Calibration;
 use crate::loads::chart::LoadRow;
 
@@ -84,14 +84,6 @@ pub fn overlay_csv(cal: &Calibration) -> Result<String, String> {
         out.push('\n');
     }
     Ok(out)
-}
-
-fn finite(x: f64) -> Result<f64, String> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(format!("non-finite value {x} in calibration"))
-    }
 }
 
 /// `calibration.json`: fitted friction per hole section with standard errors, residual RMS.

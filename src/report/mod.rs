@@ -41,17 +41,22 @@ pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
     result
 }
 
-/// Format a finite number for CSV output; NaN or infinity is an internal error, never printed.
-pub fn num(x: f64, decimals: usize) -> Result<String, String> {
+/// A finite number for JSON output; NaN or infinity is an internal error, never written.
+pub fn finite(x: f64) -> Result<f64, String> {
     if x.is_finite() {
-        let s = format!("{x:.decimals$}");
-        // avoid "-0.000"
-        if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
-            Ok(s.trim_start_matches('-').to_string())
-        } else {
-            Ok(s)
-        }
+        Ok(x)
     } else {
         Err(format!("non-finite value {x} in output"))
+    }
+}
+
+/// Format a finite number for CSV output; NaN or infinity is an internal error, never printed.
+pub fn num(x: f64, decimals: usize) -> Result<String, String> {
+    let s = format!("{:.decimals$}", finite(x)?);
+    // avoid "-0.000"
+    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+        Ok(s.trim_start_matches('-').to_string())
+    } else {
+        Ok(s)
     }
 }

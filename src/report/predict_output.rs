@@ -1,7 +1,7 @@
 //! Outputs of `predict` and `backanalyze`: `trajectory.csv` (interface.md columns) and the
 //! JSON summaries.
 
-use super::num;
+use super::{finite, num};
 use crate::fem::results::BitResult;
 use crate::predict::backanalysis::{ErrorStats, IntervalResult};
 use crate::predict::calibrate::{Calibration, FitParameter};
@@ -11,15 +11,6 @@ use serde_json::{json, Value};
 
 /// Header of `trajectory.csv` (interface.md).
 pub const TRAJECTORY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN";
-
-/// A finite value for JSON, or an internal error.
-pub fn finite(x: f64) -> Result<f64, String> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(format!("non-finite value {x} in summary"))
-    }
-}
 
 fn opt(x: Option<f64>, decimals: usize) -> Result<String, String> {
     x.map(|v| num(v, decimals)).transpose().map(|s| s.unwrap_or_default())

@@ -1,6 +1,6 @@
 //! `solve` outputs: `summary.json` and `string.csv` with the interface's names (kN, kN.m, mm, deg, MPa).
 
-use super::num;
+use super::{finite, num};
 use crate::fem::results::SolveResults;
 use crate::fem::solve::SolveStats;
 use serde_json::json;
@@ -35,14 +35,6 @@ pub fn string_csv(res: &SolveResults) -> Result<String, String> {
         out.push('\n');
     }
     Ok(out)
-}
-
-fn finite(x: f64) -> Result<f64, String> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(format!("non-finite value {x} in summary"))
-    }
 }
 
 /// `summary.json` value.
