@@ -10,8 +10,7 @@
 //! 5 deg in the formula so a vertical hole gets a finite length), clamped to
 //! [[`MIN_CUT_M`], [`MAX_CUT_M`]] and to the string length.
 
-use super::mesh::build_mesh;
-use super::model::{loads_from_case, Model, TopCondition};
+use super::model::{Model, TopCondition};
 use crate::case::Case;
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::string::DrillString;
@@ -56,16 +55,7 @@ pub fn bha_model(case: &Case, path: &WellPath, hole: &HoleSize, bit_md_m: f64, c
     } else {
         case.string.truncated(cut_m)
     };
-    let mesh = build_mesh(&string, &case.solver, case.mud.density_kg_m3);
-    let mut model = Model::new(
-        path.clone(),
-        hole.clone(),
-        mesh,
-        bit_md_m,
-        loads_from_case(case),
-        |md| hole.friction_at(md).unwrap_or(case.operation.friction),
-    );
-    model.bha_length_m = case.string.bha_length_m();
+    let mut model = Model::for_string(case, &string, path, hole, bit_md_m);
     if !whole {
         model.top = TopCondition::Cut {
             offset_m: resting_offset(&model),

@@ -14,6 +14,7 @@ use super::mesh::{build_mesh, Mesh};
 use crate::case::{Case, Mode};
 use crate::contact::gap::{evaluate, GapInput, GapResponse};
 use crate::geometry::{HoleSize, Vec3, WellPath};
+use crate::string::DrillString;
 use nalgebra::Matrix3;
 
 /// Half bandwidth of the node-chain stiffness (6 DOF per node, neighbours only).
@@ -191,14 +192,27 @@ pub struct Evaluation {
 impl Model {
     /// Build the whole-string model of `case` with the bit at `case.operation.bit_md_m`.
     pub fn from_case(case: &Case) -> Model {
-        let mesh = build_mesh(&case.string, &case.solver, case.mud.density_kg_m3);
-        let mut model = Model::new(
-            case.well.path.clone(),
-            case.well.hole.clone(),
-            mesh,
+        Model::for_string(
+            case,
+            &case.string,
+            &case.well.path,
+            &case.well.hole,
             case.operation.bit_md_m,
+        )
+    }
+
+    /// The model of `string` (the case's or a part of it, bit first) with the bit at
+    /// `bit_md_m` in the hole `path`/`hole`, with `case`'s mud, operation and mesh settings;
+    /// the top is held as [`TopCondition::Surface`].
+    pub fn for_string(case: &Case, string: &DrillString, path: &WellPath, hole: &HoleSize, bit_md_m: f64) -> Model {
+        let mesh = build_mesh(string, &case.solver, case.mud.density_kg_m3);
+        let mut model = Model::new(
+            path.clone(),
+            hole.clone(),
+            mesh,
+            bit_md_m,
             loads_from_case(case),
-            |md| case.well.hole.friction_at(md).unwrap_or(case.operation.friction),
+            |md| hole.friction_at(md).unwrap_or(case.operation.friction),
         );
         model.bha_length_m = case.string.bha_length_m();
         model
