@@ -108,20 +108,14 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         );
     }
     // calibration and scoring use the intervals that could be predicted with the case's law
-    let list: Vec<Interval> = base.iter().map(|r| r.interval).collect();
-    let mut warm: Vec<_> = warm
-        .into_iter()
-        .zip(crate::predict::backanalysis::intervals(
-            survey,
-            &IntervalPlan {
-                from_md_m: from,
-                to_md_m: to,
-                horizon_m: horizon,
-            },
-        ))
-        .filter(|(_, iv)| list.iter().any(|l| l.from_md_m == iv.from_md_m))
-        .map(|(w, _)| w)
+    let predicted = |iv: &Interval| !skipped.iter().any(|(s, _)| s.from_md_m == iv.from_md_m);
+    let mut warm: Vec<_> = list
+        .iter()
+        .zip(warm)
+        .filter(|(iv, _)| predicted(iv))
+        .map(|(_, w)| w)
         .collect();
+    let list: Vec<Interval> = base.iter().map(|r| r.interval).collect();
     if a.calibrate && list.len() < min_intervals {
         bail!(
             "{name}: only {} interval(s) could be predicted; calibration needs {min_intervals}",
