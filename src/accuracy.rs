@@ -1,8 +1,9 @@
 //! Accuracy presets (issue 5): element length, contact tolerance and prediction step set
 //! together. `[solver] accuracy = "fast" | "default" | "precise"` gives the defaults of
 //! `element_length`, `bha_element_length` and `tolerance` (keys given explicitly win);
-//! `drillpath solve --accuracy` overrides all three. The prediction step of a preset is used
-//! by the trade-off benchmark (`examples/tradeoff.rs`); `predict` keeps `[bit_rock] step`.
+//! `--accuracy` on `solve`, `predict` and `backanalyze` overrides all three. The preset's
+//! prediction step is the default of `[bit_rock] step` when the case names a preset, and
+//! `predict`/`backanalyze --accuracy` set it (an explicit `--step` wins).
 //!
 //! | preset    | element_length | bha_element_length | tolerance | prediction step |
 //! |-----------|----------------|--------------------|-----------|-----------------|
@@ -89,9 +90,10 @@ impl Accuracy {
         }
     }
 
-    /// Set the preset's element lengths and tolerance in `s`.
+    /// Set the preset's element lengths and tolerance in `s` (and record the preset there).
     pub fn apply(self, s: &mut SolverSettings) {
         let k = self.knobs();
+        s.accuracy = Some(self);
         s.element_length_m = k.element_length_m;
         s.bha_element_length_m = k.bha_element_length_m;
         s.tolerance = k.tolerance;

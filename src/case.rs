@@ -198,6 +198,9 @@ pub struct SolverSettings {
     pub max_iterations: usize,
     /// Paper scheme's gradient-update factor alpha in (0, 1).
     pub alpha: f64,
+    /// The accuracy preset that set the defaults above (`[solver] accuracy` or `--accuracy`),
+    /// None when the documented defaults and explicit keys apply.
+    pub accuracy: Option<crate::accuracy::Accuracy>,
 }
 
 impl Default for SolverSettings {
@@ -210,6 +213,7 @@ impl Default for SolverSettings {
             method: Method::Newton,
             max_iterations: 300,
             alpha: 0.7,
+            accuracy: None,
         }
     }
 }

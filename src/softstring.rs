@@ -140,6 +140,20 @@ fn n_elements(l: f64, max_el: f64) -> usize {
 /// # Panics
 /// If `max_element_m` is not positive.
 pub fn soft_string(input: &SoftStringInput) -> SoftStringResult {
+    integrate(input, false)
+}
+
+/// Soft string whose wall contact balances the lateral load together with the lateral
+/// (circumferential) part of the wall friction, as in the stiff model (physics.md 6.6): the
+/// normal force is `|G_lat| / sqrt(1 + (f v_t/|v|)^2)` instead of Johancsik's `|G_lat|`, so a
+/// rotating string carries `1/sqrt(1 + f^2)` of the Johancsik torque and drag in a straight
+/// section. Used above the stiff part of the `hybrid` level, so that its surface torque is
+/// consistent with the stiff model below.
+pub fn soft_string_stiff_contact(input: &SoftStringInput) -> SoftStringResult {
+    integrate(input, true)
+}
+
+fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
     assert!(input.max_element_m > 0.0, "max_element_m must be positive");
     let v_a = input.axial_speed_m_s;
     let omega = input.omega_rad_s;
@@ -189,12 +203,13 @@ pub fn soft_string(input: &SoftStringInput) -> SoftStringResult {
             let tbar = if sn > 1e-12 { sum / sn } else { t_lo };
             let g = (t_lo - t_up) * f + E_D * (w_b * dl);
             let lat = g - tbar * g.dot(&tbar);
-            let normal = lat.norm();
-            let dir = if normal > 0.0 { lat / normal } else { Vec3::zeros() };
             let mu = input
                 .hole
                 .friction_at(0.5 * (p_lo.md_m + md_up))
                 .unwrap_or(input.friction);
+            let lateral_friction = if stiff_contact { mu * rot_share } else { 0.0 };
+            let normal = lat.norm() / lateral_friction.hypot(1.0);
+            let dir = if normal > 0.0 { lat / normal } else { Vec3::zeros() };
             let fric = mu * normal;
             f += w_b * (p_lo.position.z - p_up.position.z) - fric * ax_share;
             m += fric * r_c * rot_share;

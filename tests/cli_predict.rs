@@ -217,3 +217,100 @@ fn predict_compares_several_bhas() {
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
     assert_eq!(s["cases"].as_array().unwrap().len(), 2);
 }
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap()).unwrap()
+}
+
+/// Fidelity for prediction (issue 5): soft is refused, naming the option or the case key;
+/// `--cut` with `whole` is refused; hybrid runs the bha model and says why; `whole` solves the
+/// whole string at every step and, since the cut model is built to reproduce its bit forces
+/// (fem::bha, 1e-4 agreement), predicts the same build rate as `bha` within 0.02 deg/30 m
+/// (reference: the whole-string model itself; tolerance: the cut's bit-force agreement times the
+/// law's sensitivity over 10 m, with margin).
+#[test]
+fn predict_fidelity_levels() {
+    let dir = setup(CASE);
+    let o = run(
+        dir.path(),
+        "predict",
+        &["--ahead", "10 m", "--fidelity", "soft", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["--fidelity", "soft cannot predict"]);
+    let o = run(
+        dir.path(),
+        "predict",
+        &["--ahead", "10 m", "--fidelity", "stiff", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["--fidelity", "stiff"]);
+    let o = run(
+        dir.path(),
+        "predict",
+        &[
+            "--ahead",
+            "10 m",
+            "--fidelity",
+            "whole",
+            "--cut",
+            "30 m",
+            "--out",
+            "out",
+        ],
+    );
+    assert_error(dir.path(), &o, &["--cut", "whole"]);
+    let soft_case = setup(&CASE.replace("[bit_rock]", "[solver]\nfidelity = \"soft\"\n[bit_rock]"));
+    let o = run(soft_case.path(), "predict", &["--ahead", "10 m", "--out", "out"]);
+    assert_error(soft_case.path(), &o, &["solver.fidelity", "soft cannot predict"]);
+
+    let mut rate = Vec::new();
+    for level in ["hybrid", "whole", "bha"] {
+        let _ = std::fs::remove_dir_all(dir.path().join("out"));
+        let o = run(
+            dir.path(),
+            "predict",
+            &["--ahead", "10 m", "--fidelity", level, "--out", "out"],
+        );
+        assert!(o.status.success(), "{level}: {}", String::from_utf8_lossy(&o.stderr));
+        let s = summary(dir.path());
+        let used = if level == "whole" { "whole" } else { "bha" };
+        assert_eq!(s["model"]["fidelity"], used, "{level}");
+        assert_eq!(s["model"]["fidelity_choice"]["requested"], level);
+        assert!(!s["model"]["fidelity_choice"]["reason"].as_str().unwrap().is_empty());
+        rate.push(s["rates"]["build_rate_deg_per_30m"].as_f64().unwrap());
+    }
+    assert_eq!(rate[0], rate[2], "hybrid runs bha");
+    assert!((rate[1] - rate[2]).abs() < 0.02, "whole {} vs bha {}", rate[1], rate[2]);
+}
+
+/// Accuracy presets set the prediction step (src/accuracy.rs table): `--accuracy fast` gives
+/// 2 m, `precise` 0.5 m, an explicit `--step` wins; in the case file `[solver] accuracy` gives
+/// the step only where `[bit_rock] step` is absent.
+#[test]
+fn predict_accuracy_sets_the_step() {
+    let step_of = |case: &str, args: &[&str]| {
+        let dir = setup(case);
+        let mut all = vec!["--ahead", "4 m", "--out", "out"];
+        all.extend_from_slice(args);
+        let o = run(dir.path(), "predict", &all);
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        summary(dir.path())["step_m"].as_f64().unwrap()
+    };
+    assert_eq!(step_of(CASE, &[]), 2.0, "the case's [bit_rock] step");
+    assert_eq!(step_of(CASE, &["--accuracy", "precise"]), 0.5);
+    assert_eq!(step_of(CASE, &["--accuracy", "precise", "--step", "1 m"]), 1.0);
+    let preset = CASE.replace("[bit_rock]\nstep = \"2 m\"", "[solver]\naccuracy = \"precise\"");
+    assert_eq!(
+        step_of(&preset, &[]),
+        0.5,
+        "preset step where [bit_rock] step is absent"
+    );
+    let both = CASE.replace("[bit_rock]", "[solver]\naccuracy = \"precise\"\n[bit_rock]");
+    assert_eq!(step_of(&both, &[]), 2.0, "explicit [bit_rock] step wins");
+    let dir = setup(CASE);
+    let o = run(
+        dir.path(),
+        "predict",
+        &["--ahead", "4 m", "--accuracy", "rough", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["--accuracy", "rough"]);
+}

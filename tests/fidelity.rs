@@ -78,10 +78,14 @@ fn fidelity_bha_and_hybrid_bit_forces_match_whole() {
 #[test]
 fn fidelity_surface_values_against_whole() {
     // Reference: the whole-string FEM. Tolerances: hook load 0.2% (soft string and FEM agree
-    // on the weight; friction differs by the contact pattern; measured < 0.06%); surface torque
-    // 10% (the soft string overstates the torque of pipe lying in straight sections by
-    // sqrt(1 + f^2), physics.md 6.6, 3% at f = 0.25, and differs in curved ones; measured
-    // -2.4% to +8.5%, hybrid above soft where the stiff BHA carries more torque).
+    // on the weight; friction differs by the contact pattern; measured < 0.06%). Surface torque:
+    // soft 10% (Johancsik's soft string overstates the torque of rotating pipe lying in straight
+    // sections by sqrt(1 + f^2), physics.md 6.6, 3% at f = 0.25, and differs in curved ones;
+    // measured -2.4% to +2.4%). Hybrid 3% (its soft part balances the lateral load with the
+    // normal force and the circumferential friction together, as the stiff model does; measured
+    // -0.2% to +0.9%), except forge-16a, 8% (measured +6.8%): its real survey has short
+    // doglegs in the near-vertical upper hole that the stiff pipe bridges, so the whole model's
+    // torque gain above 1,474 m is 0.81 of the soft string's there.
     for name in EXAMPLES {
         let case = example(name);
         let whole = at(&case, Fidelity::Whole);
@@ -103,8 +107,13 @@ fn fidelity_surface_values_against_whole() {
                 "{name} {level:?}: hook load off by {:.3}%",
                 100.0 * eh
             );
+            let tol = match (level, name) {
+                (Fidelity::Hybrid, "forge-16a") => 0.08,
+                (Fidelity::Hybrid, _) => 0.03,
+                _ => 0.10,
+            };
             assert!(
-                et.abs() < 0.10,
+                et.abs() < tol,
                 "{name} {level:?}: surface torque off by {:.2}%",
                 100.0 * et
             );
@@ -160,7 +169,9 @@ fn fidelity_levels_report_only_what_they_compute() {
     assert_eq!(choose(Fidelity::Auto, Purpose::Solve).level, Level::Whole);
     assert_eq!(choose(Fidelity::Auto, Purpose::Predict).level, Level::Bha);
     assert_eq!(choose(Fidelity::Auto, Purpose::Loads).level, Level::Soft);
-    assert_eq!(choose(Fidelity::Hybrid, Purpose::Predict).level, Level::Hybrid);
+    // prediction needs bit forces only: hybrid's soft upper part would not change them
+    assert_eq!(choose(Fidelity::Hybrid, Purpose::Predict).level, Level::Bha);
+    assert_eq!(choose(Fidelity::Hybrid, Purpose::Solve).level, Level::Hybrid);
 }
 
 #[test]

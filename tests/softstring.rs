@@ -11,7 +11,7 @@ use std::path::Path;
 use drillpath::case::{Case, Mode};
 use drillpath::geometry::{HoleSize, Station, Survey, Vec3, WellPath};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use drillpath::softstring::{from_case, soft_string, SoftStringInput, SoftStringResult};
+use drillpath::softstring::{from_case, soft_string, soft_string_stiff_contact, SoftStringInput, SoftStringResult};
 use drillpath::string::material::steel;
 use drillpath::string::{Component, ComponentKind, DrillString};
 use drillpath::units::G;
@@ -367,6 +367,51 @@ fn exact_straight_inclined_section() {
         assert!((pt.normal_dir - low).norm() < 1e-9);
         assert!(rel(pt.normal_force_per_m, w_b * inc.sin()) < 1e-9);
     }
+}
+
+/// The stiff-contact variant used above the stiff part of `hybrid`
+/// (`soft_string_stiff_contact`): physics.md 6.6, rotating pipe lying in a straight inclined
+/// hole: the wall carries the lateral weight with the normal force and the circumferential
+/// friction together, so N = w_b sin I / sqrt(1 + f^2) and the torque is 1/sqrt(1 + f^2) of
+/// Johancsik's (1e-9); with a combined velocity only the circumferential share of the friction
+/// enters (N = w_b sin I / sqrt(1 + (f v_t/|v|)^2)); sliding without rotation is Johancsik's.
+#[test]
+fn stiff_contact_variant_straight_inclined_section() {
+    let (inc, l, f, r_c) = (40f64.to_radians(), 1200.0, 0.3, 0.0841375);
+    let p = path(&[(0.0, 40.0, 30.0), (1500.0, 40.0, 30.0)]);
+    let hole = HoleSize::uniform(0.2159);
+    let s = DrillString {
+        components: vec![pipe(l, 300.0, Some(2.0 * r_c))],
+    };
+    let w_b = 300.0 * (1.0 - 1100.0 / 7850.0);
+    let input = |v_a: f64, omega: f64| SoftStringInput {
+        path: &p,
+        hole: &hole,
+        string: &s,
+        mud_density_kg_m3: 1100.0,
+        bit_md_m: 1300.0,
+        wob_n: 0.0,
+        bit_torque_nm: 0.0,
+        axial_speed_m_s: v_a,
+        omega_rad_s: omega,
+        friction: f,
+        max_element_m: 3.3,
+    };
+    let rot = soft_string_stiff_contact(&input(0.0, 5.0));
+    let n = w_b * inc.sin() / (1.0 + f * f).sqrt();
+    assert!(rel(rot.surface_torque_nm, f * n * l * r_c) < 1e-9);
+    assert!(rel(rot.hook_load_n, w_b * l * inc.cos()) < 1e-9);
+    assert!(rot.points.iter().all(|pt| rel(pt.normal_force_per_m, n) < 1e-9));
+    let slide = soft_string_stiff_contact(&input(0.5, 0.0));
+    assert!(rel(slide.hook_load_n, soft_string(&input(0.5, 0.0)).hook_load_n) < 1e-12);
+    // drilling: v_a = 0.5 m/s, v_t = 5 r_c: share v_t/|v|
+    let (v_a, v_t) = (0.5, 5.0 * r_c);
+    let share = v_t / f64::hypot(v_a, v_t);
+    let drill = soft_string_stiff_contact(&input(v_a, 5.0));
+    let n = w_b * inc.sin() / (1.0 + (f * share).powi(2)).sqrt();
+    assert!(rel(drill.surface_torque_nm, f * n * share * l * r_c) < 1e-9);
+    let drag = f * n * (v_a / f64::hypot(v_a, v_t)) * l;
+    assert!(rel(drill.hook_load_n, w_b * l * inc.cos() - drag) < 1e-9);
 }
 
 /// physics.md 6.5 exact check (c): weightless pipe around an arc of 90 deg, capstan law

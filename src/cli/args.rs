@@ -97,6 +97,15 @@ pub struct PredictArgs {
     /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
+    /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
+    /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
+    /// forces) [default: the case's [solver] fidelity, auto].
+    #[arg(long, value_name = "LEVEL")]
+    pub fidelity: Option<String>,
+    /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
+    /// step; --step wins) [default: the case's [solver] accuracy, or its own settings].
+    #[arg(long, value_name = "PRESET")]
+    pub accuracy: Option<String>,
 }
 
 /// Arguments of `drillpath backanalyze`.
@@ -141,6 +150,15 @@ pub struct BackanalyzeArgs {
     /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
+    /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
+    /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
+    /// forces) [default: the case's [solver] fidelity, auto].
+    #[arg(long, value_name = "LEVEL")]
+    pub fidelity: Option<String>,
+    /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
+    /// step; --step wins) [default: the case's [solver] accuracy, or its own settings].
+    #[arg(long, value_name = "PRESET")]
+    pub accuracy: Option<String>,
 }
 
 /// Arguments of `drillpath solve`.

@@ -3,7 +3,9 @@
 
 use super::args::BackanalyzeArgs;
 use super::parse_length_option;
-use super::predict::{length_opt, load_for_prediction, progress_done, progress_line, settings_for};
+use super::predict::{
+    fidelity_json, length_opt, load_for_prediction, prediction_choice, progress_done, progress_line, settings_for,
+};
 use crate::predict::backanalysis::{
     error_stats, intervals, run_intervals, run_intervals_skipping, Interval, IntervalPlan,
 };
@@ -24,7 +26,8 @@ pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
 
 /// Run the command.
 pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
-    let case = load_for_prediction(&a.case)?;
+    let mut case = load_for_prediction(&a.case)?;
+    let choice = prediction_choice(&mut case, &a.fidelity, &a.accuracy)?;
     let survey = &case.well.path;
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
@@ -84,7 +87,7 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
             }
         );
     }
-    let settings = settings_for(&case, step, None);
+    let settings = settings_for(&case, step, None, &choice)?;
     let name = a.case.display().to_string();
     let t0 = std::time::Instant::now();
     let fail = |e: crate::predict::march::PredictError| anyhow::anyhow!("{name}: {e}");
@@ -133,6 +136,7 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         "to_md_m": list[list.len() - 1].to_md_m,
         "horizon_m": horizon,
         "step_m": settings.step_m.max(MIN_STEP_M),
+        "fidelity": fidelity_json(&choice),
         "inc_err_per_100m_deg": stats_all.inc_mean_abs_per_100m_rad.to_degrees(),
         "azi_err_per_100m_deg": stats_all.azi_mean_abs_per_100m_rad.to_degrees(),
         "errors": error_stats_json(&stats_all).map_err(|e| anyhow::anyhow!("internal error: {e}"))?,
@@ -189,6 +193,7 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     println!("backanalyze: {} ({})", case.name, name);
+    println!("  fidelity {}: {}", choice.level.name(), choice.reason);
     for (iv, e) in &skipped {
         println!(
             "  WARNING: interval {:.1}-{:.1} m skipped (not in the errors): {e}",

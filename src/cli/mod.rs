@@ -34,3 +34,34 @@ pub fn parse_length_option(name: &str, text: &str) -> Result<f64, InputError> {
 pub fn parse_length_unit(name: &str, text: &str) -> Result<crate::units::Unit, InputError> {
     lookup_dim(text, Dimension::Length).map_err(|m| InputError::option(name, m))
 }
+
+/// Apply the command line's `--accuracy` preset to `case` (element lengths, contact tolerance
+/// and, for prediction, the step) and choose the model level for `purpose`: `--fidelity` over
+/// the case's `[solver] fidelity`.
+pub fn model_choice(
+    fidelity: Option<&str>,
+    accuracy: Option<&str>,
+    case: &mut crate::case::Case,
+    purpose: crate::fidelity::Purpose,
+) -> Result<crate::fidelity::Choice, InputError> {
+    if let Some(t) = accuracy {
+        let preset = crate::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
+            InputError::option(
+                "--accuracy",
+                format!("unknown accuracy `{t}` (expected {})", crate::accuracy::NAMES),
+            )
+        })?;
+        preset.apply(&mut case.solver);
+        case.bit_rock.step_m = preset.knobs().step_m;
+    }
+    let requested = match fidelity {
+        None => case.solver.fidelity,
+        Some(t) => crate::fidelity::parse(t.trim()).ok_or_else(|| {
+            InputError::option(
+                "--fidelity",
+                format!("unknown fidelity `{t}` (expected {})", crate::fidelity::NAMES),
+            )
+        })?,
+    };
+    Ok(crate::fidelity::choose(requested, purpose))
+}

@@ -4,6 +4,7 @@
 use super::args::PredictArgs;
 use super::parse_length_option;
 use crate::case::Case;
+use crate::fidelity::{Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::law::LawParams;
 use crate::predict::march::{predict, MarchSettings, Prediction, MIN_STEP_M};
@@ -36,14 +37,57 @@ pub fn load_for_prediction(path: &Path) -> anyhow::Result<Case> {
     Ok(case)
 }
 
-/// March settings of `case` with the command line's step and cut.
-pub fn settings_for(case: &Case, step: Option<f64>, cut: Option<f64>) -> MarchSettings {
+/// March settings of `case` with the command line's step and cut, for the model level of
+/// `choice`: `bha` (the cut model), `whole` (the cut at the string's top, so the whole string
+/// is solved at every step); `soft` cannot predict (no bit side forces).
+pub fn settings_for(
+    case: &Case,
+    step: Option<f64>,
+    cut: Option<f64>,
+    choice: &Choice,
+) -> anyhow::Result<MarchSettings> {
     let mut s = MarchSettings::from_case(case);
     if let Some(st) = step {
         s.step_m = st;
     }
-    s.cut_m = cut;
-    s
+    s.cut_m = match choice.level {
+        Level::Soft => bail!("fidelity soft cannot predict (no bit side forces)"),
+        Level::Whole if cut.is_some() => {
+            bail!("options `--cut` and fidelity whole exclude each other (whole solves the string to its top)")
+        }
+        Level::Whole => Some(case.string.length_m()),
+        Level::Bha | Level::Hybrid => cut,
+    };
+    Ok(s)
+}
+
+/// The model choice of `predict`/`backanalyze` (`--fidelity`, `--accuracy`, the case's
+/// `[solver]` table) applied to `case`.
+pub fn prediction_choice(
+    case: &mut Case,
+    fidelity: &Option<String>,
+    accuracy: &Option<String>,
+) -> anyhow::Result<Choice> {
+    let choice = super::model_choice(fidelity.as_deref(), accuracy.as_deref(), case, Purpose::Predict)?;
+    if choice.level == Level::Soft {
+        let origin = match fidelity {
+            Some(_) => "option `--fidelity`".to_string(),
+            None => format!("{}: key `solver.fidelity`", case.path.display()),
+        };
+        bail!(
+            "{origin}: soft cannot predict: the soft string has no bending stiffness, hence no bit side forces or tilt; use auto, bha, hybrid or whole"
+        );
+    }
+    Ok(choice)
+}
+
+/// The `model.fidelity` object of a prediction summary.
+pub fn fidelity_json(choice: &Choice) -> serde_json::Value {
+    json!({
+        "requested": crate::report::levels_output::requested_name(choice.requested),
+        "used": choice.level.name(),
+        "reason": choice.reason,
+    })
 }
 
 /// Parse an optional length option, refusing values below `min`.
@@ -80,7 +124,8 @@ struct CaseRun {
 }
 
 fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
-    let case = load_for_prediction(path)?;
+    let mut case = load_for_prediction(path)?;
+    let choice = prediction_choice(&mut case, &a.fidelity, &a.accuracy)?;
     let survey = &case.well.path;
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
@@ -104,7 +149,7 @@ fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
     }
     let step = length_opt("--step", &a.step, MIN_STEP_M)?;
     let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M)?;
-    let settings = settings_for(&case, step, cut);
+    let settings = settings_for(&case, step, cut, &choice)?;
     let name = path.display().to_string();
     let mut on_step = |md: f64| progress_line(&format!("predict {name}: bit at {md:.1} m of {to:.1} m"));
     let pred = predict(&case, from, to, &settings, &mut on_step);
@@ -136,7 +181,8 @@ fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
             "tracking": tracking.as_ref().map(tracking_json).transpose()?,
             "bit_rock": law_json(&case.bit_rock.law, &law, case.bit_rock.formations.len())?,
             "model": {
-                "fidelity": "bha",
+                "fidelity": choice.level.name(),
+                "fidelity_choice": fidelity_json(&choice),
                 "cut_m": fin(pred.cut_m)?,
                 "dofs": pred.dofs,
                 "steps": pred.steps.len() - 1,
@@ -246,6 +292,12 @@ fn print_case(r: &CaseRun) {
     let first = &p.steps[0];
     let end = p.steps.last().expect("start record");
     println!("predict: {} ({})", r.case.name, r.case.path.display());
+    let f = &r.summary["model"]["fidelity_choice"];
+    println!(
+        "  fidelity {}: {}",
+        f["used"].as_str().unwrap_or(""),
+        f["reason"].as_str().unwrap_or("")
+    );
     println!(
         "  from {:.2} m (I {:.3} deg, A {:.3} deg) to {:.2} m: I {:.3} deg, A {:.3} deg, TVD {:.2} m, N {:.2} m, E {:.2} m",
         p.from_md_m,
@@ -280,9 +332,13 @@ fn print_case(r: &CaseRun) {
             t["azi_err_per_100m_deg"].as_f64().unwrap_or(0.0)
         );
     }
+    let model = if r.summary["model"]["fidelity"] == "whole" {
+        "stiff whole string".to_string()
+    } else {
+        format!("stiff BHA cut {:.1} m above the bit", p.cut_m)
+    };
     println!(
-        "  model: stiff BHA cut {:.1} m above the bit, {} DOF; {} steps, {} solver iterations, {:.2} s",
-        p.cut_m,
+        "  model: {model}, {} DOF; {} steps, {} solver iterations, {:.2} s",
         p.dofs,
         p.steps.len() - 1,
         p.iterations,

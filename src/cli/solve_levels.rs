@@ -6,7 +6,7 @@ use crate::case::Case;
 use crate::error::InputError;
 use crate::fem::model::Model;
 use crate::fem::results::SolveResults;
-use crate::fidelity::{choose, parse, run as run_level, Choice, Level, LevelResult, Purpose, NAMES};
+use crate::fidelity::{run as run_level, Choice, Level, LevelResult, Purpose};
 use crate::report::levels_output::{
     append_buckling_columns, buckling_json, levels_csv, levels_summary, requested_name,
 };
@@ -16,21 +16,7 @@ use anyhow::{bail, Context};
 /// Apply `--accuracy` to `case` and choose the level `solve` runs: `--fidelity` over the
 /// case's `[solver] fidelity`.
 pub fn configure(a: &SolveArgs, case: &mut Case) -> Result<Choice, InputError> {
-    if let Some(t) = a.accuracy.as_deref() {
-        let preset = crate::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
-            InputError::option(
-                "--accuracy",
-                format!("unknown accuracy `{t}` (expected {})", crate::accuracy::NAMES),
-            )
-        })?;
-        preset.apply(&mut case.solver);
-    }
-    let requested = match a.fidelity.as_deref() {
-        None => case.solver.fidelity,
-        Some(t) => parse(t.trim())
-            .ok_or_else(|| InputError::option("--fidelity", format!("unknown fidelity `{t}` (expected {NAMES})")))?,
-    };
-    Ok(choose(requested, Purpose::Solve))
+    super::model_choice(a.fidelity.as_deref(), a.accuracy.as_deref(), case, Purpose::Solve)
 }
 
 /// Add the `fidelity` and `buckling` keys to the whole-string `summary` and the buckling

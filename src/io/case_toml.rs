@@ -96,14 +96,15 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         None => DrillString { components: vec![] },
     };
 
-    let br_sec = top
-        .table("bit_rock")?
-        .unwrap_or_else(|| Section::new(path, "bit_rock", &empty));
-    let bit_rock = read_bit_rock(&br_sec)?;
     let sol_sec = top
         .table("solver")?
         .unwrap_or_else(|| Section::new(path, "solver", &empty));
     let solver = read_solver(&sol_sec)?;
+    let br_sec = top
+        .table("bit_rock")?
+        .unwrap_or_else(|| Section::new(path, "bit_rock", &empty));
+    let default_step_m = solver.accuracy.map(|p| p.knobs().step_m).unwrap_or(DEFAULT_STEP_M);
+    let bit_rock = read_bit_rock(&br_sec, default_step_m)?;
 
     Ok(Case {
         name,
@@ -589,7 +590,11 @@ fn read_yield_strength(c: &Section) -> InputResult<Option<f64>> {
     }
 }
 
-fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
+/// Prediction step when neither `[bit_rock] step` nor `[solver] accuracy` gives one, m.
+pub const DEFAULT_STEP_M: f64 = 1.0;
+
+/// `[bit_rock]`; `default_step_m` applies when the table has no `step` (the accuracy preset's).
+fn read_bit_rock(s: &Section, default_step_m: f64) -> InputResult<BitRock> {
     s.check_known(BIT_ROCK_KEYS)?;
     let law = s.string("law")?.unwrap_or_else(|| "ho".into());
     if law != "ho" {
@@ -606,7 +611,7 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
     }
     let dip = s.quantity("dip", D::Angle, "deg")?.unwrap_or(0.0);
     let dipdir = s.quantity("dip_direction", D::Angle, "deg")?.unwrap_or(0.0);
-    let step = s.positive("step", D::Length, "m", false)?.unwrap_or(1.0);
+    let step = s.positive("step", D::Length, "m", false)?.unwrap_or(default_step_m);
     let bit_friction = s.number("bit_friction")?.unwrap_or(0.25);
     let mut formations = Vec::new();
     if let Some(fs) = s.tables("formations")? {
@@ -645,6 +650,7 @@ fn read_bit_rock(s: &Section) -> InputResult<BitRock> {
 fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     s.check_known(SOLVER_KEYS)?;
     let mut d = SolverSettings::default();
+    let mut accuracy = None;
     if let Some(name) = s.string("accuracy")? {
         let preset = crate::accuracy::Accuracy::parse(&name).ok_or_else(|| {
             s.error(
@@ -653,6 +659,7 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
             )
         })?;
         preset.apply(&mut d);
+        accuracy = Some(preset);
     }
     let el = s
         .positive("element_length", D::Length, "m", false)?
@@ -698,5 +705,6 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         method,
         max_iterations: max_it as usize,
         alpha,
+        accuracy,
     })
 }
