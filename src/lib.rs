@@ -18,6 +18,7 @@ pub mod buckling_marks;
 pub mod case;
 pub mod cli;
 pub mod contact;
+pub mod diagnose;
 pub mod error;
 pub mod fem;
 pub mod fidelity;

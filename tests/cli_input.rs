@@ -763,3 +763,55 @@ fn survey_md_unit_option_reads_feet() {
     let last = r.stdout.lines().last().unwrap();
     assert!(last.starts_with("304.800,"), "{last}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// A solve that does not converge says so in one line, with the soft string's physical hints.
+
+/// Sliding 250 kN onto the bit at the end of a 300 m lateral (300 m vertical, 90 deg build of
+/// 450 m, 5 in pipe, friction 0.25): the soft string needs the top pushed down (hook load < 0,
+/// lock-up, src/diagnose.rs) and buckles the pipe helically. With 3 iterations allowed the
+/// stiff solve stops unconverged: exit non-zero, one `error:` line naming the non-convergence,
+/// `--allow-unconverged`, the lock-up and the helical buckling; no output directory.
+#[test]
+fn unconverged_solve_names_lock_up_and_buckling() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("s.csv"),
+        "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n750,90,0\n1050,90,0\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("c.toml"),
+        r#"[well]
+survey = "s.csv"
+hole = [{ to_md = "1050 m", diameter = "8.5 in" }]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+bit_md = "1050 m"
+wob = "250 kN"
+friction = 0.25
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "29 kg/m"
+[solver]
+max_iterations = 3
+"#,
+    )
+    .unwrap();
+    let r = run_in(dir.path(), &["solve", "c.toml", "--out", "out"]);
+    check_error(
+        &r,
+        &[
+            "c.toml",
+            "did not converge",
+            "--allow-unconverged",
+            "lock-up",
+            "helically buckled",
+        ],
+    );
+    assert!(!dir.path().join("out").exists(), "no output on a failed solve");
+}

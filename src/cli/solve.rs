@@ -46,12 +46,13 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             .map(|&i| format!("{:.1} m", model.md_ref[i]))
             .collect();
         bail!(
-            "{}: the solve did not converge in {} iterations (last relative residuals {}; max penetration {:.2e} of clearance; contacts switching at MD {}); no results written (use --allow-unconverged to write flagged results)",
+            "{}: the solve did not converge in {} iterations (last relative residuals {}; max penetration {:.2e} of clearance; contacts switching at MD {}); no results written (use --allow-unconverged to write flagged results){}",
             a.case.display(),
             sol.stats.iterations,
             tail.join(", "),
             sol.stats.max_penetration,
-            if chatter.is_empty() { "none".into() } else { chatter.join(", ") }
+            if chatter.is_empty() { "none".into() } else { chatter.join(", ") },
+            hints_suffix(&case)
         );
     }
     let mut summary = summary_json(&res, &sol.stats, sol.converged, model.dofs(), model.nodes() - 1)
@@ -129,4 +130,12 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
         println!("  wrote {}/summary.json and string.csv", dir.display());
     }
     Ok(())
+}
+
+/// The soft-string hints on a non-converged solve ([`crate::diagnose`]), as a message suffix.
+pub fn hints_suffix(case: &crate::case::Case) -> String {
+    crate::diagnose::nonconvergence_hints(case)
+        .iter()
+        .map(|h| format!("; {h}"))
+        .collect()
 }

@@ -65,8 +65,9 @@ pub fn run(a: &SolveArgs, case: &Case, choice: Choice) -> anyhow::Result<()> {
     if !lr.converged && !a.allow_unconverged {
         let it = lr.fem.as_ref().map(|f| f.stats.iterations).unwrap_or(0);
         bail!(
-            "{}: the stiff bottom-hole-assembly solve did not converge in {it} iterations; no results written (use --allow-unconverged to write flagged results, or --fidelity soft)",
-            a.case.display()
+            "{}: the stiff bottom-hole-assembly solve did not converge in {it} iterations; no results written (use --allow-unconverged to write flagged results, or --fidelity soft){}",
+            a.case.display(),
+            super::solve::hints_suffix(case)
         );
     }
     let (csv, marks) = levels_csv(case, &lr).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;

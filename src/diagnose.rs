@@ -1,0 +1,111 @@
+//! Why a stiff solve may not have converged: what the soft string (physics.md 6.5, cheap and
+//! always convergent) says about the same operation. Two physical causes are recognised:
+//!
+//! - **lock-up**: the soft-string hook load is negative, i.e. the top would have to be pushed
+//!   down to put the requested WOB on the bit (typical when sliding a long lateral); the
+//!   compressed pipe above then buckles, and the stiff model has no static state near the start;
+//! - **helical buckling**: compression above the helical onset (src/buckling_marks.rs, with the
+//!   hole curvature) over part of the string; the stiff model must find a post-buckled shape.
+//!
+//! Neither proves the stiff solve impossible, but both tell the user the case is at the edge
+//! of what the string can do, not only of what the solver can do.
+
+use crate::buckling_marks::{marks, zones, BuckleState};
+use crate::case::Case;
+use crate::softstring;
+
+/// One-sentence hints on `case` for a non-converged stiff solve (empty when the soft string
+/// shows neither lock-up nor helical buckling). Forces in kN, depths in m.
+pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
+    if case.string.components.is_empty() {
+        return Vec::new();
+    }
+    let soft = softstring::from_case(case, case.solver.element_length_m.max(1.0));
+    let mut hints = Vec::new();
+    let wob = -soft.points[0].tension_n;
+    if soft.hook_load_n < 0.0 && case.operation.hook_load_n.is_none() {
+        hints.push(format!(
+            "soft-string estimate: hook load {:.0} kN, i.e. the top would have to be pushed down to put {:.0} kN on the bit while {} (lock-up): less WOB or friction, rotation, or heavier pipe above the compressed part",
+            soft.hook_load_n / 1e3,
+            wob / 1e3,
+            case.operation.mode.name()
+        ));
+    }
+    let bit_md = case.operation.bit_md_m;
+    let m = marks(
+        soft.points.iter().map(|p| (p.md_m, bit_md - p.md_m, p.tension_n)),
+        &case.string,
+        &case.well.path,
+        &case.well.hole,
+        case.mud.density_kg_m3,
+    );
+    let helical: Vec<_> = zones(&m)
+        .into_iter()
+        .filter(|z| z.state == BuckleState::Helical)
+        .collect();
+    if !helical.is_empty() {
+        let list: Vec<String> = helical
+            .iter()
+            .take(3)
+            .map(|z| format!("{:.0}-{:.0} m", z.top_md_m, z.bottom_md_m))
+            .collect();
+        let compression = m.iter().map(|k| k.compression_n).fold(0.0, f64::max);
+        hints.push(format!(
+            "soft-string estimate: helically buckled at MD {}{} (max compression {:.0} kN): the stiff model has to find a post-buckled shape there",
+            list.join(", "),
+            if helical.len() > 3 { ", ..." } else { "" },
+            compression / 1e3
+        ));
+    }
+    hints
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::case_toml::{load_case, CaseOverrides};
+
+    fn case(wob_kn: f64, mode: &str) -> Case {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("s.csv"),
+            "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n750,90,0\n1050,90,0\n",
+        )
+        .unwrap();
+        let toml = format!(
+            r#"[well]
+survey = "s.csv"
+hole = [{{ to_md = "1050 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "{mode}"
+bit_md = "1050 m"
+wob = "{wob_kn} kN"
+rpm = 60
+friction = 0.25
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "29 kg/m"
+"#
+        );
+        std::fs::write(dir.path().join("c.toml"), toml).unwrap();
+        load_case(&dir.path().join("c.toml"), &CaseOverrides::default()).unwrap()
+    }
+
+    /// Reference: the soft string of the same case (physics.md 6.5). 300 m vertical, a 90 deg
+    /// build of 450 m and a 300 m lateral of 5 in pipe (w_b = 241 N/m): the hanging weight is
+    /// about 300 x 241 + 450 x 241 x 2/pi = 141 kN, so sliding with 20 kN on the bit keeps the
+    /// top in tension and below the helical onset (no hint), while 250 kN needs the top pushed
+    /// (lock-up) and buckles the pipe helically (both hints).
+    #[test]
+    fn lock_up_and_helical_buckling_are_named() {
+        assert!(nonconvergence_hints(&case(20.0, "sliding")).is_empty());
+        let h = nonconvergence_hints(&case(250.0, "sliding"));
+        assert_eq!(h.len(), 2, "{h:?}");
+        assert!(h[0].contains("lock-up") && h[0].contains("sliding"), "{h:?}");
+        assert!(h[1].contains("helically buckled"), "{h:?}");
+    }
+}
