@@ -202,6 +202,32 @@ pub fn zones(marks: &[Mark]) -> Vec<Zone> {
     out
 }
 
+/// MD intervals `(top, bottom)` where the marks are in `state`: each run of neighbouring marks
+/// in that state, extended half way to the marks on either side (the tributary lengths that
+/// the buckled lengths of `summary.json` add up). Marks in order along the string.
+pub fn spans(marks: &[Mark], state: BuckleState) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::new();
+    let mut prev_in = false;
+    for (i, m) in marks.iter().enumerate() {
+        let here = m.state == state;
+        if here {
+            let half = |j: Option<usize>| j.map(|j| 0.5 * (marks[j].md_m - m.md_m)).unwrap_or(0.0);
+            let a = m.md_m + half(i.checked_sub(1));
+            let b = m.md_m + half((i + 1 < marks.len()).then_some(i + 1));
+            let (lo, hi) = (a.min(b), a.max(b));
+            match out.last_mut() {
+                Some(s) if prev_in => {
+                    s.0 = s.0.min(lo);
+                    s.1 = s.1.max(hi);
+                }
+                _ => out.push((lo, hi)),
+            }
+        }
+        prev_in = here;
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -307,5 +333,9 @@ mod tests {
             (z[1].top_md_m, z[1].bottom_md_m, z[1].state),
             (6.0, 6.0, BuckleState::Sinusoidal)
         );
+        // spans: half way to the neighbours, one per run and state (nodes 1 m apart)
+        assert_eq!(spans(&m, BuckleState::Sinusoidal), vec![(8.5, 9.5), (6.0, 6.5)]);
+        assert_eq!(spans(&m, BuckleState::Helical), vec![(7.5, 8.5)]);
+        assert!(spans(&m[..1], BuckleState::Helical).is_empty());
     }
 }

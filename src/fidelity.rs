@@ -228,7 +228,27 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls) -> Result<FemPart, S
 
 /// Run `case` at the level of `choice` with solver controls `ctl`.
 pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResult, FidelityError> {
+    run_with_progress(case, choice, ctl, &mut |_, _, _| {})
+}
+
+/// Number of stages [`run_with_progress`] reports for `level` (hybrid: the stiff bottom-hole
+/// assembly, then the soft string above it).
+pub fn stages(level: Level) -> usize {
+    match level {
+        Level::Hybrid => 2,
+        _ => 1,
+    }
+}
+
+/// [`run`], calling `on_stage(k, n, what)` when stage `k` (0-based) of `n` starts.
+pub fn run_with_progress(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Result<LevelResult, FidelityError> {
     let t0 = Instant::now();
+    let n = stages(choice.level);
     let op = &case.operation;
     let mut out = LevelResult {
         choice,
@@ -245,6 +265,7 @@ pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResu
     };
     match out.choice.level {
         Level::Soft => {
+            on_stage(0, n, "soft string");
             let s = softstring::from_case(case, case.solver.element_length_m);
             out.wob_n = -s.points[0].tension_n;
             out.bit_torque_nm = s.points[0].torque_nm;
@@ -253,6 +274,7 @@ pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResu
             out.soft = Some(s);
         }
         Level::Whole => {
+            on_stage(0, n, "stiff whole string");
             let part = fem_part(Model::from_case(case), case, ctl)?;
             out.fill_from_fem(&part);
             out.hook_load_n = Some(part.results.hook_load_n);
@@ -267,6 +289,7 @@ pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResu
                 )));
             }
             let cut = cut_for(case);
+            on_stage(0, n, "stiff bottom-hole assembly");
             let model = bha_model(case, &case.well.path, &case.well.hole, op.bit_md_m, cut);
             let is_cut = matches!(model.top, TopCondition::Cut { .. });
             let part = fem_part(model, case, ctl)?;
@@ -277,6 +300,7 @@ pub fn run(case: &Case, choice: Choice, ctl: &SolveControls) -> Result<LevelResu
                 out.hook_load_n = Some(part.results.hook_load_n);
                 out.surface_torque_nm = Some(part.results.surface_torque_nm);
             } else if out.choice.level == Level::Hybrid {
+                on_stage(1, n, "soft string above the coupling point");
                 let s = soft_above(case, &part);
                 out.hook_load_n = Some(s.hook_load_n);
                 out.surface_torque_nm = Some(s.surface_torque_nm);

@@ -189,6 +189,48 @@ fn oilfield_units_in_the_solve_report_match_the_si_summary() {
     assert!(!html.contains("[kN]") && !html.contains("MD [m]"));
 }
 
+/// Buckling on the axial-force plot: the j-shape BHA at 300 m (vertical hole, 120 kN WOB) is
+/// buckled over about 100 m by the summary's own marks (sinusoidal and helical): both zones are
+/// in the legend with the onset curves; at 1500 m nothing is buckled and no zone is drawn or
+/// listed.
+#[test]
+fn axial_force_plot_shows_buckled_zones_only_when_buckled() {
+    let tmp = TempDir::new().unwrap();
+    let case = root().join("wells/j-shape/case.toml");
+    for md in ["300 m", "1500 m"] {
+        let out = run(
+            &[
+                "solve",
+                case.to_str().unwrap(),
+                "--bit-md",
+                md,
+                "--json",
+                "--report",
+                "r.html",
+            ],
+            tmp.path(),
+        );
+        let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let sin = s["buckling"]["sinusoidal_length_m"].as_f64().unwrap();
+        let hel = s["buckling"]["helical_length_m"].as_f64().unwrap();
+        if md == "300 m" {
+            assert!(sin > 50.0 && hel > 0.0, "the test case must buckle: {sin} m, {hel} m");
+        } else {
+            assert!(sin == 0.0 && hel == 0.0, "the test case must not buckle");
+        }
+        let html = std::fs::read_to_string(tmp.path().join("r.html")).unwrap();
+        check_report(&html, SOLVE_SERIES);
+        let (_, svg) = figures(&html).into_iter().find(|(id, _)| id == "axial-force").unwrap();
+        let (texts, _) = parse_svg("axial-force", &svg);
+        let has = |name: &str| texts.iter().any(|t| t == name);
+        assert_eq!(has("sinusoidal buckling"), sin > 0.0, "{md}: {texts:?}");
+        assert_eq!(has("helical buckling"), hel > 0.0, "{md}: {texts:?}");
+        if hel > 0.0 {
+            assert!(has("sinusoidal onset") && has("helical onset"), "{md}: {texts:?}");
+        }
+    }
+}
+
 #[test]
 fn predict_and_backanalyze_reports_on_the_seed_well() {
     let tmp = TempDir::new().unwrap();

@@ -11,7 +11,7 @@ pub struct Cli {
     /// More log output on stderr (-v info, -vv debug).
     #[arg(short, long, action = clap::ArgAction::Count, global = true)]
     pub verbose: u8,
-    /// Only errors on stderr.
+    /// Only errors on stderr (no progress bar).
     #[arg(short, long, global = true)]
     pub quiet: bool,
     /// The command.
@@ -77,7 +77,7 @@ pub struct PredictArgs {
     /// Length to drill ahead of --from instead of --to (e.g. "60 m") [default: none].
     #[arg(long, value_name = "LENGTH")]
     pub ahead: Option<String>,
-    /// Step length [default: the case's [bit_rock] step, 1 m].
+    /// Step length [default: the case's `[bit_rock]` step, 1 m].
     #[arg(long, value_name = "LENGTH")]
     pub step: Option<String>,
     /// Distance from the bit where the stiff model is cut [default: automatic, see README].
@@ -94,7 +94,7 @@ pub struct PredictArgs {
     /// [default: no report].
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
-    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
     /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
@@ -134,7 +134,7 @@ pub struct BackanalyzeArgs {
     /// No interval ends below this MD [default: the last station].
     #[arg(long, value_name = "MD")]
     pub to: Option<String>,
-    /// Step length [default: the case's [bit_rock] step, 1 m].
+    /// Step length [default: the case's `[bit_rock]` step, 1 m].
     #[arg(long, value_name = "LENGTH")]
     pub step: Option<String>,
     /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate) [default: no files].
@@ -147,7 +147,7 @@ pub struct BackanalyzeArgs {
     /// [default: no report].
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
-    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
     /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
@@ -182,14 +182,14 @@ pub struct SolveArgs {
     /// [default: no report].
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
-    /// Units shown in the report: si or oilfield (CSV and JSON files stay SI).
+    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
-    /// Model fidelity: auto, soft, bha, hybrid, whole [default: the case's [solver] fidelity, auto].
+    /// Model fidelity: auto, soft, bha, hybrid, whole [default: the case's `[solver]` fidelity, auto].
     #[arg(long, value_name = "LEVEL")]
     pub fidelity: Option<String>,
     /// Accuracy preset: fast, default, precise (sets element lengths and contact tolerance,
-    /// overriding the case file) [default: the case's [solver] accuracy, or its own settings].
+    /// overriding the case file) [default: the case's `[solver]` accuracy, or its own settings].
     #[arg(long, value_name = "PRESET")]
     pub accuracy: Option<String>,
 }
@@ -229,7 +229,7 @@ pub struct LoadsArgs {
     /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Also run the stiff whole-string FEM for every row (slow; also on with [solver] fidelity = "whole").
+    /// Also run the stiff whole-string FEM for every row (slow; also on with `[solver] fidelity = "whole"`).
     #[arg(long)]
     pub stiff: bool,
     /// Measured hook loads (and torques) to fit the friction factor per hole section to [default: none].
@@ -238,4 +238,7 @@ pub struct LoadsArgs {
     /// Weight on bit of the drilling and sliding rows (e.g. "100 kN", "20 klbf") [default: the case's wob].
     #[arg(long, value_name = "FORCE")]
     pub wob: Option<String>,
+    /// Units shown on stdout: si or oilfield (loads.csv and the calibration files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
 }

@@ -3,19 +3,20 @@
 
 use super::args::BackanalyzeArgs;
 use super::parse_length_option;
-use super::predict::{
-    fidelity_json, length_opt, load_for_prediction, prediction_choice, progress_done, progress_line, settings_for,
-};
+use super::predict::{fidelity_json, length_opt, load_for_prediction, prediction_choice, settings_for};
+use super::progress::Progress;
 use crate::predict::backanalysis::{
     error_stats, intervals, run_intervals, run_intervals_skipping, Interval, IntervalPlan,
 };
 use crate::predict::calibrate::{calibrate, FitParameter};
 use crate::predict::law::LawParams;
 use crate::predict::march::{MIN_MODEL_LENGTH_M, MIN_STEP_M};
+use crate::report::display_units::fixed;
 use crate::report::predict_output::{backanalysis_csv, calibration_json, error_stats_json, fitted_toml, law_json};
 use crate::report::write_atomic;
 use anyhow::{bail, Context};
 use serde_json::json;
+use std::io::Write;
 
 /// By default back-analysis starts at the first station this inclined, deg: in a vertical
 /// hole the bit forces have no direction to predict (a kick-off is steered, not predicted).
@@ -24,8 +25,8 @@ pub const DEFAULT_MIN_INCLINATION_DEG: f64 = 3.0;
 /// Hole above the first interval's start by default, m.
 pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
 
-/// Run the command.
-pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
+/// Run the command (`quiet`: no progress bar).
+pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let mut case = load_for_prediction(&a.case)?;
     let choice = prediction_choice(&mut case, &a.fidelity, &a.accuracy)?;
     let survey = &case.well.path;
@@ -92,16 +93,17 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
     let t0 = std::time::Instant::now();
     let fail = |e: crate::predict::march::PredictError| anyhow::anyhow!("{name}: {e}");
     let mut warm = Vec::new();
+    let progress = Progress::new(list.len() as u64, &format!("backanalyze {name}"), quiet);
     let (base, skipped) = run_intervals_skipping(
         &case,
         &case.bit_rock,
         &list,
         &settings,
         &mut warm,
-        |k, n| progress_line(&format!("backanalyze {name}: interval {k}/{n}")),
+        |k, n| progress.set(k as u64, &format!("interval {k}/{n}")),
         false,
     );
-    progress_done();
+    progress.finish();
     if base.is_empty() {
         let (iv, e) = &skipped[0];
         bail!(
@@ -147,10 +149,10 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
     let mut fitted_text = None;
     if a.calibrate {
         let (cal_list, score_list): (&[Interval], &[Interval]) = list.split_at(ncal);
-        let cal = calibrate(&case, &params, cal_list, &settings, |m| {
-            progress_line(&format!("backanalyze {name}: {m}"))
-        });
-        progress_done();
+        // the calibration's number of evaluations is not known ahead: a spinner with its messages
+        let progress = Progress::spinner(&format!("backanalyze {name}: calibration"), quiet);
+        let cal = calibrate(&case, &params, cal_list, &settings, |m| progress.message(m));
+        progress.finish();
         let cal = cal.map_err(fail)?;
         let mut warm2 = warm.split_off(ncal.min(warm.len()));
         let scored = run_intervals(&case, &cal.bit_rock, score_list, &settings, &mut warm2, |_, _| {}).map_err(fail)?;
@@ -188,68 +190,80 @@ pub fn run(a: BackanalyzeArgs) -> anyhow::Result<()> {
         let split = a.calibrate.then_some(split_md);
         crate::report::predict_report::write_backanalyze(file, &case, &results, split, a.units)?;
     }
+    let mut out = std::io::stdout().lock();
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
-    println!("backanalyze: {} ({})", case.name, name);
-    println!("  fidelity {}: {}", choice.level.name(), choice.reason);
+    let (du, eu) = (a.units.depth(), a.units.per_100());
+    // error rates of the summary are in degrees per 100 m
+    let rate = |deg_per_100m: f64| eu.fmt(deg_per_100m.to_radians() / 100.0, 3);
+    writeln!(out, "backanalyze: {} ({})", case.name, name)?;
+    writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
     for (iv, e) in &skipped {
-        println!(
-            "  WARNING: interval {:.1}-{:.1} m skipped (not in the errors): {e}",
-            iv.from_md_m, iv.to_md_m
-        );
+        writeln!(
+            out,
+            "  WARNING: interval {}-{} skipped (not in the errors): {e}",
+            du.num(iv.from_md_m, 1),
+            du.fmt(iv.to_md_m, 1)
+        )?;
     }
-    println!(
-        "  {} intervals from {:.1} m to {:.1} m (step {:.2} m): mean |error| per 100 m: inclination {:.3} deg, azimuth {:.3} deg (RMS {:.3} and {:.3})",
+    writeln!(
+        out,
+        "  {} intervals from {} to {} (step {}): mean |error|: inclination {}, azimuth {} (RMS {} and {})",
         base.len(),
-        list[0].from_md_m,
-        list[list.len() - 1].to_md_m,
-        settings.step_m.max(MIN_STEP_M),
-        stats_all.inc_mean_abs_per_100m_rad.to_degrees(),
-        stats_all.azi_mean_abs_per_100m_rad.to_degrees(),
-        stats_all.inc_rms_per_100m_rad.to_degrees(),
-        stats_all.azi_rms_per_100m_rad.to_degrees()
-    );
+        du.fmt(list[0].from_md_m, 1),
+        du.fmt(list[list.len() - 1].to_md_m, 1),
+        du.fmt(settings.step_m.max(MIN_STEP_M), 2),
+        eu.fmt(stats_all.inc_mean_abs_per_100m_rad / 100.0, 3),
+        eu.fmt(stats_all.azi_mean_abs_per_100m_rad / 100.0, 3),
+        eu.fmt(stats_all.inc_rms_per_100m_rad / 100.0, 3),
+        eu.fmt(stats_all.azi_rms_per_100m_rad / 100.0, 3)
+    )?;
     if let Some(c) = summary.get("calibration") {
         for f in c["parameters"]["fitted"].as_array().into_iter().flatten() {
-            println!(
-                "  fitted {} = {:.5} +/- {}{}",
+            writeln!(
+                out,
+                "  fitted {} = {} +/- {}{}",
                 f["name"].as_str().unwrap_or("?"),
-                f["value"].as_f64().unwrap_or(f64::NAN),
+                fixed(f["value"].as_f64().unwrap_or(f64::NAN), 5),
                 f["std_dev"]
                     .as_f64()
-                    .map(|v| format!("{v:.5}"))
+                    .map(|v| fixed(v, 5))
                     .unwrap_or_else(|| "n/a".into()),
                 if f["identifiable"].as_bool() == Some(true) {
                     ""
                 } else {
                     "  (NOT identifiable from these intervals: the predictions barely depend on it)"
                 }
-            );
+            )?;
         }
-        let show = |k: &str, label: &str| {
-            println!(
-                "  {label}: inclination {:.3} deg/100 m, azimuth {:.3} deg/100 m",
-                c[k]["inc_err_per_100m_deg"].as_f64().unwrap_or(f64::NAN),
-                c[k]["azi_err_per_100m_deg"].as_f64().unwrap_or(f64::NAN)
-            )
-        };
-        println!(
-            "  calibrated on {:.1}-{:.1} m, scored on {:.1}-{:.1} m:",
-            list[0].from_md_m,
-            split_md,
-            split_md,
-            list[list.len() - 1].to_md_m
-        );
-        show("in_sample_default", "  calibration part, case law ");
-        show("in_sample_fitted", "  calibration part, fitted law");
-        show("out_of_sample_default", "  scoring part, case law     ");
-        show("out_of_sample_fitted", "  scoring part, fitted law   ");
+        writeln!(
+            out,
+            "  calibrated on {}-{}, scored on {}-{}:",
+            du.num(list[0].from_md_m, 1),
+            du.fmt(split_md, 1),
+            du.num(split_md, 1),
+            du.fmt(list[list.len() - 1].to_md_m, 1)
+        )?;
+        for (k, label) in [
+            ("in_sample_default", "  calibration part, case law "),
+            ("in_sample_fitted", "  calibration part, fitted law"),
+            ("out_of_sample_default", "  scoring part, case law     "),
+            ("out_of_sample_fitted", "  scoring part, fitted law   "),
+        ] {
+            let v = |key: &str| c[k][key].as_f64().unwrap_or(f64::NAN);
+            writeln!(
+                out,
+                "  {label}: inclination {}, azimuth {}",
+                rate(v("inc_err_per_100m_deg")),
+                rate(v("azi_err_per_100m_deg"))
+            )?;
+        }
     }
-    println!("  {:.2} s", t0.elapsed().as_secs_f64());
+    writeln!(out, "  {:.2} s", t0.elapsed().as_secs_f64())?;
     if let Some(dir) = &a.out {
-        println!("  wrote {}", dir.display());
+        writeln!(out, "  wrote {}", dir.display())?;
     }
     Ok(())
 }

@@ -2,6 +2,7 @@
 
 use crate::report::write_atomic;
 use anyhow::{bail, Context};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Name of the survey file written next to the case.
@@ -154,7 +155,8 @@ pub fn run(case: PathBuf, force: bool) -> anyhow::Result<()> {
     }
     write_atomic(&survey, starter_survey().as_bytes()).with_context(|| format!("cannot write {}", survey.display()))?;
     write_atomic(&case, STARTER_CASE.as_bytes()).with_context(|| format!("cannot write {}", case.display()))?;
-    println!("wrote {} and {}", case.display(), survey.display());
-    println!("next: drillpath solve {}", case.display());
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "wrote {} and {}", case.display(), survey.display())?;
+    writeln!(out, "next: drillpath solve {}", case.display())?;
     Ok(())
 }

@@ -3,6 +3,7 @@
 
 use super::args::LoadsArgs;
 use super::parse_length_option;
+use super::progress::Progress;
 use crate::case::{Fidelity, Mode};
 use crate::error::InputError;
 use crate::io::case_toml::{load_case, CaseOverrides};
@@ -11,16 +12,18 @@ use crate::loads::calibrate::{calibrate, calibrated_case};
 use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow};
 use crate::loads::stiff::{stiff_depth, StiffOutcome};
 use crate::loads::{check_fits, depth_list, string_at_depth, ChartOperation, MODES};
+use crate::report::display_units::{fixed, UnitSystem};
 use crate::report::loads_output::{calibration_json, loads_csv, overlay_csv};
 use crate::report::write_atomic;
 use crate::units::{parse_quantity, Dimension};
 use anyhow::{bail, Context};
+use std::io::Write;
 
 /// Default bit-depth step, m.
 pub const DEFAULT_EVERY_M: f64 = 30.0;
 
-/// Run the command.
-pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
+/// Run the command (`quiet`: no progress bar).
+pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     let len = |name: &str, v: &Option<String>| v.as_deref().map(|t| parse_length_option(name, t)).transpose();
     let from = len("--from", &a.from)?.unwrap_or(0.0);
     let to = len("--to", &a.to)?;
@@ -74,12 +77,26 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
         op,
         max_element_m: case.solver.element_length_m,
     };
-    println!("loads: {} ({})", case.name, a.case.display());
+    let (du, su, fu, tu) = (
+        a.units.depth(),
+        a.units.small_length(),
+        a.units.force(),
+        a.units.torque(),
+    );
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "loads: {} ({})", case.name, a.case.display())?;
     if case.operation.rpm <= 0.0 {
-        println!("  note: the case gives no rpm; rotating rows use {:.0} rpm", op.rpm);
+        writeln!(
+            out,
+            "  note: the case gives no rpm; rotating rows use {} rpm",
+            fixed(op.rpm, 0)
+        )?;
     }
     if op.wob_n == 0.0 {
-        println!("  note: WOB 0 for the drilling and sliding rows (give wob in the case or --wob)");
+        writeln!(
+            out,
+            "  note: WOB 0 for the drilling and sliding rows (give wob in the case or --wob)"
+        )?;
     }
 
     // friction calibration first: the chart then uses the fitted factors
@@ -92,13 +109,14 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
         }
         let cal = calibrate(&case, &data, &op, settings.max_element_m)
             .with_context(|| format!("{}: friction calibration", mpath.display()))?;
-        println!(
+        writeln!(
+            out,
             "  calibration: {} points ({} residuals), {} iterations{}",
             data.len(),
             cal.residuals,
             cal.iterations,
             if cal.converged { "" } else { " (NOT CONVERGED)" }
-        );
+        )?;
         for p in &cal.parameters {
             let what = match (p.fitted, p.std_error) {
                 (true, Some(s)) => format!("{:.3} +/- {:.3} (was {:.3})", p.value, s, p.initial),
@@ -108,19 +126,20 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
                 ),
                 (false, _) => format!("{:.3} kept (the data do not constrain this section)", p.value),
             };
-            println!(
-                "    section {} ({:.0}-{:.0} m, {:.3} in): friction {}",
+            writeln!(
+                out,
+                "    section {} ({}-{}, {}): friction {}",
                 p.section + 1,
-                p.from_md_m,
-                p.to_md_m,
-                p.diameter_m / 0.0254,
+                du.num(p.from_md_m, 0),
+                du.fmt(p.to_md_m, 0),
+                su.fmt(p.diameter_m, 1),
                 what
-            );
+            )?;
         }
-        print!("    residual RMS: hook load {:.2} kN", cal.rms_hook_load_n / 1e3);
+        write!(out, "    residual RMS: hook load {}", fu.fmt(cal.rms_hook_load_n, 2))?;
         match cal.rms_torque_nm {
-            Some(t) => println!(", torque {:.3} kN.m", t / 1e3),
-            None => println!(),
+            Some(t) => writeln!(out, ", torque {}", tu.fmt(t, 3))?,
+            None => writeln!(out)?,
         }
         if let Some(dir) = &a.out {
             let overlay = overlay_csv(&cal).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
@@ -134,7 +153,7 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
             .with_context(|| format!("cannot write {}", dir.display()))?;
         }
         chart_case = calibrated_case(&case, &cal);
-        println!("  the chart below uses the fitted friction factors");
+        writeln!(out, "  the chart below uses the fitted friction factors")?;
     }
 
     let t0 = std::time::Instant::now();
@@ -143,7 +162,13 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
     let stiff = a.stiff || case.solver.fidelity == Fidelity::Whole;
     let t1 = std::time::Instant::now();
     if stiff {
+        let progress = Progress::new(
+            depths.len() as u64,
+            &format!("loads {}: stiff", a.case.display()),
+            quiet,
+        );
         for (k, &d) in depths.iter().enumerate() {
+            progress.set(k as u64, &format!("bit at {}", du.fmt(d, 1)));
             let c = case_at_depth(&chart_case, d);
             let wobs: Vec<f64> = rows[k * MODES.len()..(k + 1) * MODES.len()]
                 .iter()
@@ -153,47 +178,52 @@ pub fn run(a: LoadsArgs) -> anyhow::Result<()> {
             for (j, o) in outcomes.into_iter().enumerate() {
                 rows[k * MODES.len() + j].stiff = Some(o);
             }
-            tracing::info!(
-                "stiff: bit depth {d:.1} m done ({}/{}, {:.1} s)",
-                k + 1,
-                depths.len(),
-                t1.elapsed().as_secs_f64()
-            );
+            progress.suspend(|| {
+                tracing::info!(
+                    "stiff: bit depth {d:.1} m done ({}/{}, {:.1} s)",
+                    k + 1,
+                    depths.len(),
+                    t1.elapsed().as_secs_f64()
+                );
+            });
         }
+        progress.finish();
     }
     let csv = loads_csv(&rows).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     if let Some(dir) = &a.out {
         write_atomic(&dir.join("loads.csv"), csv.as_bytes())
             .with_context(|| format!("cannot write {}", dir.display()))?;
     }
-    print_summary(&rows, &depths, soft_s);
+    print_summary(&rows, &depths, soft_s, a.units, &mut out)?;
     if stiff {
         let warm = rows
             .iter()
             .filter(|r| matches!(r.stiff, Some(StiffOutcome::Converged { warm: true, .. })))
             .count();
-        println!(
+        writeln!(
+            out,
             "  stiff (whole-string FEM): {} rows in {:.1} s, {} converged from the previous load case's state",
             rows.len(),
             t1.elapsed().as_secs_f64(),
             warm
-        );
+        )?;
         let bad: Vec<String> = rows
             .iter()
             .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
-            .map(|r| format!("{:.0} m {}", r.bit_md_m, r.mode.name()))
+            .map(|r| format!("{} {}", du.fmt(r.bit_md_m, 0), r.mode.name()))
             .collect();
         if !bad.is_empty() {
-            println!(
+            writeln!(
+                out,
                 "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
                 bad.len(),
                 bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
-            );
+            )?;
         }
     }
     match &a.out {
-        Some(dir) => println!("  wrote {}/loads.csv", dir.display()),
-        None => println!("  (use --out DIR to write loads.csv)"),
+        Some(dir) => writeln!(out, "  wrote {}/loads.csv", dir.display())?,
+        None => writeln!(out, "  (use --out DIR to write loads.csv)")?,
     }
     Ok(())
 }
@@ -203,26 +233,39 @@ fn row(rows: &[LoadRow], k: usize, mode: Mode) -> &LoadRow {
     &rows[k * MODES.len() + j]
 }
 
-/// Readable table: hook loads of the five cases and the rotating torques per depth (at most
-/// about 40 lines), then the limits.
-fn print_summary(rows: &[LoadRow], depths: &[f64], seconds: f64) {
-    println!(
+/// Readable table in `units`: hook loads of the five cases and the rotating torques per depth
+/// (at most about 40 lines), then the limits.
+fn print_summary(
+    rows: &[LoadRow],
+    depths: &[f64],
+    seconds: f64,
+    units: UnitSystem,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    writeln!(
+        out,
         "  {} bit depths x {} load cases, soft string in {:.3} s",
         depths.len(),
         MODES.len(),
         seconds
-    );
-    println!("  bit MD m | hook load kN: trip_in  trip_out  rot_off  drilling  sliding | torque kN.m: rot_off  drilling | buckled m (sliding)");
+    )?;
+    writeln!(
+        out,
+        "  bit MD {} | hook load {}: trip_in  trip_out  rot_off  drilling  sliding | torque {}: rot_off  drilling | buckled {} (sliding)",
+        du.label, fu.label, tu.label, du.label
+    )?;
     let stride = depths.len().div_ceil(40).max(1);
     for (k, d) in depths.iter().enumerate() {
         if k % stride != 0 && k + 1 != depths.len() {
             continue;
         }
-        let h = |m| row(rows, k, m).soft.hook_load_n / 1e3;
-        let t = |m| row(rows, k, m).soft.surface_torque_nm / 1e3;
-        println!(
-            "  {:>8.1} | {:>9.1} {:>9.1} {:>8.1} {:>9.1} {:>8.1} | {:>8.2} {:>9.2} | {:>7.1}",
-            d,
+        let h = |m| fu.num(row(rows, k, m).soft.hook_load_n, 1);
+        let t = |m| tu.num(row(rows, k, m).soft.surface_torque_nm, 2);
+        writeln!(
+            out,
+            "  {:>9} | {:>9} {:>9} {:>8} {:>9} {:>8} | {:>8} {:>9} | {:>7}",
+            du.num(*d, 1),
             h(Mode::TripIn),
             h(Mode::TripOut),
             h(Mode::RotatingOffBottom),
@@ -230,34 +273,42 @@ fn print_summary(rows: &[LoadRow], depths: &[f64], seconds: f64) {
             h(Mode::Sliding),
             t(Mode::RotatingOffBottom),
             t(Mode::Drilling),
-            row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m
-        );
+            du.num(row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m, 1)
+        )?;
     }
     let worst = rows
         .iter()
         .filter_map(|r| r.yield_.max_stress_ratio.map(|s| (s, r)))
         .max_by(|a, b| a.0.total_cmp(&b.0));
     match worst {
-        Some((s, r)) => println!(
-            "  yield: largest von Mises / yield {:.3} ({} at {:.0} m); top pipe body: tension {:.0} kN, torque {:.1} kN.m",
-            s,
+        Some((s, r)) => writeln!(
+            out,
+            "  yield: largest von Mises / yield {} ({} at {}); top pipe body: tension {}, torque {}",
+            fixed(s, 3),
             r.mode.name(),
-            r.bit_md_m,
-            r.yield_.tension_limit_n.unwrap_or(0.0) / 1e3,
-            r.yield_.torque_limit_nm.unwrap_or(0.0) / 1e3
-        ),
-        None => println!("  yield limits: not computed (give grade or yield_strength in the [[string]] components)"),
+            du.fmt(r.bit_md_m, 0),
+            fu.fmt(r.yield_.tension_limit_n.unwrap_or(0.0), 0),
+            tu.fmt(r.yield_.torque_limit_nm.unwrap_or(0.0), 1)
+        )?,
+        None => writeln!(
+            out,
+            "  yield limits: not computed (give grade or yield_strength in the [[string]] components)"
+        )?,
     }
     let buckled: Vec<&LoadRow> = rows.iter().filter(|r| r.buckling.sinusoidal_length_m > 0.0).collect();
     if let Some(first) = buckled.first() {
-        println!(
-            "  buckling: {} rows with sinusoidal buckling (first: {} at {:.0} m), {} with helical",
+        writeln!(
+            out,
+            "  buckling: {} rows with sinusoidal buckling (first: {} at {}), {} with helical",
             buckled.len(),
             first.mode.name(),
-            first.bit_md_m,
+            du.fmt(first.bit_md_m, 0),
             rows.iter().filter(|r| r.buckling.helical_length_m > 0.0).count()
-        );
+        )
     } else {
-        println!("  buckling: none (compression below the sinusoidal onset everywhere)");
+        writeln!(
+            out,
+            "  buckling: none (compression below the sinusoidal onset everywhere)"
+        )
     }
 }

@@ -5,6 +5,7 @@ pub mod backanalyze;
 pub mod init;
 pub mod loads;
 pub mod predict;
+pub mod progress;
 pub mod solve;
 pub mod solve_levels;
 pub mod survey;
@@ -17,10 +18,10 @@ use args::{Cli, Command};
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Survey(a) => survey::run(a),
-        Command::Solve(a) => solve::run(a),
-        Command::Predict(a) => predict::run(a),
-        Command::Backanalyze(a) => backanalyze::run(a),
-        Command::Loads(a) => loads::run(a),
+        Command::Solve(a) => solve::run(a, cli.quiet),
+        Command::Predict(a) => predict::run(a, cli.quiet),
+        Command::Backanalyze(a) => backanalyze::run(a, cli.quiet),
+        Command::Loads(a) => loads::run(a, cli.quiet),
         Command::Init(a) => init::run(a.file, a.force),
     }
 }

@@ -3,16 +3,19 @@
 
 use super::args::PredictArgs;
 use super::parse_length_option;
+use super::progress::Progress;
 use crate::case::Case;
 use crate::fidelity::{Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::law::LawParams;
 use crate::predict::march::{predict, MarchSettings, Prediction, MIN_STEP_M};
 use crate::predict::track::{interval_rates, tracking_errors, trajectory_rows};
+use crate::report::display_units::{fixed, signed, UnitSystem};
 use crate::report::predict_output::{law_json, rates_json, tracking_json, trajectory_csv};
 use crate::report::{num, write_atomic};
 use anyhow::{bail, Context};
 use serde_json::json;
+use std::io::Write;
 use std::path::Path;
 
 /// A case checked for prediction: a string, on bottom, with a positive WOB.
@@ -100,22 +103,6 @@ pub fn length_opt(name: &str, v: &Option<String>, min: f64) -> anyhow::Result<Op
     Ok(Some(x))
 }
 
-/// Progress on stderr when it is a terminal (silent otherwise).
-pub fn progress_line(msg: &str) {
-    use std::io::IsTerminal;
-    if std::io::stderr().is_terminal() {
-        eprint!("\r\x1b[K{msg}");
-    }
-}
-
-/// Clear the progress line.
-pub fn progress_done() {
-    use std::io::IsTerminal;
-    if std::io::stderr().is_terminal() {
-        eprint!("\r\x1b[K");
-    }
-}
-
 struct CaseRun {
     case: Case,
     pred: Prediction,
@@ -123,7 +110,13 @@ struct CaseRun {
     csv: String,
 }
 
-fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
+/// Number of march steps from `from` to `to` of length `step` (the last may be shorter), for
+/// the progress bar.
+pub fn step_count(from: f64, to: f64, step: f64) -> u64 {
+    ((to - from) / step.max(MIN_STEP_M) - 1e-9).ceil().max(1.0) as u64
+}
+
+fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::Result<CaseRun> {
     let mut case = load_for_prediction(path)?;
     let choice = prediction_choice(&mut case, &a.fidelity, &a.accuracy)?;
     let survey = &case.well.path;
@@ -150,10 +143,16 @@ fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
     let step = length_opt("--step", &a.step, MIN_STEP_M)?;
     let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M)?;
     let settings = settings_for(&case, step, cut, &choice)?;
-    let name = path.display().to_string();
-    let mut on_step = |md: f64| progress_line(&format!("predict {name}: bit at {md:.1} m of {to:.1} m"));
+    let du = a.units.depth();
+    let step_m = settings.step_m.max(MIN_STEP_M);
+    let n = step_count(from, to, step_m);
+    let progress = Progress::new(n, label, quiet);
+    let mut on_step = |md: f64| {
+        let k = ((md - from) / step_m - 1e-6).ceil().clamp(0.0, n as f64) as u64;
+        progress.set(k, &format!("bit at {} of {}", du.fmt(md, 1), du.fmt(to, 1)));
+    };
     let pred = predict(&case, from, to, &settings, &mut on_step);
-    progress_done();
+    progress.finish();
     let pred = pred.map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let rows = trajectory_rows(&pred, Some(survey));
     let csv = trajectory_csv(&rows).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
@@ -200,12 +199,16 @@ fn run_case(path: &Path, a: &PredictArgs) -> anyhow::Result<CaseRun> {
     })
 }
 
-/// Run the command.
-pub fn run(a: PredictArgs) -> anyhow::Result<()> {
+/// Run the command (`quiet`: no progress bar).
+pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
     let mut runs = Vec::new();
     for (k, path) in a.cases.iter().enumerate() {
-        progress_line(&format!("predict: case {}/{} {}", k + 1, a.cases.len(), path.display()));
-        runs.push(run_case(path, &a)?);
+        let label = if a.cases.len() > 1 {
+            format!("predict {}/{} {}", k + 1, a.cases.len(), path.display())
+        } else {
+            format!("predict {}", path.display())
+        };
+        runs.push(run_case(path, &a, &label, quiet)?);
     }
     let single = runs.len() == 1;
     let summary = if single {
@@ -240,21 +243,25 @@ pub fn run(a: PredictArgs) -> anyhow::Result<()> {
         let list: Vec<_> = runs.iter().map(|r| (&r.case, &r.pred)).collect();
         crate::report::predict_report::write_predict(file, &list, a.units)?;
     }
+    let mut out = std::io::stdout().lock();
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
     for r in &runs {
-        print_case(r);
+        print_case(r, a.units, &mut out)?;
     }
     if !single {
-        println!("comparison (build/walk rates over the interval, means of the solved steps):");
-        for line in comparison.lines() {
-            println!("  {line}");
+        writeln!(
+            out,
+            "comparison (build/walk rates over the interval, means of the solved steps; comparison.csv in SI):"
+        )?;
+        for line in comparison_table(&runs, a.units).lines() {
+            writeln!(out, "  {line}")?;
         }
     }
     if let Some(dir) = &a.out {
-        println!("wrote {}", dir.display());
+        writeln!(out, "wrote {}", dir.display())?;
     }
     Ok(())
 }
@@ -286,62 +293,99 @@ fn comparison_csv(runs: &[CaseRun]) -> Result<String, String> {
     Ok(out)
 }
 
-fn print_case(r: &CaseRun) {
+/// The comparison as a readable table in `units` (the CSV stays SI).
+fn comparison_table(runs: &[CaseRun], units: UnitSystem) -> String {
+    let (du, fu, ru) = (units.depth(), units.force(), units.dogleg());
+    let mut out = format!(
+        "case | from {d} | to {d} | build {r} | walk {r} | mean build force {f} | mean walk force {f} | end inc deg | end azi deg\n",
+        d = du.label,
+        r = ru.label,
+        f = fu.label
+    );
+    for r in runs {
+        let rt = interval_rates(&r.pred);
+        let end = r.pred.steps.last().expect("start record");
+        out.push_str(&format!(
+            "{} | {} | {} | {} | {} | {} | {} | {} | {}\n",
+            r.case.name,
+            du.num(r.pred.from_md_m, 2),
+            du.num(r.pred.to_md_m, 2),
+            signed(ru.show(rt.build_rate_rad_per_30m / 30.0), ru.decimals(3)),
+            signed(ru.show(rt.walk_rate_rad_per_30m / 30.0), ru.decimals(3)),
+            signed(fu.show(rt.mean_build_force_n), fu.decimals(3)),
+            signed(fu.show(rt.mean_walk_force_n), fu.decimals(3)),
+            fixed(end.inc_rad.to_degrees(), 3),
+            fixed(end.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        ));
+    }
+    out
+}
+
+fn print_case(r: &CaseRun, units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
+    let (du, fu, ru, eu) = (units.depth(), units.force(), units.dogleg(), units.per_100());
     let p = &r.pred;
     let rt = interval_rates(p);
     let first = &p.steps[0];
     let end = p.steps.last().expect("start record");
-    println!("predict: {} ({})", r.case.name, r.case.path.display());
+    writeln!(out, "predict: {} ({})", r.case.name, r.case.path.display())?;
     let f = &r.summary["model"]["fidelity_choice"];
-    println!(
+    writeln!(
+        out,
         "  fidelity {}: {}",
         f["used"].as_str().unwrap_or(""),
         f["reason"].as_str().unwrap_or("")
-    );
-    println!(
-        "  from {:.2} m (I {:.3} deg, A {:.3} deg) to {:.2} m: I {:.3} deg, A {:.3} deg, TVD {:.2} m, N {:.2} m, E {:.2} m",
-        p.from_md_m,
-        first.inc_rad.to_degrees(),
-        first.azi_rad.to_degrees(),
-        p.to_md_m,
-        end.inc_rad.to_degrees(),
-        end.azi_rad.to_degrees().rem_euclid(360.0),
-        end.position.z,
-        end.position.x,
-        end.position.y
-    );
-    println!(
-        "  build rate {:+.3} deg/30 m, walk rate {:+.3} deg/30 m; bit at start: build force {:+.3} kN, walk force {:+.3} kN, tilt {:+.4}/{:+.4} deg; mean over the steps: {:+.3} kN, {:+.3} kN",
-        rt.build_rate_rad_per_30m.to_degrees(),
-        rt.walk_rate_rad_per_30m.to_degrees(),
-        first.bit.build_force_n / 1e3,
-        first.bit.walk_force_n / 1e3,
-        first.bit.tilt_inc_rad.to_degrees(),
-        first.bit.tilt_azi_rad.to_degrees(),
-        rt.mean_build_force_n / 1e3,
-        rt.mean_walk_force_n / 1e3
-    );
+    )?;
+    writeln!(
+        out,
+        "  from {} (I {} deg, A {} deg) to {}: I {} deg, A {} deg, TVD {}, N {}, E {}",
+        du.fmt(p.from_md_m, 2),
+        fixed(first.inc_rad.to_degrees(), 3),
+        fixed(first.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        du.fmt(p.to_md_m, 2),
+        fixed(end.inc_rad.to_degrees(), 3),
+        fixed(end.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        du.fmt(end.position.z, 2),
+        du.fmt(end.position.x, 2),
+        du.fmt(end.position.y, 2)
+    )?;
+    writeln!(
+        out,
+        "  build rate {}, walk rate {}; bit at start: build force {}, walk force {}, tilt {}/{} deg; mean over the steps: {}, {}",
+        ru.fmt_signed(rt.build_rate_rad_per_30m / 30.0, 3),
+        ru.fmt_signed(rt.walk_rate_rad_per_30m / 30.0, 3),
+        fu.fmt_signed(first.bit.build_force_n, 3),
+        fu.fmt_signed(first.bit.walk_force_n, 3),
+        signed(first.bit.tilt_inc_rad.to_degrees(), 4),
+        signed(first.bit.tilt_azi_rad.to_degrees(), 4),
+        fu.fmt_signed(rt.mean_build_force_n, 3),
+        fu.fmt_signed(rt.mean_walk_force_n, 3)
+    )?;
     if let Some(t) = r.summary.get("tracking").filter(|t| !t.is_null()) {
-        println!(
-            "  tracking: {} measured stations; at {:.1} m error inc {:+.3} deg, azi {:+.3} deg = {:.3} and {:.3} deg/100 m (seed paper metric)",
+        let v = |k: &str| t[k].as_f64().unwrap_or(f64::NAN);
+        // the summary holds degrees per 100 m
+        let rate = |k: &str| v(k).to_radians() / 100.0;
+        writeln!(
+            out,
+            "  tracking: {} measured stations; at {} error inc {} deg, azi {} deg = {} and {} (seed paper metric)",
             t["stations_compared"],
-            t["end_md_m"].as_f64().unwrap_or(0.0),
-            t["end_inc_err_deg"].as_f64().unwrap_or(0.0),
-            t["end_azi_err_deg"].as_f64().unwrap_or(0.0),
-            t["inc_err_per_100m_deg"].as_f64().unwrap_or(0.0),
-            t["azi_err_per_100m_deg"].as_f64().unwrap_or(0.0)
-        );
+            du.fmt(v("end_md_m"), 1),
+            signed(v("end_inc_err_deg"), 3),
+            signed(v("end_azi_err_deg"), 3),
+            eu.fmt(rate("inc_err_per_100m_deg"), 3),
+            eu.fmt(rate("azi_err_per_100m_deg"), 3)
+        )?;
     }
     let model = if r.summary["model"]["fidelity"] == "whole" {
         "stiff whole string".to_string()
     } else {
-        format!("stiff BHA cut {:.1} m above the bit", p.cut_m)
+        format!("stiff BHA cut {} above the bit", du.fmt(p.cut_m, 1))
     };
-    println!(
+    writeln!(
+        out,
         "  model: {model}, {} DOF; {} steps, {} solver iterations, {:.2} s",
         p.dofs,
         p.steps.len() - 1,
         p.iterations,
         p.seconds
-    );
+    )
 }

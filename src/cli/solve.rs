@@ -2,16 +2,20 @@
 
 use super::args::SolveArgs;
 use super::parse_length_option;
+use super::solve_levels::BitLines;
+use crate::error::InputError;
 use crate::fem::model::Model;
 use crate::fem::results::extract;
 use crate::fem::solve::{solve, SolveControls};
 use crate::io::case_toml::{load_case, CaseOverrides};
+use crate::report::display_units::fixed;
 use crate::report::solve_output::{string_csv, summary_json};
 use crate::report::write_atomic;
 use anyhow::{bail, Context};
+use std::io::Write;
 
-/// Run the command.
-pub fn run(a: SolveArgs) -> anyhow::Result<()> {
+/// Run the command (`quiet`: no progress bar).
+pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     let bit_md = a
         .bit_md
         .as_deref()
@@ -29,7 +33,17 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     }
     let choice = super::solve_levels::configure(&a, &mut case)?;
     if choice.level != crate::fidelity::Level::Whole {
-        return super::solve_levels::run(&a, &case, choice);
+        if a.report.is_some() {
+            return Err(InputError::option(
+                "--report",
+                format!(
+                    "the solve report shows the whole string (contacts, deflection and stresses along it) and needs fidelity whole (or auto), not `{}`",
+                    choice.level.name()
+                ),
+            )
+            .into());
+        }
+        return super::solve_levels::run(&a, &case, choice, quiet);
     }
     let model = Model::from_case(&case);
     let ctl = SolveControls::from_settings(&case.solver);
@@ -58,7 +72,8 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
     let mut summary = summary_json(&res, &sol.stats, sol.converged, model.dofs(), model.nodes() - 1)
         .map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let csv = string_csv(&res).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
-    let csv = super::solve_levels::annotate_whole(&case, &choice, &model, &res, sol.stats.seconds, &mut summary, csv)?;
+    let (csv, marks) =
+        super::solve_levels::annotate_whole(&case, &choice, &model, &res, sol.stats.seconds, &mut summary, csv)?;
     if let Some(dir) = &a.out {
         write_atomic(
             &dir.join("summary.json"),
@@ -69,33 +84,38 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             .with_context(|| format!("cannot write {}", dir.display()))?;
     }
     if let Some(file) = &a.report {
-        crate::report::solve_report::write(file, &case, &res, &sol.stats, sol.converged, a.units)?;
+        crate::report::solve_report::write(file, &case, &res, &marks, &sol.stats, sol.converged, a.units)?;
     }
+    let mut out = std::io::stdout().lock();
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
+    let (du, fu) = (a.units.depth(), a.units.force());
     let b = &res.bit;
     let contacts: Vec<_> = res.nodes.iter().filter(|n| n.contact_force_n > 1.0).collect();
-    println!("solve: {} ({})", case.name, a.case.display());
-    println!("  fidelity whole: {}", choice.reason);
+    writeln!(out, "solve: {} ({})", case.name, a.case.display())?;
+    writeln!(out, "  fidelity whole: {}", choice.reason)?;
     if !sol.converged {
-        println!("  WARNING: NOT CONVERGED - results below are flagged and not valid");
+        writeln!(
+            out,
+            "  WARNING: NOT CONVERGED - results below are flagged and not valid"
+        )?;
     }
-    println!(
-        "  mode {}, bit at {:.2} m MD, WOB {:.1} kN, {:.0} rpm",
-        case.operation.mode.name(),
-        b.md_m,
-        b.wob_n / 1e3 + 0.0,
-        case.operation.rpm
-    );
-    println!("  bit: build force {:+.3} kN, walk force {:+.3} kN, tilt inc {:+.4} deg, tilt azi {:+.4} deg, torque {:.2} kN.m",
-        b.build_force_n / 1e3, b.walk_force_n / 1e3, b.tilt_inc_rad.to_degrees(), b.tilt_azi_rad.to_degrees(), b.torque_nm / 1e3);
-    println!(
-        "  surface: hook load {:.1} kN, torque {:.2} kN.m",
-        res.hook_load_n / 1e3,
-        res.surface_torque_nm / 1e3
-    );
+    let lines = BitLines {
+        units: a.units,
+        case: &case,
+        wob_n: b.wob_n,
+        bit: Some(b),
+        bit_torque_nm: b.torque_nm,
+    };
+    lines.write(&mut out)?;
+    writeln!(
+        out,
+        "  surface: hook load {}, torque {}",
+        fu.fmt(res.hook_load_n, 1),
+        a.units.torque().fmt(res.surface_torque_nm, 2)
+    )?;
     if let (Some(first), Some(last)) = (contacts.first(), contacts.last()) {
         let near: Vec<String> = contacts
             .iter()
@@ -103,31 +123,32 @@ pub fn run(a: SolveArgs) -> anyhow::Result<()> {
             .take(6)
             .map(|n| {
                 format!(
-                    "{:.1} m: {:.2} kN at {:.0} deg",
-                    b.md_m - n.md_m,
-                    n.contact_force_n / 1e3,
-                    n.contact_angle_deg
+                    "{}: {} at {} deg",
+                    du.fmt(b.md_m - n.md_m, 1),
+                    fu.fmt(n.contact_force_n, 2),
+                    fixed(n.contact_angle_deg, 0)
                 )
             })
             .collect();
-        println!(
-            "  contacts: {} nodes between {:.1} m and {:.1} m MD; max {:.2} kN",
+        writeln!(
+            out,
+            "  contacts: {} nodes between {} and {} MD; max {}",
             contacts.len(),
-            last.md_m,
-            first.md_m,
-            contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max) / 1e3
-        );
+            du.fmt(last.md_m, 1),
+            du.fmt(first.md_m, 1),
+            fu.fmt(contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max), 2)
+        )?;
         if !near.is_empty() {
-            println!("  near the bit (distance above bit): {}", near.join("; "));
+            writeln!(out, "  near the bit (distance above bit): {}", near.join("; "))?;
         }
     } else {
-        println!("  contacts: none");
+        writeln!(out, "  contacts: none")?;
     }
-    println!("  solver: {} iterations, {} factorizations, {} DOF, {} elements, {:.3} s, equilibrium error {:.1e} of the largest force",
+    writeln!(out, "  solver: {} iterations, {} factorizations, {} DOF, {} elements, {:.3} s, equilibrium error {:.1e} of the largest force",
         sol.stats.iterations, sol.stats.factorizations, model.dofs(), model.nodes() - 1, sol.stats.seconds,
-        res.force_imbalance_n.norm() / res.largest_force_n.max(1.0));
+        res.force_imbalance_n.norm() / res.largest_force_n.max(1.0))?;
     if let Some(dir) = &a.out {
-        println!("  wrote {}/summary.json and string.csv", dir.display());
+        writeln!(out, "  wrote {}/summary.json and string.csv", dir.display())?;
     }
     Ok(())
 }

@@ -2,16 +2,21 @@
 //! than the whole string, and the fidelity/buckling additions to the whole-string outputs.
 
 use super::args::SolveArgs;
+use super::progress::Progress;
+use crate::buckling_marks::Mark;
 use crate::case::Case;
 use crate::error::InputError;
 use crate::fem::model::Model;
+use crate::fem::results::BitResult;
 use crate::fem::results::SolveResults;
-use crate::fidelity::{run as run_level, Choice, Level, LevelResult, Purpose};
+use crate::fidelity::{run_with_progress, stages, Choice, Level, LevelResult, Purpose};
+use crate::report::display_units::{fixed, signed, UnitSystem};
 use crate::report::levels_output::{
     append_buckling_columns, buckling_json, levels_csv, levels_summary, requested_name,
 };
 use crate::report::write_atomic;
 use anyhow::{bail, Context};
+use std::io::Write;
 
 /// Apply `--accuracy` to `case` and choose the level `solve` runs: `--fidelity` over the
 /// case's `[solver] fidelity`.
@@ -20,7 +25,7 @@ pub fn configure(a: &SolveArgs, case: &mut Case) -> Result<Choice, InputError> {
 }
 
 /// Add the `fidelity` and `buckling` keys to the whole-string `summary` and the buckling
-/// columns to its `string.csv` text.
+/// columns to its `string.csv` text; returns that text and the buckling marks at the nodes.
 pub fn annotate_whole(
     case: &Case,
     choice: &Choice,
@@ -29,7 +34,7 @@ pub fn annotate_whole(
     seconds: f64,
     summary: &mut serde_json::Value,
     csv: String,
-) -> anyhow::Result<String> {
+) -> anyhow::Result<(String, Vec<Mark>)> {
     let nodes = res
         .nodes
         .iter()
@@ -51,17 +56,27 @@ pub fn annotate_whole(
         "seconds": seconds,
     });
     summary["buckling"] = buckling_json(&marks, "stiff FEM").map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
-    append_buckling_columns(&csv, &marks).map_err(|e| anyhow::anyhow!("internal error: {e}"))
+    let csv = append_buckling_columns(&csv, &marks).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    Ok((csv, marks))
 }
 
-/// Run `case` at a level other than `whole` and write/print its outputs.
-pub fn run(a: &SolveArgs, case: &Case, choice: Choice) -> anyhow::Result<()> {
-    let lr = run_level(
+/// Run `case` at a level other than `whole` and write/print its outputs; a progress bar over
+/// the stages when there are several (hybrid) and stderr is a terminal, unless `quiet`.
+pub fn run(a: &SolveArgs, case: &Case, choice: Choice, quiet: bool) -> anyhow::Result<()> {
+    let n = stages(choice.level);
+    let progress = if n > 1 {
+        Progress::new(n as u64, &format!("solve {}", a.case.display()), quiet)
+    } else {
+        Progress::hidden()
+    };
+    let lr = run_with_progress(
         case,
         choice,
         &crate::fem::solve::SolveControls::from_settings(&case.solver),
-    )
-    .with_context(|| format!("{}: solve failed", a.case.display()))?;
+        &mut |k, _, what| progress.set(k as u64, what),
+    );
+    progress.finish();
+    let lr = lr.with_context(|| format!("{}: solve failed", a.case.display()))?;
     if !lr.converged && !a.allow_unconverged {
         let it = lr.fem.as_ref().map(|f| f.stats.iterations).unwrap_or(0);
         bail!(
@@ -81,60 +96,113 @@ pub fn run(a: &SolveArgs, case: &Case, choice: Choice) -> anyhow::Result<()> {
         write_atomic(&dir.join("string.csv"), csv.as_bytes())
             .with_context(|| format!("cannot write {}", dir.display()))?;
     }
+    let mut out = std::io::stdout().lock();
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
-    print_summary(a, case, &lr, &summary);
+    print_summary(a, case, &lr, &summary, &mut out)?;
     Ok(())
 }
 
-fn print_summary(a: &SolveArgs, case: &Case, lr: &LevelResult, summary: &serde_json::Value) {
-    println!("solve: {} ({})", case.name, a.case.display());
-    println!("  fidelity {}: {}", lr.choice.level.name(), lr.choice.reason);
+/// The lines every level prints about the operation and the bit: mode, bit MD, WOB, rpm; bit
+/// side forces, tilt and torque (or only the torque for the soft string).
+pub struct BitLines<'a> {
+    /// Units shown.
+    pub units: UnitSystem,
+    /// The case solved.
+    pub case: &'a Case,
+    /// Weight on bit, N.
+    pub wob_n: f64,
+    /// Bit forces and tilt (None for the soft string).
+    pub bit: Option<&'a BitResult>,
+    /// Bit torque, N.m.
+    pub bit_torque_nm: f64,
+}
+
+impl BitLines<'_> {
+    /// Write the two lines to `out`.
+    pub fn write(&self, out: &mut impl Write) -> std::io::Result<()> {
+        let (du, fu, tu) = (self.units.depth(), self.units.force(), self.units.torque());
+        let op = &self.case.operation;
+        writeln!(
+            out,
+            "  mode {}, bit at {} MD, WOB {}, {} rpm",
+            op.mode.name(),
+            du.fmt(op.bit_md_m, 2),
+            fu.fmt(self.wob_n, 1),
+            fixed(op.rpm, 0)
+        )?;
+        match self.bit {
+            Some(b) => writeln!(
+                out,
+                "  bit: build force {}, walk force {}, tilt inc {} deg, tilt azi {} deg, torque {}",
+                fu.fmt_signed(b.build_force_n, 3),
+                fu.fmt_signed(b.walk_force_n, 3),
+                signed(b.tilt_inc_rad.to_degrees(), 4),
+                signed(b.tilt_azi_rad.to_degrees(), 4),
+                tu.fmt(b.torque_nm, 2)
+            ),
+            None => writeln!(
+                out,
+                "  bit: torque {}; side forces and tilt not computed (soft string: no bending)",
+                tu.fmt(self.bit_torque_nm, 2)
+            ),
+        }
+    }
+}
+
+fn print_summary(
+    a: &SolveArgs,
+    case: &Case,
+    lr: &LevelResult,
+    summary: &serde_json::Value,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let (du, fu, tu) = (a.units.depth(), a.units.force(), a.units.torque());
+    writeln!(out, "solve: {} ({})", case.name, a.case.display())?;
+    writeln!(out, "  fidelity {}: {}", lr.choice.level.name(), lr.choice.reason)?;
     if let Some(cut) = lr.cut_m {
-        println!(
-            "  stiff model cut {cut:.1} m above the bit (on the wall, parallel to the hole); results reported up to {:.1} m above the bit",
-            summary["fidelity"]["coupling_m"].as_f64().unwrap_or(cut)
-        );
+        writeln!(
+            out,
+            "  stiff model cut {} above the bit (on the wall, parallel to the hole); results reported up to {} above the bit",
+            du.fmt(cut, 1),
+            du.fmt(summary["fidelity"]["coupling_m"].as_f64().unwrap_or(cut), 1)
+        )?;
     }
     if !lr.converged {
-        println!("  WARNING: NOT CONVERGED - results below are flagged and not valid");
+        writeln!(
+            out,
+            "  WARNING: NOT CONVERGED - results below are flagged and not valid"
+        )?;
     }
-    println!(
-        "  mode {}, bit at {:.2} m MD, WOB {:.1} kN, {:.0} rpm",
-        case.operation.mode.name(),
-        case.operation.bit_md_m,
-        lr.wob_n / 1e3 + 0.0,
-        case.operation.rpm
-    );
-    match &lr.bit {
-        Some(b) => println!(
-            "  bit: build force {:+.3} kN, walk force {:+.3} kN, tilt inc {:+.4} deg, tilt azi {:+.4} deg, torque {:.2} kN.m",
-            b.build_force_n / 1e3,
-            b.walk_force_n / 1e3,
-            b.tilt_inc_rad.to_degrees(),
-            b.tilt_azi_rad.to_degrees(),
-            b.torque_nm / 1e3
-        ),
-        None => println!(
-            "  bit: torque {:.2} kN.m; side forces and tilt not computed (soft string: no bending)",
-            lr.bit_torque_nm / 1e3
-        ),
+    BitLines {
+        units: a.units,
+        case,
+        wob_n: lr.wob_n,
+        bit: lr.bit.as_ref(),
+        bit_torque_nm: lr.bit_torque_nm,
     }
+    .write(out)?;
     match (lr.hook_load_n, lr.surface_torque_nm) {
-        (Some(h), Some(t)) => println!("  surface: hook load {:.1} kN, torque {:.2} kN.m", h / 1e3, t / 1e3),
-        _ => println!("  surface: not computed (bha: the stiff model ends at the cut; use hybrid or whole)"),
+        (Some(h), Some(t)) => writeln!(out, "  surface: hook load {}, torque {}", fu.fmt(h, 1), tu.fmt(t, 2))?,
+        _ => writeln!(
+            out,
+            "  surface: not computed (bha: the stiff model ends at the cut; use hybrid or whole)"
+        )?,
     }
     let b = &summary["buckling"];
-    println!(
-        "  buckling: sinusoidal over {:.1} m, helical over {:.1} m (max compression {:.1} kN)",
-        b["sinusoidal_length_m"].as_f64().unwrap_or(0.0),
-        b["helical_length_m"].as_f64().unwrap_or(0.0),
-        b["max_compression_kN"].as_f64().unwrap_or(0.0)
-    );
-    println!("  time {:.4} s", lr.seconds);
+    let km = |k: &str| b[k].as_f64().unwrap_or(0.0);
+    writeln!(
+        out,
+        "  buckling: sinusoidal over {}, helical over {} (max compression {})",
+        du.fmt(km("sinusoidal_length_m"), 1),
+        du.fmt(km("helical_length_m"), 1),
+        fu.fmt(km("max_compression_kN") * 1e3, 1)
+    )?;
+    writeln!(out, "  time {:.4} s", lr.seconds)?;
     if let Some(dir) = &a.out {
-        println!("  wrote {}/summary.json and string.csv", dir.display());
+        writeln!(out, "  wrote {}/summary.json and string.csv", dir.display())?;
     }
+    Ok(())
 }

@@ -7,6 +7,7 @@ use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::io::survey_csv::{read_survey_csv, SurveyUnits};
 use crate::report::{survey_table::survey_csv, write_atomic};
 use anyhow::Context;
+use std::io::Write;
 
 /// Run the command.
 pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
@@ -44,33 +45,41 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
     if let Some(out) = &a.out {
         write_atomic(out, table.as_bytes()).with_context(|| format!("cannot write {}", out.display()))?;
     }
+    let mut out = std::io::stdout().lock();
     if a.csv {
-        print!("{table}");
+        out.write_all(table.as_bytes())?;
         return Ok(());
     }
     let n = path.stations().len();
     let last = path.station_position(n - 1);
     let (max_dls, at) = path.max_dls();
-    println!("survey: {label}");
+    writeln!(out, "survey: {label}")?;
     for note in &notes {
-        println!("  note: {note}");
+        writeln!(out, "  note: {note}")?;
     }
-    println!("  stations: {n}, MD {:.2} m to {:.2} m", path.md_start(), path.md_end());
-    println!("  total depth: {:.2} m MD, {:.2} m TVD", path.md_end(), last.z);
-    println!(
+    writeln!(
+        out,
+        "  stations: {n}, MD {:.2} m to {:.2} m",
+        path.md_start(),
+        path.md_end()
+    )?;
+    writeln!(out, "  total depth: {:.2} m MD, {:.2} m TVD", path.md_end(), last.z)?;
+    writeln!(
+        out,
         "  max DLS: {:.2} deg/30m in the interval ending at {:.2} m MD",
         max_dls.to_degrees() * 30.0,
         at
-    );
-    println!(
+    )?;
+    writeln!(
+        out,
         "  final position: north {:.2} m, east {:.2} m, TVD {:.2} m (horizontal displacement {:.2} m)",
         last.x,
         last.y,
         last.z,
         (last.x * last.x + last.y * last.y).sqrt()
-    );
-    if let Some(out) = &a.out {
-        println!("  wrote {}", out.display());
+    )?;
+    if let Some(file) = &a.out {
+        writeln!(out, "  wrote {}", file.display())?;
     }
     Ok(())
 }

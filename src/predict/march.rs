@@ -341,7 +341,7 @@ impl PredictedHole {
 /// direction of the step's chord; Newton's method with a finite-difference Jacobian kept
 /// between steps (Broyden updates) drives the deviation between the law's drilling direction
 /// at the new bit position and the chord to zero. Station tangents follow the chords (see
-/// [`PredictedHole`]), so the hole is smooth. Why not simpler schemes: the bit side force
+/// `PredictedHole`), so the hole is smooth. Why not simpler schemes: the bit side force
 /// answers a lateral move of the bit with a stiffness of order 3 EI / a^3 (a: bit to first
 /// stabilizer), so "new tangent = drilling direction computed before the step" (explicit) is
 /// unstable unless `ds < 4 W a^3 / (3 EI)` (centimetres for a near-bit stabilizer), and

@@ -1,5 +1,7 @@
-//! Units shown to the user (reports and readable output): SI or oilfield. Values stay SI inside;
-//! these are the conversions at the edge. CSV and JSON files keep the interface's SI names.
+//! Units shown to the user (reports and the readable summaries on stdout): SI or oilfield.
+//! Values stay SI inside; these are the conversions at the edge, and the one place that formats
+//! a number for a reader ([`fixed`], [`signed`]: never "-0.0"). CSV and JSON files keep the
+//! interface's SI names.
 
 /// Unit system for what is shown to the user.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
@@ -7,27 +9,73 @@ pub enum UnitSystem {
     /// m, mm, kN, kN.m, MPa, kg/m3, deg/30 m.
     #[default]
     Si,
-    /// ft, in, klbf, kft.lbf, ksi, ppg, deg/100 ft.
+    /// ft, in, klbf, ft.lbf, ksi, ppg, deg/100 ft.
     Oilfield,
 }
 
-/// One display unit: label and the factor from SI (shown = SI value / `si_per_unit`).
+/// `x` with `decimals` decimals for a reader: a value that rounds to zero is shown without a
+/// sign ("0.0", never "-0.0"); NaN or infinity is shown as "n/a".
+pub fn fixed(x: f64, decimals: usize) -> String {
+    if !x.is_finite() {
+        return "n/a".into();
+    }
+    let s = format!("{x:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
+/// Like [`fixed`] with an explicit sign: "+1.25", "-0.50"; a value that rounds to zero is "+0.00".
+pub fn signed(x: f64, decimals: usize) -> String {
+    let s = fixed(x, decimals);
+    if s.starts_with('-') || s == "n/a" {
+        s
+    } else {
+        format!("+{s}")
+    }
+}
+
+/// One display unit: label, the factor from SI (shown = SI value / `si_per_unit`) and the
+/// decimals it needs beyond those of the SI unit for the same resolution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DisplayUnit {
     /// Label, e.g. "kN".
     pub label: &'static str,
     /// SI value of one shown unit (e.g. 1000 for kN, 0.3048 for ft).
     pub si_per_unit: f64,
+    /// Decimals to add to those asked for the SI unit (negative: fewer), e.g. +2 for inches
+    /// against millimetres, -2 for ft.lbf against kN.m.
+    pub extra_decimals: i32,
 }
 
 impl DisplayUnit {
+    const fn new(label: &'static str, si_per_unit: f64, extra_decimals: i32) -> DisplayUnit {
+        DisplayUnit {
+            label,
+            si_per_unit,
+            extra_decimals,
+        }
+    }
     /// Convert an SI value to this unit.
     pub fn show(&self, si: f64) -> f64 {
         si / self.si_per_unit
     }
-    /// Format an SI value in this unit with `decimals`, followed by the label.
+    /// Decimals shown in this unit for `decimals` asked in the SI unit.
+    pub fn decimals(&self, decimals: usize) -> usize {
+        (decimals as i32 + self.extra_decimals).max(0) as usize
+    }
+    /// The number alone (no label): an SI value in this unit, `decimals` as for the SI unit.
+    pub fn num(&self, si: f64, decimals: usize) -> String {
+        fixed(self.show(si), self.decimals(decimals))
+    }
+    /// An SI value in this unit followed by the label, `decimals` as for the SI unit.
     pub fn fmt(&self, si: f64, decimals: usize) -> String {
-        format!("{:.*} {}", decimals, self.show(si), self.label)
+        format!("{} {}", self.num(si, decimals), self.label)
+    }
+    /// Like [`DisplayUnit::fmt`] with an explicit sign.
+    pub fn fmt_signed(&self, si: f64, decimals: usize) -> String {
+        format!("{} {}", signed(self.show(si), self.decimals(decimals)), self.label)
     }
 }
 
@@ -38,106 +86,66 @@ impl UnitSystem {
     /// Depths and long lengths (SI m).
     pub fn depth(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "m",
-                si_per_unit: 1.0,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "ft",
-                si_per_unit: FT_M,
-            },
+            UnitSystem::Si => DisplayUnit::new("m", 1.0, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ft", FT_M, 0),
         }
     }
     /// Diameters, displacements and clearances (SI m).
     pub fn small_length(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "mm",
-                si_per_unit: 1e-3,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "in",
-                si_per_unit: 0.0254,
-            },
+            UnitSystem::Si => DisplayUnit::new("mm", 1e-3, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("in", 0.0254, 2),
         }
     }
     /// Forces (SI N).
     pub fn force(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "kN",
-                si_per_unit: 1e3,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "klbf",
-                si_per_unit: 1e3 * LBF_N,
-            },
+            UnitSystem::Si => DisplayUnit::new("kN", 1e3, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("klbf", 1e3 * LBF_N, 0),
         }
     }
     /// Torques and bending moments (SI N.m).
     pub fn torque(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "kN.m",
-                si_per_unit: 1e3,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "kft.lbf",
-                si_per_unit: 1e3 * LBF_N * FT_M,
-            },
+            UnitSystem::Si => DisplayUnit::new("kN.m", 1e3, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ft.lbf", LBF_N * FT_M, -2),
         }
     }
     /// Stresses (SI Pa).
     pub fn stress(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "MPa",
-                si_per_unit: 1e6,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "ksi",
-                si_per_unit: 1e3 * LBF_N / (0.0254 * 0.0254),
-            },
+            UnitSystem::Si => DisplayUnit::new("MPa", 1e6, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ksi", 1e3 * LBF_N / (0.0254 * 0.0254), 1),
         }
     }
     /// Mud density (SI kg/m3).
     pub fn density(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "kg/m3",
-                si_per_unit: 1.0,
-            },
+            UnitSystem::Si => DisplayUnit::new("kg/m3", 1.0, 0),
             // 1 lb/US gal = 0.45359237 kg / 3.785411784e-3 m3
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "ppg",
-                si_per_unit: 0.453_592_37 / 3.785_411_784e-3,
-            },
+            UnitSystem::Oilfield => DisplayUnit::new("ppg", 0.453_592_37 / 3.785_411_784e-3, 1),
         }
     }
     /// Curvature rates (SI rad/m), shown in deg per 30 m or deg per 100 ft.
     pub fn dogleg(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "deg/30 m",
-                si_per_unit: 1f64.to_radians() / 30.0,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "deg/100 ft",
-                si_per_unit: 1f64.to_radians() / (100.0 * FT_M),
-            },
+            UnitSystem::Si => DisplayUnit::new("deg/30 m", 1f64.to_radians() / 30.0, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("deg/100 ft", 1f64.to_radians() / (100.0 * FT_M), 0),
+        }
+    }
+    /// Angle changes or errors per length (SI rad/m), shown per 100 m or per 100 ft (the seed
+    /// paper's error metric is per 100 m).
+    pub fn per_100(self) -> DisplayUnit {
+        match self {
+            UnitSystem::Si => DisplayUnit::new("deg/100 m", 1f64.to_radians() / 100.0, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("deg/100 ft", 1f64.to_radians() / (100.0 * FT_M), 0),
         }
     }
     /// Speeds (SI m/s), shown per hour.
     pub fn rop(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit {
-                label: "m/h",
-                si_per_unit: 1.0 / 3600.0,
-            },
-            UnitSystem::Oilfield => DisplayUnit {
-                label: "ft/h",
-                si_per_unit: FT_M / 3600.0,
-            },
+            UnitSystem::Si => DisplayUnit::new("m/h", 1.0 / 3600.0, 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ft/h", FT_M / 3600.0, 0),
         }
     }
 }
@@ -147,7 +155,7 @@ mod tests {
     use super::*;
 
     /// Reference: exact definitions (1 ft = 0.3048 m, 1 lbf = 4.4482216152605 N, 1 in = 25.4 mm);
-    /// 1 ksi = 6.894757 MPa, 1 ppg = 119.826 kg/m3, 1 kft.lbf = 1.355818 kN.m (rounded handbook values).
+    /// 1 ksi = 6.894757 MPa, 1 ppg = 119.826 kg/m3, 1 ft.lbf = 1.355818 N.m (rounded handbook values).
     #[test]
     fn oilfield_factors_match_handbook_values() {
         let o = UnitSystem::Oilfield;
@@ -155,11 +163,32 @@ mod tests {
         assert!((o.force().show(4448.2216152605) - 1.0).abs() < 1e-12);
         assert!((o.stress().si_per_unit / 6.894_757e6 - 1.0).abs() < 1e-6);
         assert!((o.density().si_per_unit / 119.826 - 1.0).abs() < 1e-5);
-        assert!((o.torque().si_per_unit / 1355.818 - 1.0).abs() < 1e-6);
+        assert!((o.torque().si_per_unit / 1.355_818 - 1.0).abs() < 1e-6);
+        assert!((o.per_100().show(1f64.to_radians() / 30.48) - 1.0).abs() < 1e-12);
         assert!((o.small_length().show(0.2159) - 8.5).abs() < 1e-12);
         // 3 deg/100 ft = 2.9528 deg/30 m
         let rate = 3f64.to_radians() / 30.48;
         assert!((o.dogleg().show(rate) - 3.0).abs() < 1e-12);
         assert!((UnitSystem::Si.dogleg().show(rate) - 2.952_755_9).abs() < 1e-6);
+    }
+
+    /// Reference: the same resolution in both systems (0.01 kN.m = 7.4 ft.lbf, shown to 1 ft.lbf;
+    /// 0.1 mm = 0.004 in, shown to 0.001 in) and no negative zero.
+    #[test]
+    fn decimals_follow_the_unit_and_zero_has_no_sign() {
+        let (si, o) = (UnitSystem::Si, UnitSystem::Oilfield);
+        assert_eq!(si.torque().fmt(12_345.0, 2), "12.35 kN.m");
+        assert_eq!(o.torque().fmt(12_345.0, 2), "9105 ft.lbf");
+        assert_eq!(o.small_length().fmt(0.2159, 1), "8.500 in");
+        assert_eq!(si.force().fmt(-40.0, 1), "0.0 kN");
+        assert_eq!(si.force().fmt(-60.0, 1), "-0.1 kN");
+        assert_eq!(si.force().fmt_signed(-1e-9, 3), "+0.000 kN");
+        assert_eq!(si.force().fmt_signed(1500.0, 3), "+1.500 kN");
+        assert_eq!(fixed(-0.0, 0), "0");
+        assert_eq!(fixed(-0.004, 2), "0.00");
+        assert_eq!(fixed(-0.005_1, 2), "-0.01");
+        assert_eq!(signed(-0.0, 1), "+0.0");
+        assert_eq!(fixed(f64::NAN, 2), "n/a");
+        assert_eq!(signed(f64::INFINITY, 2), "n/a");
     }
 }

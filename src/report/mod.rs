@@ -52,11 +52,5 @@ pub fn finite(x: f64) -> Result<f64, String> {
 
 /// Format a finite number for CSV output; NaN or infinity is an internal error, never printed.
 pub fn num(x: f64, decimals: usize) -> Result<String, String> {
-    let s = format!("{:.decimals$}", finite(x)?);
-    // avoid "-0.000"
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
-        Ok(s.trim_start_matches('-').to_string())
-    } else {
-        Ok(s)
-    }
+    Ok(display_units::fixed(finite(x)?, decimals))
 }

@@ -41,6 +41,18 @@ impl Series {
     }
 }
 
+/// Shaded spans of x over the full height of the plot (e.g. buckled MD intervals), with one
+/// legend entry; nothing is drawn or listed when there is no span.
+#[derive(Debug, Clone)]
+pub struct Band {
+    /// Legend name.
+    pub name: String,
+    /// (from, to) x intervals in display units.
+    pub spans: Vec<(f64, f64)>,
+    /// Colour index into the palette.
+    pub color: usize,
+}
+
 /// A chart: title, axis labels and series.
 #[derive(Debug, Clone)]
 pub struct Chart {
@@ -50,8 +62,10 @@ pub struct Chart {
     pub x_label: String,
     /// Y axis label with unit.
     pub y_label: String,
-    /// Series.
+    /// Series (several series of one name share one legend entry, e.g. a curve with gaps).
     pub series: Vec<Series>,
+    /// Shaded x intervals drawn under the series.
+    pub bands: Vec<Band>,
     /// Same scale on both axes (plan view, vertical section).
     pub equal_aspect: bool,
     /// Y axis pointing down (depth).
@@ -70,6 +84,7 @@ impl Chart {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: Vec::new(),
+            bands: Vec::new(),
             equal_aspect: false,
             y_down: false,
             zero_line: false,
@@ -81,6 +96,88 @@ impl Chart {
         self.series.push(s);
         self
     }
+    /// Add a band of shaded x intervals.
+    pub fn with_band(mut self, b: Band) -> Chart {
+        self.bands.push(b);
+        self
+    }
+}
+
+/// Names of the legend entries of `chart`, in drawing order: bands with spans, then series with
+/// points, each name once.
+pub fn legend_names(chart: &Chart) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    let bands = chart
+        .bands
+        .iter()
+        .filter(|b| !b.spans.is_empty())
+        .map(|b| b.name.as_str());
+    let series = chart
+        .series
+        .iter()
+        .filter(|s| !s.points.is_empty())
+        .map(|s| s.name.as_str());
+    for n in bands.chain(series) {
+        if !names.contains(&n) {
+            names.push(n);
+        }
+    }
+    names
+}
+
+/// The corner of the plotting area where the legend covers the fewest drawn points: the series
+/// are sampled along their lines (about 200 samples across the plot) and counted inside the
+/// legend's box (estimated from its entries) at each corner. Ties go to upper right, upper
+/// left, lower right, lower left in that order. `x`, `y`: the axis ranges; `plot_px`: the size
+/// of the plotting area in pixels.
+pub fn legend_corner(chart: &Chart, x: (f64, f64), y: (f64, f64), plot_px: (f64, f64)) -> SeriesLabelPosition {
+    let names = legend_names(chart);
+    let longest = names.iter().map(|n| n.chars().count()).max().unwrap_or(0) as f64;
+    // plotters' legend: 12 px font, about 7 px per character, the mark, margins; 20 px per entry
+    let w = ((longest * 7.0 + 50.0) / plot_px.0).min(1.0);
+    let h = ((names.len() as f64 * 20.0 + 14.0) / plot_px.1).min(1.0);
+    let norm = |p: (f64, f64)| {
+        let u = (p.0 - x.0) / (x.1 - x.0);
+        let v = (p.1 - y.0) / (y.1 - y.0);
+        (u, if chart.y_down { 1.0 - v } else { v })
+    };
+    let mut samples: Vec<(f64, f64)> = Vec::new();
+    for s in chart.series.iter().filter(|s| !s.points.is_empty()) {
+        let pts: Vec<(f64, f64)> = s.points.iter().map(|&p| norm(p)).collect();
+        samples.push(pts[0]);
+        if s.style == Style::Points {
+            samples.extend(&pts[1..]);
+            continue;
+        }
+        for win in pts.windows(2) {
+            let (a, b) = (win[0], win[1]);
+            let n = ((b.0 - a.0).hypot(b.1 - a.1) * 200.0).ceil().clamp(1.0, 400.0) as usize;
+            samples.extend((1..=n).map(|k| {
+                let t = k as f64 / n as f64;
+                (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+            }));
+        }
+    }
+    let corners = [
+        (SeriesLabelPosition::UpperRight, (1.0 - w, 1.0), (1.0 - h, 1.0)),
+        (SeriesLabelPosition::UpperLeft, (0.0, w), (1.0 - h, 1.0)),
+        (SeriesLabelPosition::LowerRight, (1.0 - w, 1.0), (0.0, h)),
+        (SeriesLabelPosition::LowerLeft, (0.0, w), (0.0, h)),
+    ];
+    let covered = |(u0, u1): (f64, f64), (v0, v1): (f64, f64)| {
+        samples
+            .iter()
+            .filter(|p| p.0 >= u0 && p.0 <= u1 && p.1 >= v0 && p.1 <= v1)
+            .count()
+    };
+    let mut best = (usize::MAX, SeriesLabelPosition::UpperRight);
+    for (pos, u, v) in corners {
+        let n = covered(u, v);
+        if n < best.0 {
+            best = (n, pos);
+        }
+    }
+    best.1
 }
 
 /// Palette (colour-blind friendly, Okabe-Ito).
@@ -166,10 +263,22 @@ pub fn render(chart: &Chart) -> Result<String, String> {
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(|e| e.to_string())?;
+        for b in chart.bands.iter().filter(|b| !b.spans.is_empty()) {
+            let c = PALETTE[b.color % PALETTE.len()];
+            ctx.draw_series(
+                b.spans
+                    .iter()
+                    .map(|&(a, e)| Rectangle::new([(a, y0), (e, y1)], c.mix(0.22).filled())),
+            )
+            .map_err(|e| e.to_string())?
+            .label(b.name.as_str())
+            .legend(move |(x, y)| Rectangle::new([(x, y - 5), (x + 18, y + 5)], c.mix(0.35).filled()));
+        }
         if chart.zero_line {
             ctx.draw_series(LineSeries::new(vec![(x0, 0.0), (x1, 0.0)], BLACK.mix(0.4)))
                 .map_err(|e| e.to_string())?;
         }
+        let mut listed: Vec<&str> = Vec::new();
         for s in chart.series.iter().filter(|s| !s.points.is_empty()) {
             let c = PALETTE[s.color % PALETTE.len()];
             let pts = s.points.clone();
@@ -184,11 +293,14 @@ pub fn render(chart: &Chart) -> Result<String, String> {
                 }
             }
             .map_err(|e| e.to_string())?;
-            anno.label(s.name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+            if !listed.contains(&s.name.as_str()) {
+                listed.push(s.name.as_str());
+                anno.label(s.name.as_str())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+            }
         }
         ctx.configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(legend_corner(chart, (x0, x1), (y0, y1), (plot_w, plot_h)))
             .border_style(BLACK.mix(0.3))
             .background_style(WHITE.mix(0.85))
             .label_font(("sans-serif", 12))
@@ -280,6 +392,53 @@ mod tests {
         assert!(render(&c).unwrap_err().contains("non-finite"));
         let empty = Chart::new("t", "x", "y");
         assert!(render(&empty).is_err());
+    }
+
+    /// Reference: by construction, a rising line leaves the upper-left and lower-right corners
+    /// empty, a falling one the upper-right; the legend goes to the first empty corner.
+    #[test]
+    fn legend_goes_to_an_empty_corner() {
+        let line = |pts: Vec<(f64, f64)>| Chart::new("t", "x", "y").with(Series::new("curve", pts, Style::Line, 0));
+        let size = (750.0, 240.0);
+        let rising = line(vec![(0.0, 0.0), (10.0, 10.0)]);
+        let pos = legend_corner(&rising, (0.0, 10.0), (0.0, 10.0), size);
+        assert!(matches!(pos, SeriesLabelPosition::UpperLeft), "{pos:?}");
+        let falling = line(vec![(0.0, 10.0), (10.0, 0.0)]);
+        let pos = legend_corner(&falling, (0.0, 10.0), (0.0, 10.0), size);
+        assert!(matches!(pos, SeriesLabelPosition::UpperRight), "{pos:?}");
+        // y pointing down flips the picture: the rising data line falls on screen
+        let mut down = rising.clone();
+        down.y_down = true;
+        let pos = legend_corner(&down, (0.0, 10.0), (0.0, 10.0), size);
+        assert!(matches!(pos, SeriesLabelPosition::UpperRight), "{pos:?}");
+        // a line along the top edge and one up the left edge: the lower right is free
+        let edge = line(vec![(0.0, 0.0), (0.0, 10.0), (10.0, 10.0)]);
+        let pos = legend_corner(&edge, (0.0, 10.0), (0.0, 10.0), size);
+        assert!(matches!(pos, SeriesLabelPosition::LowerRight), "{pos:?}");
+    }
+
+    /// Reference: a series split in two (a curve with a gap) has one legend entry; a band with
+    /// spans adds one, an empty band none.
+    #[test]
+    fn legend_names_are_listed_once() {
+        let c = Chart::new("t", "x", "y")
+            .with(Series::new("onset", vec![(0.0, 1.0), (1.0, 1.0)], Style::Thin, 0))
+            .with(Series::new("onset", vec![(2.0, 1.0), (3.0, 1.0)], Style::Thin, 0))
+            .with_band(Band {
+                name: "buckled".into(),
+                spans: vec![(0.5, 1.5)],
+                color: 1,
+            })
+            .with_band(Band {
+                name: "helical".into(),
+                spans: vec![],
+                color: 2,
+            });
+        assert_eq!(legend_names(&c), vec!["buckled", "onset"]);
+        let svg = render(&c).unwrap();
+        assert_eq!(svg.matches("\nonset\n").count(), 1);
+        assert_eq!(svg.matches("\nbuckled\n").count(), 1);
+        assert!(!svg.contains("helical"));
     }
 
     #[test]

@@ -1,11 +1,12 @@
 //! HTML report of `drillpath solve`: inputs, key results and plots along the string.
 
-use super::display_units::UnitSystem;
+use super::display_units::{signed, DisplayUnit, UnitSystem};
 use super::html::{check_finite_text, Page};
 use super::inputs::echo_inputs;
-use super::plots::{render, Chart, Series, Style};
+use super::plots::{render, Band, Chart, Series, Style};
 use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
+use crate::buckling_marks::{spans, BuckleState, Mark};
 use crate::case::Case;
 use crate::fem::results::SolveResults;
 use crate::fem::solve::SolveStats;
@@ -35,10 +36,85 @@ pub fn bending_stress_pa(case: &Case, x_m: f64, moment_nm: f64) -> f64 {
     }
 }
 
-/// The report's HTML text.
+/// Legend names of the buckling marks on the axial-force plot (the tests look for them).
+pub const BUCKLING_SERIES: [&str; 4] = [
+    "sinusoidal buckling",
+    "helical buckling",
+    "sinusoidal onset",
+    "helical onset",
+];
+
+/// Onset curves are drawn up to this multiple of the largest compression.
+pub const ONSET_SHOWN_UP_TO: f64 = 2.0;
+
+/// The axial-force chart: the effective axial force along MD (display units `du`, `fu`), the
+/// buckled MD intervals of `marks` shaded (sinusoidal, helical; only where there are any) and
+/// the onset loads drawn as compressive axial forces where the string is in compression and can
+/// buckle, up to [`ONSET_SHOWN_UP_TO`] times the largest compression.
+pub fn axial_force_chart(res: &SolveResults, marks: &[Mark], du: DisplayUnit, fu: DisplayUnit) -> Chart {
+    let mut c = Chart::new(
+        "Effective axial force (tension +) and buckling",
+        &format!("MD [{}]", du.label),
+        &format!("axial force [{}]", fu.label),
+    );
+    for (k, state) in [BuckleState::Sinusoidal, BuckleState::Helical].into_iter().enumerate() {
+        c = c.with_band(Band {
+            name: BUCKLING_SERIES[k].into(),
+            spans: spans(marks, state)
+                .into_iter()
+                .map(|(a, b)| (du.show(a), du.show(b)))
+                .collect(),
+            color: if k == 0 { 4 } else { 1 },
+        });
+    }
+    // onset curves where the string is in compression, up to ONSET_SHOWN_UP_TO times the largest
+    // compression (the stiff collars' onsets would squash the axial force); broken where the
+    // component cannot buckle (bit, stabilizers) or the onset is off the scale
+    let max_c = marks.iter().map(|m| m.compression_n).fold(0.0, f64::max);
+    for (k, onset) in [(|m: &Mark| m.sinusoidal_n) as fn(&Mark) -> Option<f64>, |m: &Mark| {
+        m.helical_n
+    }]
+    .into_iter()
+    .enumerate()
+    {
+        let mut run: Vec<(f64, f64)> = Vec::new();
+        for m in marks.iter().map(Some).chain([None]) {
+            let shown = m
+                .filter(|m| m.compression_n > 0.0)
+                .and_then(|m| onset(m).map(|f| (m.md_m, f)))
+                .filter(|&(_, f)| f <= ONSET_SHOWN_UP_TO * max_c);
+            match shown {
+                Some((md, f)) => run.push((du.show(md), -fu.show(f))),
+                None if !run.is_empty() => {
+                    c.series.push(Series::new(
+                        BUCKLING_SERIES[2 + k],
+                        std::mem::take(&mut run),
+                        Style::Thin,
+                        if k == 0 { 4 } else { 1 },
+                    ));
+                }
+                None => {}
+            }
+        }
+    }
+    c = c.with(Series::new(
+        "axial force",
+        res.nodes
+            .iter()
+            .map(|n| (du.show(n.md_m), fu.show(n.axial_force_n)))
+            .collect(),
+        Style::Line,
+        0,
+    ));
+    c.zero_line = true;
+    c
+}
+
+/// The report's HTML text (`marks`: buckling marks at the nodes of `res`, may be empty).
 pub fn solve_report(
     case: &Case,
     res: &SolveResults,
+    marks: &[Mark],
     stats: &SolveStats,
     converged: bool,
     units: UnitSystem,
@@ -69,11 +145,11 @@ pub fn solve_report(
         ("bit walk force (+ = right)".into(), fu.fmt(b.walk_force_n, 3)),
         (
             "bit tilt, inclination".into(),
-            format!("{:+.4} deg", b.tilt_inc_rad.to_degrees()),
+            format!("{} deg", signed(b.tilt_inc_rad.to_degrees(), 4)),
         ),
         (
             "bit tilt, azimuth".into(),
-            format!("{:+.4} deg", b.tilt_azi_rad.to_degrees()),
+            format!("{} deg", signed(b.tilt_azi_rad.to_degrees(), 4)),
         ),
         ("bit torque".into(), tu.fmt(b.torque_nm, 2)),
         ("hook load".into(), fu.fmt(res.hook_load_n, 1)),
@@ -219,23 +295,10 @@ pub fn solve_report(
         );
     }
 
-    let axial = Chart::new(
-        "Effective axial force (tension +)",
-        &md_label,
-        &format!("axial force [{}]", fu.label),
-    )
-    .with(Series::new(
-        "axial force",
-        along(&|n| fu.show(n.axial_force_n)),
-        Style::Line,
-        0,
-    ));
-    let mut axial = axial;
-    axial.zero_line = true;
     page.figure(
         "axial-force",
-        &render(&axial)?,
-        "effective axial force; negative is compression",
+        &render(&axial_force_chart(res, marks, du, fu))?,
+        "effective axial force, negative is compression; shaded: buckled intervals (sinusoidal, helical); thin lines: the sinusoidal and helical onsets (Dawson-Paslay / Chen-Lin-Cheatham with the curved-hole wall load) drawn as compressive axial forces where the string is in compression (up to twice the largest compression): the string is buckled where the axial force is below them",
     );
     let torque = Chart::new("Torque", &md_label, &format!("torque [{}]", tu.label)).with(Series::new(
         "torque",
@@ -276,11 +339,12 @@ pub fn write(
     file: &std::path::Path,
     case: &Case,
     res: &SolveResults,
+    marks: &[Mark],
     stats: &SolveStats,
     converged: bool,
     units: UnitSystem,
 ) -> anyhow::Result<()> {
-    let html = solve_report(case, res, stats, converged, units)
+    let html = solve_report(case, res, marks, stats, converged, units)
         .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
     super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
 }
