@@ -125,13 +125,19 @@ impl BitLines<'_> {
     pub fn write(&self, out: &mut impl Write) -> std::io::Result<()> {
         let (du, fu, tu) = (self.units.depth(), self.units.force(), self.units.torque());
         let op = &self.case.operation;
+        // the string turns only when the mode rotates it (sliding and tripping: the rpm of the
+        // case is not applied, Operation::omega_rad_s)
+        let rotation = if op.omega_rad_s() > 0.0 {
+            format!("{} rpm", fixed(op.rpm, 0))
+        } else {
+            "string not rotating".to_string()
+        };
         writeln!(
             out,
-            "  mode {}, bit at {} MD, WOB {}, {} rpm",
+            "  mode {}, bit at {} MD, WOB {}, {rotation}",
             op.mode.name(),
             du.fmt(op.bit_md_m, 2),
             fu.fmt(self.wob_n, 1),
-            fixed(op.rpm, 0)
         )?;
         match self.bit {
             Some(b) => writeln!(
