@@ -99,11 +99,11 @@ pub struct PredictArgs {
     pub units: UnitSystem,
     /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
     /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
-    /// forces) [default: the case's [solver] fidelity, auto].
+    /// forces) [default: the case's `[solver]` fidelity, auto].
     #[arg(long, value_name = "LEVEL")]
     pub fidelity: Option<String>,
     /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
-    /// step; --step wins) [default: the case's [solver] accuracy, or its own settings].
+    /// step; --step wins) [default: the case's `[solver]` accuracy, or its own settings].
     #[arg(long, value_name = "PRESET")]
     pub accuracy: Option<String>,
 }
@@ -152,11 +152,11 @@ pub struct BackanalyzeArgs {
     pub units: UnitSystem,
     /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
     /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
-    /// forces) [default: the case's [solver] fidelity, auto].
+    /// forces) [default: the case's `[solver]` fidelity, auto].
     #[arg(long, value_name = "LEVEL")]
     pub fidelity: Option<String>,
     /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
-    /// step; --step wins) [default: the case's [solver] accuracy, or its own settings].
+    /// step; --step wins) [default: the case's `[solver]` accuracy, or its own settings].
     #[arg(long, value_name = "PRESET")]
     pub accuracy: Option<String>,
 }
