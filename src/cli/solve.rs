@@ -60,7 +60,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
             .map(|&i| format!("{:.1} m", model.md_ref[i]))
             .collect();
         bail!(
-            "{}: the solve did not converge in {} iterations (last relative residuals {}; max penetration {:.2e} of clearance; contacts switching at MD {}); no results written (use --allow-unconverged to write flagged results){}",
+            "{}: the solve did not converge in {} iterations (last relative residuals {}; max penetration {:.2e} of clearance; contacts switching at MD {}); no results written (use --allow-unconverged to write flagged results, or --fidelity hybrid for the bit forces from the stiff bottom-hole assembly with the soft string above){}",
             a.case.display(),
             sol.stats.iterations,
             tail.join(", "),
