@@ -314,3 +314,29 @@ fn predict_accuracy_sets_the_step() {
     );
     assert_error(dir.path(), &o, &["--accuracy", "rough"]);
 }
+
+/// `--extrapolate`: the summary gains `step_extrapolation` with the coarse step (the given one),
+/// the fine step (half) and finite error estimates; rows are those of the coarse march.
+#[test]
+fn predict_extrapolate_reports_the_step_error() {
+    let dir = setup(CASE);
+    let o = run(
+        dir.path(),
+        "predict",
+        &["--ahead", "8 m", "--extrapolate", "--out", "out"],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = summary(dir.path());
+    let e = &s["step_extrapolation"];
+    assert_eq!(e["coarse_step_m"], 2.0);
+    assert_eq!(e["fine_step_m"], 1.0);
+    assert!(e["est_inc_err_deg"].as_f64().unwrap() >= 0.0);
+    assert!(e["est_azi_err_deg"].as_f64().unwrap() >= 0.0);
+    let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
+    check_csv(&csv, 5);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("step extrapolation"));
+    let dir = setup(CASE);
+    let o = run(dir.path(), "predict", &["--ahead", "8 m", "--out", "out"]);
+    assert!(o.status.success());
+    assert!(summary(dir.path())["step_extrapolation"].is_null());
+}

@@ -7,6 +7,7 @@ use super::progress::Progress;
 use crate::case::Case;
 use crate::fidelity::{Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
+use crate::predict::extrapolate::predict_extrapolated;
 use crate::predict::law::LawParams;
 use crate::predict::march::{predict, MarchSettings, Prediction, MIN_STEP_M};
 use crate::predict::track::{interval_rates, tracking_errors, trajectory_rows};
@@ -146,14 +147,31 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
     let du = a.units.depth();
     let step_m = settings.step_m.max(MIN_STEP_M);
     let n = step_count(from, to, step_m);
-    let progress = Progress::new(n, label, quiet);
+    // with --extrapolate: the march at the step (n steps), then at half of it (2n steps)
+    let total = if a.extrapolate { 3 * n } else { n };
+    let progress = Progress::new(total, label, quiet);
+    let mut done_before = 0u64;
+    let mut last_md = f64::NEG_INFINITY;
     let mut on_step = |md: f64| {
-        let k = ((md - from) / step_m - 1e-6).ceil().clamp(0.0, n as f64) as u64;
-        progress.set(k, &format!("bit at {} of {}", du.fmt(md, 1), du.fmt(to, 1)));
+        if md < last_md {
+            // the second (fine) march started
+            done_before = n;
+        }
+        last_md = md;
+        let per = if done_before > 0 { step_m / 2.0 } else { step_m };
+        let k = ((md - from) / per - 1e-6).ceil().max(0.0) as u64;
+        progress.set(
+            (done_before + k).min(total),
+            &format!("bit at {} of {}", du.fmt(md, 1), du.fmt(to, 1)),
+        );
     };
-    let pred = predict(&case, from, to, &settings, &mut on_step);
+    let result = if a.extrapolate {
+        predict_extrapolated(&case, from, to, &settings, &mut on_step).map(|(p, e)| (p, Some(e)))
+    } else {
+        predict(&case, from, to, &settings, &mut on_step).map(|p| (p, None))
+    };
     progress.finish();
-    let pred = pred.map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let (pred, step_error) = result.map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let rows = trajectory_rows(&pred, Some(survey));
     let csv = trajectory_csv(&rows).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let rates = interval_rates(&pred);
@@ -179,6 +197,15 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
             "rates": rates_json(&rates)?,
             "tracking": tracking.as_ref().map(tracking_json).transpose()?,
             "bit_rock": law_json(&case.bit_rock.law, &law, case.bit_rock.formations.len())?,
+            "step_extrapolation": match &step_error {
+                None => serde_json::Value::Null,
+                Some(e) => json!({
+                    "coarse_step_m": fin(e.coarse_step_m)?,
+                    "fine_step_m": fin(e.fine_step_m)?,
+                    "est_inc_err_deg": fin(e.max_inc_rad.to_degrees())?,
+                    "est_azi_err_deg": fin(e.max_azi_rad.to_degrees())?,
+                }),
+            },
             "model": {
                 "fidelity": choice.level.name(),
                 "fidelity_choice": fidelity_json(&choice),
@@ -373,6 +400,17 @@ fn print_case(r: &CaseRun, units: UnitSystem, out: &mut impl Write) -> std::io::
             signed(v("end_azi_err_deg"), 3),
             eu.fmt(rate("inc_err_per_100m_deg"), 3),
             eu.fmt(rate("azi_err_per_100m_deg"), 3)
+        )?;
+    }
+    if let Some(e) = r.summary.get("step_extrapolation").filter(|e| !e.is_null()) {
+        let v = |k: &str| e[k].as_f64().unwrap_or(f64::NAN);
+        writeln!(
+            out,
+            "  step extrapolation: marches at {} and {} combined (Richardson); step error left in the finer one, estimated: inc {} deg, azi {} deg",
+            du.fmt(v("coarse_step_m"), 2),
+            du.fmt(v("fine_step_m"), 2),
+            fixed(v("est_inc_err_deg"), 3),
+            fixed(v("est_azi_err_deg"), 3)
         )?;
     }
     let model = if r.summary["model"]["fidelity"] == "whole" {

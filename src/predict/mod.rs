@@ -4,6 +4,7 @@
 
 pub mod backanalysis;
 pub mod calibrate;
+pub mod extrapolate;
 pub mod law;
 pub mod march;
 pub mod track;
