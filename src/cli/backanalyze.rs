@@ -2,8 +2,8 @@
 //! calibration of the bit-rock law (calibrated on the first part, scored on the rest).
 
 use super::args::BackanalyzeArgs;
-use super::parse_length_option;
-use super::predict::{length_opt, load_for_prediction, progress_done, progress_line, settings_for};
+use super::predict::{load_for_prediction, progress_done, progress_line, settings_for};
+use super::{length_opt, parse_length_option};
 use crate::predict::backanalysis::{
     error_stats, intervals, run_intervals, run_intervals_skipping, Interval, IntervalPlan,
 };

@@ -2,7 +2,7 @@
 //! comparison of several BHAs.
 
 use super::args::PredictArgs;
-use super::parse_length_option;
+use super::{length_opt, parse_length_option};
 use crate::case::Case;
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::law::LawParams;
@@ -44,16 +44,6 @@ pub fn settings_for(case: &Case, step: Option<f64>, cut: Option<f64>) -> MarchSe
     }
     s.cut_m = cut;
     s
-}
-
-/// Parse an optional length option, refusing values below `min`.
-pub fn length_opt(name: &str, v: &Option<String>, min: f64) -> anyhow::Result<Option<f64>> {
-    let Some(t) = v else { return Ok(None) };
-    let x = parse_length_option(name, t)?;
-    if x.is_nan() || x < min {
-        bail!("option `{name}`: {x} m is below the smallest accepted value {min} m");
-    }
-    Ok(Some(x))
 }
 
 /// Progress on stderr when it is a terminal (silent otherwise).
