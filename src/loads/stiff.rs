@@ -428,6 +428,6 @@ mod tests {
         assert_eq!(clean_torque(-0.64, 0.0, tf, h, r), 0.0);
         assert_eq!(clean_torque(35.0, 0.0, tf, h, r), 0.0);
         assert_eq!(clean_torque(35.1, 0.0, tf, h, r), 35.1);
-        assert_eq!(clean_torque(-0.64, 6.28, tf, h, r), -0.64);
+        assert_eq!(clean_torque(-0.64, 7.0, tf, h, r), -0.64);
     }
 }
