@@ -30,6 +30,7 @@ pub mod report;
 pub mod softstring;
 pub mod string;
 pub mod units;
+pub mod warm;
 
 pub use error::{InputError, Location};
 pub use geometry::{Station, Survey};

@@ -171,3 +171,75 @@ fn calibration_writes_overlay() {
     assert_eq!(json["sections"].as_array().unwrap().len(), 2);
     assert!(dir.path().join("out/loads.csv").exists());
 }
+
+#[test]
+fn fidelity_options_are_checked_and_reported() {
+    let dir = setup();
+    // bha has no surface values: refused, naming the option; --stiff is --fidelity whole
+    let out = run(dir.path(), &["--fidelity", "bha", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--fidelity", "bha", "hook load"]);
+    let out = run(dir.path(), &["--stiff", "--fidelity", "soft", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--stiff", "--fidelity soft"]);
+    let out = run(dir.path(), &["--fidelity", "stiffest", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--fidelity", "stiffest"]);
+    let out = run(dir.path(), &["--accuracy", "sloppy", "--out", "out"]);
+    assert_error(dir.path(), &out, &["--accuracy", "sloppy"]);
+    // [solver] fidelity = "bha" in the case: the error names the file and the key
+    let bha = format!("{CASE}[solver]\nfidelity = \"bha\"\n");
+    std::fs::write(dir.path().join("case.toml"), &bha).unwrap();
+    let out = run(dir.path(), &["--out", "out"]);
+    assert_error(dir.path(), &out, &["case.toml", "solver.fidelity", "bha"]);
+    // ... and --fidelity overrides it: hybrid rows carry stiff_model = hybrid
+    let out = run(
+        dir.path(),
+        &[
+            "--fidelity",
+            "hybrid",
+            "--from",
+            "900 m",
+            "--every",
+            "100 m",
+            "--out",
+            "out",
+        ],
+    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("fidelity hybrid: requested"), "{stdout}");
+    let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with(",stiff_model"));
+    assert_eq!(
+        csv.lines()
+            .filter(|l| l.ends_with(",converged,") || l.contains(",converged,"))
+            .count(),
+        2 * 5
+    );
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid")), "{csv}");
+    // [solver] fidelity = "whole" in the case runs the whole string; auto runs soft and says why
+    let whole = format!("{CASE}[solver]\nfidelity = \"whole\"\n");
+    std::fs::write(dir.path().join("case.toml"), &whole).unwrap();
+    let out = run(
+        dir.path(),
+        &[
+            "--from",
+            "900 m",
+            "--every",
+            "100 m",
+            "--accuracy",
+            "fast",
+            "--out",
+            "out",
+        ],
+    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole")), "{csv}");
+    let out = run(dir.path(), &["--fidelity", "auto", "--out", "out"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("fidelity soft: auto:"), "{stdout}");
+    let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
+    assert!(
+        csv.lines().skip(1).all(|l| l.ends_with(",")),
+        "soft only: empty stiff columns"
+    );
+}

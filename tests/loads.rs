@@ -375,3 +375,137 @@ tool_joint_od = "6.625 in"
         );
     }
 }
+
+/// Reference: the cold-started solve of the same row (the solver's own start and fallbacks).
+/// Warm starts between bit depths (the same load case one depth up, carried onto the longer
+/// string's mesh) must converge to the same solution: hook load and torque within 1e-6
+/// relative (of the row's hook load for the torque of a non-rotating row, whose value is 0),
+/// and the largest contact force within 1e-4 relative (a contact multiplier, converged to the
+/// gap tolerance). Also checks that the warm starts are used (the rows at the second and
+/// third depth start from the previous depth) and take fewer Newton iterations.
+#[test]
+fn warm_started_rows_equal_cold_started_rows() {
+    use drillpath::loads::stiff::{stiff_depth, Start};
+    let case = load_case(
+        std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/wells/seed-daqing/case.toml")),
+        &CaseOverrides::default(),
+    )
+    .unwrap();
+    let op = ChartOperation::from_case(&case);
+    let wobs: Vec<f64> = MODES
+        .iter()
+        .map(|m| if m.on_bottom() { op.wob_n } else { 0.0 })
+        .collect();
+    let mut previous = Vec::new();
+    let (mut it_warm, mut it_cold) = (0, 0);
+    for (k, d) in [677.0, 702.0, 727.0].into_iter().enumerate() {
+        let c = case_at_depth(&case, d);
+        let (warm, solved) = stiff_depth(&c, d, &op, &wobs, &previous);
+        previous = solved;
+        for (j, mode) in MODES.into_iter().enumerate() {
+            let mut cc = c.clone();
+            set_row_operation(&mut cc, d, mode, &op);
+            let cold = stiff_row(&cc, None).0;
+            let (
+                StiffOutcome::Converged {
+                    loads: w,
+                    start,
+                    iterations,
+                    ..
+                },
+                StiffOutcome::Converged {
+                    loads: r,
+                    iterations: ic,
+                    ..
+                },
+            ) = (&warm[j], &cold)
+            else {
+                panic!("{d} m {}: {:?} / {:?}", mode.name(), warm[j], cold);
+            };
+            if k > 0 {
+                assert_eq!(*start, Start::PreviousDepth, "{d} m {}", mode.name());
+                it_warm += iterations;
+                it_cold += ic;
+            }
+            let rel = |a: f64, b: f64, scale: f64| (a - b).abs() / scale;
+            assert!(
+                rel(w.hook_load_n, r.hook_load_n, r.hook_load_n) < 1e-6,
+                "{d} {}: {w:?} {r:?}",
+                mode.name()
+            );
+            let t_scale = r.surface_torque_nm.abs().max(1e-6 * r.hook_load_n);
+            assert!(
+                rel(w.surface_torque_nm, r.surface_torque_nm, t_scale) < 1e-6,
+                "{d} {}: {w:?} {r:?}",
+                mode.name()
+            );
+            let f_scale = r.max_contact_force_n.max(1.0);
+            assert!(
+                rel(w.max_contact_force_n, r.max_contact_force_n, f_scale) < 1e-4,
+                "{d} {}: {w:?} {r:?}",
+                mode.name()
+            );
+            if !matches!(mode, Mode::Drilling | Mode::RotatingOffBottom) {
+                assert_eq!(w.surface_torque_nm, 0.0, "non-rotating torque cleaned to 0");
+            }
+        }
+    }
+    println!("Newton iterations of the last two depths: warm {it_warm}, cold {it_cold}");
+    assert!(it_warm < it_cold, "warm {it_warm} vs cold {it_cold}");
+}
+
+/// Reference: the identity. Carrying a solved state onto the model of the same string at the
+/// same depth gives the state back (positions to 1e-12 m, triads to 1e-12, multipliers exactly);
+/// carried two joints deeper, the pipe keeps its lateral offset from the hole axis at each MD
+/// (to 1e-9 m; the nodes then sit at the previous nodes' MDs).
+#[test]
+fn transport_between_depths_keeps_the_state() {
+    use drillpath::loads::stiff::transport_to_depth;
+    let case = pipe_case(
+        &survey(&[(0.0, 30.0, 10.0), (600.0, 30.0, 10.0)]),
+        600.0,
+        0.25,
+        true,
+        1.0,
+    );
+    let op = ChartOperation::from_case(&case);
+    let mut c = case_at_depth(&case, 500.0);
+    set_row_operation(&mut c, 500.0, Mode::TripOut, &op);
+    let (out, solved) = stiff_row(&c, None);
+    assert!(matches!(out, StiffOutcome::Converged { .. }), "{out:?}");
+    let (m, st) = solved.unwrap();
+    let back = transport_to_depth(&(m.clone(), st.clone()), &m, &c.string);
+    for i in 0..m.nodes() {
+        assert!((back.x[i] - st.x[i]).norm() < 1e-12, "node {i}");
+        assert!((back.lam[i] - st.lam[i]).norm() < 1e-12, "node {i}");
+        assert_eq!(back.lambda[i], st.lambda[i]);
+    }
+    // two joints deeper: the new nodes sit at the MDs of the old ones
+    let d2 = 500.0 + 2.0 * 9.144;
+    let mut c2 = case_at_depth(&case, d2);
+    set_row_operation(&mut c2, d2, Mode::TripOut, &op);
+    let m2 = drillpath::fem::model::Model::from_case(&c2);
+    let moved = transport_to_depth(&(m.clone(), st.clone()), &m2, &c2.string);
+    // a single pipe component: the whole string follows the MD rule above its first two joints
+    let mut checked = 0;
+    for i in (0..m2.nodes()).step_by(37) {
+        let md = m2.md_ref[i];
+        let j = (0..m.nodes())
+            .min_by(|&a, &b| (m.md_ref[a] - md).abs().total_cmp(&(m.md_ref[b] - md).abs()))
+            .unwrap();
+        if (m.md_ref[j] - md).abs() > 1e-9 || m2.mesh.nodes[i].s_m < d2 - 500.0 + 1e-9 {
+            continue;
+        }
+        // same MD: same lateral offset from the axis (the stretch shift is along the axis)
+        let lat = |x: drillpath::geometry::Vec3, q: &nalgebra::Matrix3<f64>| {
+            let d = q.transpose() * x;
+            (d[1], d[2])
+        };
+        let p = m.path.point_at(md).position;
+        let (a1, a2) = lat(st.x[j] - p, &m.basis[j]);
+        let (b1, b2) = lat(moved.x[i] - p, &m2.basis[i]);
+        assert!((a1 - b1).abs() < 1e-9 && (a2 - b2).abs() < 1e-9, "node {i} at {md} m");
+        checked += 1;
+    }
+    assert!(checked > 5, "{checked} nodes compared");
+}

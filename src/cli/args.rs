@@ -234,7 +234,16 @@ pub struct LoadsArgs {
     /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Also run the stiff whole-string FEM for every row (slow; also on with `[solver] fidelity = "whole"`).
+    /// Model of the chart: auto (= soft), soft (soft string only), hybrid (stiff BHA + soft
+    /// string above, next to the soft chart), whole (stiff whole string, next to the soft chart)
+    /// [default: the case's `[solver]` fidelity, auto]. bha has no hook load: refused.
+    #[arg(long, value_name = "LEVEL")]
+    pub fidelity: Option<String>,
+    /// Accuracy preset: fast, default, precise (sets element lengths and contact tolerance,
+    /// overriding the case file) [default: the case's `[solver]` accuracy, or its own settings].
+    #[arg(long, value_name = "PRESET")]
+    pub accuracy: Option<String>,
+    /// Same as --fidelity whole: the stiff whole-string FEM for every row, next to the soft chart.
     #[arg(long)]
     pub stiff: bool,
     /// Measured hook loads (and torques) to fit the friction factor per hole section to [default: none].

@@ -2,9 +2,9 @@
 //! calibration of the bit-rock law (calibrated on the first part, scored on the rest).
 
 use super::args::BackanalyzeArgs;
-use super::parse_length_option;
-use super::predict::{fidelity_json, length_opt, load_for_prediction, prediction_choice, settings_for};
+use super::predict::{fidelity_json, load_for_prediction, prediction_choice, settings_for};
 use super::progress::Progress;
+use super::{length_opt, parse_length_option};
 use crate::predict::backanalysis::{
     error_stats, intervals, run_intervals, run_intervals_skipping, Interval, IntervalPlan,
 };

@@ -2,15 +2,16 @@
 //! calibration (the computation is in [`crate::loads`]).
 
 use super::args::LoadsArgs;
-use super::parse_length_option;
 use super::progress::Progress;
-use crate::case::{Fidelity, Mode};
+use super::{apply_accuracy_option, fidelity_option, length_opt};
+use crate::case::{Case, Fidelity, Mode};
 use crate::error::InputError;
+use crate::fidelity::{choose, Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::io::measured_csv::read_measured_csv;
 use crate::loads::calibrate::{calibrate, calibrated_case};
 use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow};
-use crate::loads::stiff::{stiff_depth, StiffOutcome};
+use crate::loads::stiff::{hybrid_depth, stiff_depth, Solved, Start, StiffOutcome};
 use crate::loads::{check_fits, depth_list, string_at_depth, ChartOperation, MODES};
 use crate::report::display_units::{fixed, UnitSystem};
 use crate::report::loads_output::{calibration_json, loads_csv, overlay_csv};
@@ -24,10 +25,9 @@ pub const DEFAULT_EVERY_M: f64 = 30.0;
 
 /// Run the command (`quiet`: no progress bar).
 pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
-    let len = |name: &str, v: &Option<String>| v.as_deref().map(|t| parse_length_option(name, t)).transpose();
-    let from = len("--from", &a.from)?.unwrap_or(0.0);
-    let to = len("--to", &a.to)?;
-    let every = len("--every", &a.every)?.unwrap_or(DEFAULT_EVERY_M);
+    let from = length_opt("--from", &a.from, 0.0)?.unwrap_or(0.0);
+    let to = length_opt("--to", &a.to, f64::NEG_INFINITY)?;
+    let every = length_opt("--every", &a.every, f64::NEG_INFINITY)?.unwrap_or(DEFAULT_EVERY_M);
     let wob = a
         .wob
         .as_deref()
@@ -36,16 +36,15 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     if every <= 0.0 {
         return Err(InputError::option("--every", "the bit-depth step must be positive").into());
     }
-    if from < 0.0 {
-        return Err(InputError::option("--from", "the bit depth must not be negative").into());
-    }
     if wob.is_some_and(|w| w < 0.0) {
         return Err(InputError::option("--wob", "the weight on bit must not be negative").into());
     }
-    let case = load_case(&a.case, &CaseOverrides::default())?;
+    let mut case = load_case(&a.case, &CaseOverrides::default())?;
     if case.string.components.is_empty() {
         bail!("{}: the case has no [[string]] components", a.case.display());
     }
+    apply_accuracy_option(a.accuracy.as_deref(), &mut case.solver)?;
+    let choice = chart_fidelity(&a, &case)?;
     let path = &case.well.path;
     let deepest = path.md_end().min(case.well.hole.deepest_md());
     let to = to.unwrap_or(case.operation.bit_md_m);
@@ -85,6 +84,15 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     );
     let mut out = std::io::stdout().lock();
     writeln!(out, "loads: {} ({})", case.name, a.case.display())?;
+    writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
+    if choice.level != Level::Soft {
+        writeln!(
+            out,
+            "  loads.csv: hook_load_kN, surface_torque_kNm, max_contact_force_kN and the buckling and yield columns are the soft string's (computed for every row); the {} results are the stiff_* columns (stiff_model = {})",
+            choice.level.name(),
+            choice.level.name()
+        )?;
+    }
     if case.operation.rpm <= 0.0 {
         writeln!(
             out,
@@ -159,34 +167,17 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     let t0 = std::time::Instant::now();
     let mut rows = soft_chart(&chart_case, &depths, &settings);
     let soft_s = t0.elapsed().as_secs_f64();
-    let stiff = a.stiff || case.solver.fidelity == Fidelity::Whole;
+    let stiff = choice.level != Level::Soft;
     let t1 = std::time::Instant::now();
     if stiff {
         let progress = Progress::new(
             depths.len() as u64,
-            &format!("loads {}: stiff", a.case.display()),
+            &format!("loads {}: {}", a.case.display(), choice.level.name()),
             quiet,
         );
-        for (k, &d) in depths.iter().enumerate() {
-            progress.set(k as u64, &format!("bit at {}", du.fmt(d, 1)));
-            let c = case_at_depth(&chart_case, d);
-            let wobs: Vec<f64> = rows[k * MODES.len()..(k + 1) * MODES.len()]
-                .iter()
-                .map(|r| r.wob_n)
-                .collect();
-            let outcomes = stiff_depth(&c, d, &op, &wobs);
-            for (j, o) in outcomes.into_iter().enumerate() {
-                rows[k * MODES.len() + j].stiff = Some(o);
-            }
-            progress.suspend(|| {
-                tracing::info!(
-                    "stiff: bit depth {d:.1} m done ({}/{}, {:.1} s)",
-                    k + 1,
-                    depths.len(),
-                    t1.elapsed().as_secs_f64()
-                );
-            });
-        }
+        run_stiff(&chart_case, &depths, &op, choice.level, &mut rows, &|k, d| {
+            progress.set(k as u64, &format!("bit at {}", du.fmt(d, 1)))
+        });
         progress.finish();
     }
     let csv = loads_csv(&rows).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
@@ -196,34 +187,135 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     }
     print_summary(&rows, &depths, soft_s, a.units, &mut out)?;
     if stiff {
-        let warm = rows
-            .iter()
-            .filter(|r| matches!(r.stiff, Some(StiffOutcome::Converged { warm: true, .. })))
-            .count();
-        writeln!(
-            out,
-            "  stiff (whole-string FEM): {} rows in {:.1} s, {} converged from the previous load case's state",
-            rows.len(),
-            t1.elapsed().as_secs_f64(),
-            warm
-        )?;
-        let bad: Vec<String> = rows
-            .iter()
-            .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
-            .map(|r| format!("{} {}", du.fmt(r.bit_md_m, 0), r.mode.name()))
-            .collect();
-        if !bad.is_empty() {
-            writeln!(
-                out,
-                "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
-                bad.len(),
-                bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
-            )?;
-        }
+        print_stiff_summary(&rows, choice.level, t1.elapsed().as_secs_f64(), a.units, &mut out)?;
     }
     match &a.out {
         Some(dir) => writeln!(out, "  wrote {}/loads.csv", dir.display())?,
         None => writeln!(out, "  (use --out DIR to write loads.csv)")?,
+    }
+    Ok(())
+}
+
+/// The level the chart runs: `--fidelity` (or `--stiff` = whole) over the case's `[solver]
+/// fidelity`, `auto` = soft; `bha` (no surface values) is refused.
+fn chart_fidelity(a: &LoadsArgs, case: &Case) -> Result<Choice, InputError> {
+    if a.stiff {
+        if let Some(f) = a.fidelity.as_deref().filter(|f| f.trim() != "whole") {
+            return Err(InputError::option(
+                "--stiff",
+                format!("--stiff is --fidelity whole; it cannot be combined with --fidelity {f}"),
+            ));
+        }
+    }
+    let requested = if a.stiff {
+        Fidelity::Whole
+    } else {
+        fidelity_option(a.fidelity.as_deref(), case.solver.fidelity)?
+    };
+    let choice = choose(requested, Purpose::Loads);
+    if choice.level == Level::Bha {
+        let msg = "fidelity bha has no hook load or surface torque (the stiff model ends at the cut above the bottom-hole assembly), which the chart is made of: use soft, hybrid or whole";
+        return Err(if a.fidelity.is_some() {
+            InputError::option("--fidelity", msg)
+        } else {
+            InputError::key(
+                &case.path,
+                "solver.fidelity",
+                format!("{msg} (or override with --fidelity)"),
+            )
+        });
+    }
+    Ok(choice)
+}
+
+/// The stiff rows (`level` whole or hybrid) of the chart `rows` of `case` at `depths`.
+/// The stiff rows of every depth at `level`; `progress` hears (depth index, bit MD) before each.
+fn run_stiff(
+    case: &Case,
+    depths: &[f64],
+    op: &ChartOperation,
+    level: Level,
+    rows: &mut [LoadRow],
+    progress: &dyn Fn(usize, f64),
+) {
+    let t1 = std::time::Instant::now();
+    let mut previous: Vec<Option<Solved>> = Vec::new();
+    for (k, &d) in depths.iter().enumerate() {
+        progress(k, d);
+        let c = case_at_depth(case, d);
+        let depth_rows = &mut rows[k * MODES.len()..(k + 1) * MODES.len()];
+        let wobs: Vec<f64> = depth_rows.iter().map(|r| r.wob_n).collect();
+        let outcomes = if level == Level::Hybrid {
+            hybrid_depth(&c, d, op, &wobs)
+        } else {
+            let (outcomes, solved) = stiff_depth(&c, d, op, &wobs, &previous);
+            previous = solved;
+            outcomes
+        };
+        for (r, o) in depth_rows.iter_mut().zip(outcomes) {
+            r.stiff = Some(o);
+            r.stiff_level = Some(level);
+        }
+        tracing::info!(
+            "{}: bit depth {d:.1} m done ({}/{}, {:.1} s)",
+            level.name(),
+            k + 1,
+            depths.len(),
+            t1.elapsed().as_secs_f64()
+        );
+    }
+}
+
+/// Time, iterations and starts of the stiff rows, and the rows that did not converge.
+fn print_stiff_summary(
+    rows: &[LoadRow],
+    level: Level,
+    seconds: f64,
+    units: UnitSystem,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let count = |s: Start| {
+        rows.iter()
+            .filter(|r| matches!(r.stiff, Some(StiffOutcome::Converged { start, .. }) if start == s))
+            .count()
+    };
+    let iterations: usize = rows
+        .iter()
+        .filter_map(|r| r.stiff.as_ref())
+        .map(|o| o.iterations())
+        .sum();
+    let what = match level {
+        Level::Hybrid => "hybrid (stiff BHA + soft string above)",
+        _ => "whole-string FEM",
+    };
+    write!(
+        out,
+        "  {what}: {} rows in {seconds:.2} s, {iterations} Newton iterations",
+        rows.len()
+    )?;
+    if level == Level::Whole {
+        writeln!(
+            out,
+            "; started from the same load case one depth up {}, from the previous load case {}, cold {}",
+            count(Start::PreviousDepth),
+            count(Start::PreviousCase),
+            count(Start::Cold),
+        )?;
+    } else {
+        writeln!(out, " (each row cold-started)")?;
+    }
+    let bad: Vec<String> = rows
+        .iter()
+        .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
+        .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
+        .collect();
+    if !bad.is_empty() {
+        writeln!(
+            out,
+            "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
+            bad.len(),
+            bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+        )?;
     }
     Ok(())
 }

@@ -31,6 +31,46 @@ pub fn parse_length_option(name: &str, text: &str) -> Result<f64, InputError> {
     parse_quantity(text, Dimension::Length, "m").map_err(|m| InputError::option(name, m))
 }
 
+/// Parse an optional length option (`None` when not given), refusing values below `min` (m).
+pub fn length_opt(name: &str, v: &Option<String>, min: f64) -> anyhow::Result<Option<f64>> {
+    let Some(t) = v else { return Ok(None) };
+    let x = parse_length_option(name, t)?;
+    if x.is_nan() || x < min {
+        anyhow::bail!("option `{name}`: {x} m is below the smallest accepted value {min} m");
+    }
+    Ok(Some(x))
+}
+
+/// Apply `--accuracy PRESET` (when given) to the case's solver settings: element lengths and
+/// contact tolerance of the preset, overriding the case file ([`crate::accuracy`]).
+pub fn apply_accuracy_option(option: Option<&str>, solver: &mut crate::case::SolverSettings) -> Result<(), InputError> {
+    let Some(t) = option else { return Ok(()) };
+    let preset = crate::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
+        InputError::option(
+            "--accuracy",
+            format!("unknown accuracy `{t}` (expected {})", crate::accuracy::NAMES),
+        )
+    })?;
+    preset.apply(solver);
+    Ok(())
+}
+
+/// The fidelity asked for: `--fidelity LEVEL` when given, else the case's `[solver] fidelity`.
+pub fn fidelity_option(
+    option: Option<&str>,
+    case_value: crate::case::Fidelity,
+) -> Result<crate::case::Fidelity, InputError> {
+    match option {
+        None => Ok(case_value),
+        Some(t) => crate::fidelity::parse(t.trim()).ok_or_else(|| {
+            InputError::option(
+                "--fidelity",
+                format!("unknown fidelity `{t}` (expected {})", crate::fidelity::NAMES),
+            )
+        }),
+    }
+}
+
 /// Parse a command-line length unit (`ft`, `m`) for option `name`.
 pub fn parse_length_unit(name: &str, text: &str) -> Result<crate::units::Unit, InputError> {
     lookup_dim(text, Dimension::Length).map_err(|m| InputError::option(name, m))
@@ -45,24 +85,10 @@ pub fn model_choice(
     case: &mut crate::case::Case,
     purpose: crate::fidelity::Purpose,
 ) -> Result<crate::fidelity::Choice, InputError> {
-    if let Some(t) = accuracy {
-        let preset = crate::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
-            InputError::option(
-                "--accuracy",
-                format!("unknown accuracy `{t}` (expected {})", crate::accuracy::NAMES),
-            )
-        })?;
-        preset.apply(&mut case.solver);
+    apply_accuracy_option(accuracy, &mut case.solver)?;
+    if let Some(preset) = accuracy.and(case.solver.accuracy) {
         case.bit_rock.step_m = preset.knobs().step_m;
     }
-    let requested = match fidelity {
-        None => case.solver.fidelity,
-        Some(t) => crate::fidelity::parse(t.trim()).ok_or_else(|| {
-            InputError::option(
-                "--fidelity",
-                format!("unknown fidelity `{t}` (expected {})", crate::fidelity::NAMES),
-            )
-        })?,
-    };
+    let requested = fidelity_option(fidelity, case.solver.fidelity)?;
     Ok(crate::fidelity::choose(requested, purpose))
 }

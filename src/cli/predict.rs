@@ -2,8 +2,8 @@
 //! comparison of several BHAs.
 
 use super::args::PredictArgs;
-use super::parse_length_option;
 use super::progress::Progress;
+use super::{length_opt, parse_length_option};
 use crate::case::Case;
 use crate::fidelity::{Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
@@ -92,16 +92,6 @@ pub fn fidelity_json(choice: &Choice) -> serde_json::Value {
         "used": choice.level.name(),
         "reason": choice.reason,
     })
-}
-
-/// Parse an optional length option, refusing values below `min`.
-pub fn length_opt(name: &str, v: &Option<String>, min: f64) -> anyhow::Result<Option<f64>> {
-    let Some(t) = v else { return Ok(None) };
-    let x = parse_length_option(name, t)?;
-    if x.is_nan() || x < min {
-        bail!("option `{name}`: {x} m is below the smallest accepted value {min} m");
-    }
-    Ok(Some(x))
 }
 
 struct CaseRun {

@@ -62,8 +62,10 @@ pub struct LoadRow {
     pub buckling: Buckling,
     /// Yield limits and stress ratio.
     pub yield_: RowYield,
-    /// Stiff (whole-string FEM) result, when asked for.
+    /// Stiff result (whole-string FEM, or hybrid), when asked for.
     pub stiff: Option<StiffOutcome>,
+    /// The level of `stiff` (whole or hybrid).
+    pub stiff_level: Option<crate::fidelity::Level>,
 }
 
 /// Settings of a soft-string chart.
@@ -133,6 +135,7 @@ pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
         buckling,
         yield_,
         stiff: None,
+        stiff_level: None,
     }
 }
 

@@ -1,24 +1,16 @@
 //! Limit curves of the torque-and-drag chart: buckling onset along the string and pipe-body
 //! yield limits.
 //!
-//! **Buckling** (physics.md 6.4; forces are effective compressions, N). For a component of
-//! bending stiffness `EI`, buoyed weight `w_b` and radial clearance `r = (D_hole - D_body)/2`
-//! at inclination `I`:
-//!
-//! ```text
-//! sinusoidal onset  F_s = max( 2 sqrt(EI w_b sin I / r),          Dawson & Paslay (1984)
-//!                              2.55 (EI w_b^2)^(1/3) )            vertical hole (Wu et al.)
-//! helical onset     F_h = max( 2 sqrt(2) sqrt(EI w_b sin I / r),  Chen, Lin & Cheatham (1990)
-//!                              5.55 (EI w_b^2)^(1/3) )            vertical hole (Wu et al.)
-//! ```
-//!
-//! The vertical-hole floor keeps the onset finite where `sin I -> 0`; its coefficients are
-//! marked \[uncertain\] in physics.md 6.4. The clearance uses the body OD (tool joints make `r`
-//! ambiguous, physics.md 6.4); components with less than [`MIN_BUCKLING_CLEARANCE_M`] of
-//! clearance (bit, gauge stabilizers) are taken as unable to buckle. The buckled length is the
-//! length where the soft-string effective compression exceeds the onset, interpolated linearly
-//! inside an element. The curvature of the hole (which raises the onset in builds and lowers it
-//! in drops) is not included.
+//! **Buckling**: the onsets of [`crate::buckling_marks::onset_at`] (the same as `solve`'s
+//! buckling marks): Dawson & Paslay (1984) sinusoidal and Chen, Lin & Cheatham (1990) helical
+//! with the curved-hole wall load `q(F) = |w_b (e_D - t t_D) - F dt/ds|` (curvature raises the
+//! onset in a build and lowers it in a drop), the vertical-hole floors `2.55 / 5.55 (EI
+//! w_b^2)^(1/3)` \[uncertain coefficients, physics.md 6.4], and in the bottom-hole assembly the
+//! span between stabilizers as a supported column ([`crate::buckling_marks::span_sinusoidal_onset`]).
+//! The clearance uses the body OD (tool joints make `r` ambiguous, physics.md 6.4); components
+//! with less than [`MIN_BUCKLING_CLEARANCE_M`] of clearance (bit, gauge stabilizers) are taken
+//! as unable to buckle. The buckled length is the length where the soft-string effective
+//! compression exceeds the onset, interpolated linearly inside an element.
 //!
 //! **Yield** of the pipe body (API RP 7G section 4 / API TR 5C3 minimum values of new pipe,
 //! nominal dimensions; `sigma_y` the minimum yield strength, `A` the body area, `J` the polar
@@ -36,48 +28,12 @@
 //! Bending stress, internal/external pressure stresses and wear are not included: these are
 //! body limits of new pipe, not a design check.
 
-use crate::analytical::buckling::{
-    helical_chen_lin_cheatham, sinusoidal_dawson_paslay, vertical_force_unit, WU_VERTICAL_HELICAL,
-    WU_VERTICAL_SINUSOIDAL,
-};
+pub use crate::buckling_marks::MIN_BUCKLING_CLEARANCE_M;
+use crate::buckling_marks::{onset_at, support_span_m};
 use crate::geometry::{HoleSize, WellPath};
 use crate::softstring::SoftStringResult;
 use crate::string::{Component, DrillString};
 use crate::units::G;
-
-/// Radial clearance below which a component is taken as unable to buckle, m.
-pub const MIN_BUCKLING_CLEARANCE_M: f64 = 1e-3;
-
-/// Buckling onset loads (effective compression, N) of a component at one point of the hole.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Onset {
-    /// Sinusoidal (lateral) buckling onset, N.
-    pub sinusoidal_n: f64,
-    /// Helical buckling onset, N.
-    pub helical_n: f64,
-}
-
-/// Buckling onset of `c` in mud of `mud_density_kg_m3` where the hole has diameter
-/// `hole_diameter_m` and inclination `inc_rad` (see the module documentation); `None` when the
-/// clearance is below [`MIN_BUCKLING_CLEARANCE_M`].
-pub fn onset(c: &Component, mud_density_kg_m3: f64, hole_diameter_m: f64, inc_rad: f64) -> Option<Onset> {
-    let r = (hole_diameter_m - c.body_od_m) / 2.0;
-    if r.is_nan() || r < MIN_BUCKLING_CLEARANCE_M {
-        return None;
-    }
-    let ei = c.ei_nm2();
-    let w_b = c.buoyed_weight_n_per_m(mud_density_kg_m3);
-    if !(ei > 0.0 && w_b > 0.0) {
-        return None;
-    }
-    let unit = vertical_force_unit(ei, w_b);
-    let s = sinusoidal_dawson_paslay(ei, w_b, inc_rad, r).unwrap_or(0.0);
-    let h = helical_chen_lin_cheatham(ei, w_b, inc_rad, r).unwrap_or(0.0);
-    Some(Onset {
-        sinusoidal_n: s.max(WU_VERTICAL_SINUSOIDAL * unit),
-        helical_n: h.max(WU_VERTICAL_HELICAL * unit),
-    })
-}
 
 /// Buckling along a soft-string result.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -114,27 +70,24 @@ pub fn buckling_along(
     mud_density_kg_m3: f64,
 ) -> Buckling {
     let mut out = Buckling::default();
-    let mut inc_lo = path.point_at(res.points[0].md_m).inc_rad;
     for w in res.points.windows(2) {
         let (lo, up) = (&w[0], &w[1]);
-        let inc_up = path.point_at(up.md_m).inc_rad;
         let dl = lo.md_m - up.md_m;
         let (c_lo, c_up) = (-lo.tension_n, -up.tension_n);
         out.max_compression_n = out.max_compression_n.max(c_lo).max(c_up);
         if dl > 0.0 && (c_lo > 0.0 || c_up > 0.0) {
-            let comp = string.component_at(bit_md_m - 0.5 * (lo.md_m + up.md_m));
-            let o_lo = onset(comp, mud_density_kg_m3, hole.diameter_at(lo.md_m), inc_lo);
-            let o_up = onset(comp, mud_density_kg_m3, hole.diameter_at(up.md_m), inc_up);
-            if let (Some(a), Some(b)) = (o_lo, o_up) {
-                out.sinusoidal_length_m += positive_length(c_lo - a.sinusoidal_n, c_up - b.sinusoidal_n, dl);
-                out.helical_length_m += positive_length(c_lo - a.helical_n, c_up - b.helical_n, dl);
-                out.max_sinusoidal_ratio = out
-                    .max_sinusoidal_ratio
-                    .max(c_lo / a.sinusoidal_n)
-                    .max(c_up / b.sinusoidal_n);
+            let mid = bit_md_m - 0.5 * (lo.md_m + up.md_m);
+            let comp = string.component_at(mid.max(0.0));
+            // the span of the element's middle (an element does not straddle a stabilizer
+            // centre by more than its length)
+            let span = support_span_m(string, mid.max(0.0));
+            let onset = |md: f64| onset_at(comp, path, md, hole.diameter_at(md), mud_density_kg_m3, span);
+            if let (Some((s_lo, h_lo)), Some((s_up, h_up))) = (onset(lo.md_m), onset(up.md_m)) {
+                out.sinusoidal_length_m += positive_length(c_lo - s_lo, c_up - s_up, dl);
+                out.helical_length_m += positive_length(c_lo - h_lo, c_up - h_up, dl);
+                out.max_sinusoidal_ratio = out.max_sinusoidal_ratio.max(c_lo / s_lo).max(c_up / s_up);
             }
         }
-        inc_lo = inc_up;
     }
     out
 }
@@ -260,20 +213,65 @@ mod tests {
         assert!((t / y.torque_nm - 0.8).abs() < 1e-12); // sqrt(1 - 0.36)
     }
 
+    fn path(st: &[(f64, f64, f64)]) -> WellPath {
+        use crate::geometry::{Station, Survey, Vec3};
+        let s = Survey::new(st.iter().map(|&(m, i, a)| Station::from_deg(m, i, a)).collect()).unwrap();
+        WellPath::new(&s, Vec3::zeros()).unwrap()
+    }
+
     /// Reference: physics.md 6.4 (5 in pipe, 29 kg/m, 1.2 sg, 8.5 in hole): I = 45 deg
     /// F_s = 137.3 kN, F_h (CLC) = 194.1 kN; vertical: 2.55 / 5.55 (EI w_b^2)^(1/3) = 10.58 /
-    /// 23.02 kN. Tolerance 0.1 kN (printed digits).
+    /// 23.02 kN. Tolerance 0.1 kN (printed digits). The chart's onset is `onset_at` of
+    /// buckling_marks, in a straight hole without supports.
     #[test]
     fn onset_inclined_and_vertical() {
         let c = pipe();
         let hole = 8.5 * 0.0254;
-        let o = onset(&c, 1200.0, hole, 45f64.to_radians()).unwrap();
-        assert!((o.sinusoidal_n / 1e3 - 137.3).abs() < 0.1, "{}", o.sinusoidal_n);
-        assert!((o.helical_n / 1e3 - 194.1).abs() < 0.1, "{}", o.helical_n);
-        let v = onset(&c, 1200.0, hole, 0.0).unwrap();
-        assert!((v.sinusoidal_n / 1e3 - 10.58).abs() < 0.01, "{}", v.sinusoidal_n);
-        assert!((v.helical_n / 1e3 - 23.02).abs() < 0.01, "{}", v.helical_n);
-        assert!(onset(&c, 1200.0, c.body_od_m + 1e-4, 0.5).is_none());
+        let inclined = path(&[(0.0, 45.0, 0.0), (1000.0, 45.0, 0.0)]);
+        let (s, h) = onset_at(&c, &inclined, 500.0, hole, 1200.0, None).unwrap();
+        assert!((s / 1e3 - 137.3).abs() < 0.1, "{s}");
+        assert!((h / 1e3 - 194.1).abs() < 0.1, "{h}");
+        let vertical = path(&[(0.0, 0.0, 0.0), (1000.0, 0.0, 0.0)]);
+        let (s, h) = onset_at(&c, &vertical, 500.0, hole, 1200.0, None).unwrap();
+        assert!((s / 1e3 - 10.58).abs() < 0.01, "{s}");
+        assert!((h / 1e3 - 23.02).abs() < 0.01, "{h}");
+        assert!(onset_at(&c, &inclined, 500.0, c.body_od_m + 1e-4, 1200.0, None).is_none());
+    }
+
+    /// Reference, by hand (buckling_marks' curved-hole form, its test gives the numbers): 5 in
+    /// pipe at I = 45 deg in 8.5 in hole, onset 137.29 kN straight, 264.38 kN in a 10 deg/100 m
+    /// build, 71.29 kN in the same drop. A constant compression of 200 kN over the 20 m from
+    /// 60 m up to 40 m is buckled over all 20 m in the straight hole and the drop, over none in
+    /// the build (the straight-hole onset would have said 20 m).
+    #[test]
+    fn chart_buckling_includes_hole_curvature() {
+        use crate::geometry::Vec3;
+        use crate::softstring::SoftStringPoint;
+        let string = DrillString {
+            components: vec![pipe()],
+        };
+        let hole = HoleSize::uniform(8.5 * 0.0254);
+        let res = SoftStringResult {
+            hook_load_n: 0.0,
+            surface_torque_nm: 0.0,
+            points: (0..=20)
+                .map(|k| SoftStringPoint {
+                    md_m: 60.0 - k as f64,
+                    tension_n: -200e3,
+                    torque_nm: 0.0,
+                    normal_force_per_m: 0.0,
+                    normal_dir: Vec3::zeros(),
+                })
+                .collect(),
+            frictionless: false,
+        };
+        let len = |p: &WellPath| buckling_along(&res, &string, p, &hole, 60.0, 1200.0).sinusoidal_length_m;
+        let straight = path(&[(0.0, 45.0, 0.0), (100.0, 45.0, 0.0)]);
+        let build = path(&[(0.0, 40.0, 0.0), (100.0, 50.0, 0.0)]);
+        let drop = path(&[(0.0, 50.0, 0.0), (100.0, 40.0, 0.0)]);
+        assert!((len(&straight) - 20.0).abs() < 1e-9, "{}", len(&straight));
+        assert!((len(&drop) - 20.0).abs() < 1e-9, "{}", len(&drop));
+        assert_eq!(len(&build), 0.0);
     }
 
     #[test]

@@ -1,22 +1,57 @@
-//! Stiff rows of the chart: the whole-string FEM ([`crate::fem`]) for each load case at a bit
-//! depth.
+//! Stiff rows of the chart: the whole-string FEM ([`crate::fem`]), or the stiff bottom-hole
+//! assembly with the soft string above ([`crate::fidelity`] `hybrid`), for each load case at a
+//! bit depth.
 //!
-//! Warm start: at one bit depth the five load cases share the mesh and the geometry, only the
-//! loads differ, so each case after the first starts the interior-point contact Newton
-//! ([`solve_ip_from`]) from the previous case's converged state (positions, triads, contact
-//! multipliers); if that does not converge the full strategy chain of [`solve`] runs from a
-//! cold start. Between bit depths the mesh changes (the string is longer), so each depth's
-//! first case starts cold.
+//! **Warm starts** (whole string). Each load case starts the interior-point contact Newton
+//! ([`solve_ip_from`], at most [`WARM_MAX_ITERATIONS`] iterations) from the same load case's
+//! converged state at the previous bit depth, carried onto the new mesh by
+//! [`transport_to_depth`] (the string is longer there: its top component is lengthened,
+//! [`super::string_at_depth`]); at the first depth, or when that case has no converged state,
+//! from the previous load case's state at the same depth (same mesh, other loads). Whenever a
+//! warm start does not converge, the full strategy chain of [`solve`] runs from a cold start;
+//! the outcome says which start converged. Measured (docs/performance.md): the same load case
+//! one depth up is the better start (3-4 iterations a row on the example wells, against 4-8
+//! from the previous load case and 6-15 cold).
+//!
+//! **Surface torque of the non-rotating rows** (trip in, trip out, sliding). Without rotation
+//! the friction force opposes the axial motion: at each contact it is parallel to the pipe's
+//! axis and has no moment about it, so the surface torque is zero. The FEM gives a small
+//! nonzero value: in a plane well below 1e-7 N.m (round-off; the mirror symmetry makes it
+//! zero), in a 3D well a converged value of either sign that does not change with the solver
+//! tolerances (same at residual tolerance 1e-7 and 1e-10, gap tolerance 1e-3 and 1e-5) but
+//! shrinks as the mesh is refined (seed-daqing trip in at 500 m: 0.59 / 0.14 / 0.06 N.m with
+//! the fast / default / precise presets): a discretization artefact (the gap element's friction
+//! acts along the hole axis at the node, not along the deflected element), not round-off and
+//! not a sign error. Measured at the bit depth of the six example wells it is at most 1.1e-3
+//! (default preset) and 3.2e-3 (fast) of `T_f = sum f N r_c` over the contacts, the torque
+//! the same contacts would give when rotating. A non-rotating row's torque below
+//! [`NONROTATING_TORQUE_FRACTION`] x `T_f` (plus [`ZERO_TORQUE_FRACTION`] x hook load x top
+//! radius for round-off) is reported as exactly 0 ([`clean_torque`]); a larger one is kept
+//! (it would mean something else is wrong).
 //!
 //! A solve that does not converge gives [`StiffOutcome::NotConverged`]: no numbers are
 //! reported for it.
 
-use super::chart::RowLoads;
+use super::chart::{soft_loads, RowLoads};
 use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::Case;
 use crate::fem::model::{Model, State};
-use crate::fem::results::extract;
+use crate::fem::results::{extract, SolveResults};
 use crate::fem::solve::{solve, solve_ip_from, SolveControls};
+use crate::fidelity::{choose, run as run_level, Level};
+use crate::string::DrillString;
+use crate::warm::{source_by_distance, transport_mapped, Source};
+
+/// How a converged stiff solve started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Start {
+    /// The solver's own cold start (and fallbacks).
+    Cold,
+    /// The previous load case's state at the same bit depth.
+    PreviousCase,
+    /// The same load case's state at the previous bit depth, carried onto the new mesh.
+    PreviousDepth,
+}
 
 /// Result of the stiff model for one row.
 #[derive(Debug, Clone, PartialEq)]
@@ -25,12 +60,12 @@ pub enum StiffOutcome {
     Converged {
         /// Surface loads and largest nodal contact force.
         loads: RowLoads,
-        /// Newton iterations (all attempts).
+        /// Newton iterations (all attempts, a failed warm start included).
         iterations: usize,
         /// Wall-clock time, s.
         seconds: f64,
-        /// True when the warm start from the previous load case converged.
-        warm: bool,
+        /// How the converged solve started.
+        start: Start,
     },
     /// The solver stopped without meeting its criteria: no valid numbers.
     NotConverged {
@@ -59,45 +94,173 @@ impl StiffOutcome {
             StiffOutcome::Failed(_) => "failed",
         }
     }
+    /// Newton iterations (0 for a failed solve).
+    pub fn iterations(&self) -> usize {
+        match self {
+            StiffOutcome::Converged { iterations, .. } | StiffOutcome::NotConverged { iterations, .. } => *iterations,
+            StiffOutcome::Failed(_) => 0,
+        }
+    }
 }
 
-/// Stiff solve of `case` (string and operation set for the row), warm-started from `warm` when
-/// given; returns the outcome and the converged state (for the next warm start).
-pub fn stiff_row(case: &Case, warm: Option<State>) -> (StiffOutcome, Option<State>) {
+/// Iteration limit of a warm-started solve: beyond it the cold start (about 5-10 iterations on
+/// the example wells) is cheaper than going on.
+pub const WARM_MAX_ITERATIONS: usize = 20;
+
+/// A converged solve kept for warm starts: its model and state.
+pub type Solved = (Model, State);
+
+/// Round-off allowance of a zero surface torque as a fraction of `hook load x top radius`:
+/// 10 x the solver's residual tolerance relative to the load scale (1e-7,
+/// [`SolveControls::default`]).
+pub const ZERO_TORQUE_FRACTION: f64 = 1e-6;
+
+/// Discretization allowance of a non-rotating row's zero surface torque, as a fraction of the
+/// contacts' rotating friction torque `sum f N r_c` (3 x the largest measured artefact, module
+/// documentation).
+pub const NONROTATING_TORQUE_FRACTION: f64 = 1e-2;
+
+/// `sum_i f_i N_i r_c,i` (N.m) over the contacts of nodes `0..=last` of a solved `model`: the
+/// surface torque the same contacts would give a rotating string (friction factor, normal
+/// force, contact radius).
+pub fn rotating_friction_torque(model: &Model, res: &SolveResults, last: usize) -> f64 {
+    (0..=last.min(model.nodes() - 1))
+        .map(|i| model.friction[i] * res.nodes[i].contact_force_n.max(0.0) * model.mesh.nodes[i].contact_od_m / 2.0)
+        .sum()
+}
+
+/// The surface torque `torque_nm` of a row: exactly 0 when the string does not rotate
+/// (`omega_rad_s == 0`) and `|torque| <= NONROTATING_TORQUE_FRACTION x friction_torque_nm +
+/// ZERO_TORQUE_FRACTION x |hook load| x top radius` (`friction_torque_nm` from
+/// [`rotating_friction_torque`]); otherwise unchanged.
+pub fn clean_torque(
+    torque_nm: f64,
+    omega_rad_s: f64,
+    friction_torque_nm: f64,
+    hook_load_n: f64,
+    top_radius_m: f64,
+) -> f64 {
+    let allowance =
+        NONROTATING_TORQUE_FRACTION * friction_torque_nm + ZERO_TORQUE_FRACTION * hook_load_n.abs() * top_radius_m;
+    if omega_rad_s == 0.0 && torque_nm.abs() <= allowance {
+        0.0
+    } else {
+        torque_nm
+    }
+}
+
+/// The state of the converged solve `prev` (bit at another depth) carried onto `model`, the
+/// model of `string` (see the module documentation). With `d` the bit's move:
+///
+/// - in the top component (the drill pipe, lengthened by `d`), from `d` above its bottom up,
+///   each node takes the state of the previous string at the same MD (interpolated between
+///   nodes; offsets unscaled so that the pipe's shape along the hole stays smooth): the pipe
+///   keeps its place in the hole (on the low side in a tangent, on the high side of a build
+///   under tension, across a casing shoe);
+/// - below it (the bottom-hole assembly, and the first `d` of pipe), each node takes the state
+///   of the point at its distance from the bit, its lateral offset scaled to its clearance:
+///   the assembly keeps its shape relative to the bit. Its triads are turned about the hole
+///   axis by the twist between the two rules at the lowest node of the first, and the first
+///   rule's nodes are moved along the hole by the difference of the two rules' axial offsets
+///   there, so that twist and stretch stay continuous along the string;
+/// - a node above the previous string's top takes the top node's state.
+pub fn transport_to_depth(prev: &Solved, model: &Model, string: &DrillString) -> State {
+    let (pm, ps) = prev;
+    let top_source = Source::node(pm.nodes() - 1);
+    let by_distance = |i: usize| -> Source {
+        match source_by_distance(pm, model.mesh.nodes[i].s_m) {
+            Some(src) => Source {
+                scale_to_clearance: true,
+                ..src
+            },
+            None => top_source,
+        }
+    };
+    let same_top = pm.mesh.nodes.last().map(|n| n.component) == model.mesh.nodes.last().map(|n| n.component);
+    let d = model.bit_md_m - pm.bit_md_m;
+    let pipe_bottom = string.components.last().map_or(f64::INFINITY, |c| c.bottom_m);
+    let by_md = |i: usize| -> Option<Source> {
+        let s = model.mesh.nodes[i].s_m - d;
+        (same_top && d > 0.0 && s >= pipe_bottom - 1e-9).then(|| source_by_distance(pm, s).unwrap_or(top_source))
+    };
+    let mut st = transport_mapped(pm, ps, model, |i| Some(by_md(i).unwrap_or_else(|| by_distance(i))));
+    // continuity of twist and stretch at the lowest node of the MD rule, carried by both rules
+    let Some(k) = (0..model.nodes()).find(|&i| by_md(i).is_some()) else {
+        return st;
+    };
+    let alt = transport_mapped(pm, ps, model, |i| (i == k).then(|| by_distance(i)));
+    let t = model.basis[k].column(0).into_owned();
+    let (a, b) = (alt.lam[k].column(1).into_owned(), st.lam[k].column(1).into_owned());
+    let (a, b) = (a - t * t.dot(&a), b - t * t.dot(&b));
+    let twist = t.dot(&a.cross(&b)).atan2(a.dot(&b));
+    for i in 0..k {
+        let axis = nalgebra::Unit::new_normalize(model.basis[i].column(0).into_owned());
+        let r = nalgebra::Rotation3::from_axis_angle(&axis, twist);
+        st.lam[i] = r.matrix() * st.lam[i];
+    }
+    let stretch = t.dot(&(alt.x[k] - st.x[k]));
+    for i in k..model.nodes() {
+        st.x[i] += model.basis[i].column(0) * stretch;
+        st.md[i] += stretch;
+    }
+    st
+}
+
+/// Stiff whole-string solve of `case` (string and operation set for the row), warm-started
+/// from `warm` when given (`(state's model, state, how it relates)`: the same mesh for
+/// [`Start::PreviousCase`], carried by [`transport_to_depth`] for [`Start::PreviousDepth`]);
+/// returns the outcome and the converged solve (for the next warm start).
+pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, Option<Solved>) {
     let model = Model::from_case(case);
     let ctl = SolveControls::from_settings(&case.solver);
     let mut iterations = 0;
     let t0 = std::time::Instant::now();
-    if let Some(state) = warm {
+    if let Some((prev, start)) = warm {
+        let state = if start == Start::PreviousCase && prev.0.nodes() == model.nodes() {
+            prev.1.clone()
+        } else {
+            transport_to_depth(prev, &model, &case.string)
+        };
         let mut consistent = model.clone();
         consistent.consistent_tangent = true;
-        match solve_ip_from(&consistent, state, &ctl) {
+        let warm_ctl = SolveControls {
+            max_iterations: ctl.max_iterations.min(WARM_MAX_ITERATIONS),
+            ..ctl
+        };
+        match solve_ip_from(&consistent, state, &warm_ctl) {
             Ok(sol) if sol.converged => {
                 let res = extract(&model, &sol, case.mud.density_kg_m3);
-                return (
-                    converged(&res, sol.stats.iterations, t0.elapsed().as_secs_f64(), true),
-                    Some(sol.state),
+                let friction_torque = rotating_friction_torque(&model, &res, model.nodes() - 1);
+                let out = converged(
+                    case,
+                    &res,
+                    friction_torque,
+                    sol.stats.iterations,
+                    t0.elapsed().as_secs_f64(),
+                    start,
                 );
+                return (out, Some((model, sol.state)));
             }
             Ok(sol) => {
                 iterations += sol.stats.iterations;
-                tracing::info!("warm start did not converge; cold start");
+                tracing::info!("warm start ({start:?}) did not converge; cold start");
             }
-            Err(e) => tracing::info!("warm start failed ({e}); cold start"),
+            Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
     match solve(&model, &ctl) {
         Ok(sol) if sol.converged => {
             let res = extract(&model, &sol, case.mud.density_kg_m3);
-            (
-                converged(
-                    &res,
-                    iterations + sol.stats.iterations,
-                    t0.elapsed().as_secs_f64(),
-                    false,
-                ),
-                Some(sol.state),
-            )
+            let friction_torque = rotating_friction_torque(&model, &res, model.nodes() - 1);
+            let out = converged(
+                case,
+                &res,
+                friction_torque,
+                iterations + sol.stats.iterations,
+                t0.elapsed().as_secs_f64(),
+                Start::Cold,
+            );
+            (out, Some((model, sol.state)))
         }
         Ok(sol) => (
             StiffOutcome::NotConverged {
@@ -110,35 +273,161 @@ pub fn stiff_row(case: &Case, warm: Option<State>) -> (StiffOutcome, Option<Stat
     }
 }
 
-fn converged(res: &crate::fem::results::SolveResults, iterations: usize, seconds: f64, warm: bool) -> StiffOutcome {
+fn top_radius(case: &Case) -> f64 {
+    case.string.components.last().map_or(0.0, |c| c.body_od_m / 2.0)
+}
+
+fn converged(
+    case: &Case,
+    res: &SolveResults,
+    friction_torque_nm: f64,
+    iterations: usize,
+    seconds: f64,
+    start: Start,
+) -> StiffOutcome {
     let max_f = res.nodes.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     StiffOutcome::Converged {
         loads: RowLoads {
             hook_load_n: res.hook_load_n,
-            surface_torque_nm: res.surface_torque_nm,
+            surface_torque_nm: clean_torque(
+                res.surface_torque_nm,
+                case.operation.omega_rad_s(),
+                friction_torque_nm,
+                res.hook_load_n,
+                top_radius(case),
+            ),
             max_contact_force_n: max_f,
             max_side_force_n_per_m: 0.0,
         },
         iterations,
         seconds,
-        warm,
+        start,
     }
 }
 
 /// Stiff outcomes of the five load cases ([`MODES`] order) for `case` with its string already
-/// refitted to `bit_md_m` (see [`super::chart::case_at_depth`]), each case warm-started from
-/// the previous converged one. `wob_n[j]` is the WOB of case `MODES[j]` (the soft rows' WOB,
-/// which may be below the chart's where the string cannot give it).
-pub fn stiff_depth(case: &Case, bit_md_m: f64, op: &ChartOperation, wob_n: &[f64]) -> Vec<StiffOutcome> {
+/// refitted to `bit_md_m` (see [`super::chart::case_at_depth`]). `wob_n[j]` is the WOB of case
+/// `MODES[j]` (the soft rows' WOB, which may be below the chart's where the string cannot give
+/// it). `previous_depth[j]` is case `MODES[j]`'s converged solve at the previous bit depth
+/// (empty or `None`: none); each case starts from it, or else from the last converged case of
+/// this depth (module documentation). The converged solves of this depth are returned for the
+/// next one.
+pub fn stiff_depth(
+    case: &Case,
+    bit_md_m: f64,
+    op: &ChartOperation,
+    wob_n: &[f64],
+    previous_depth: &[Option<Solved>],
+) -> (Vec<StiffOutcome>, Vec<Option<Solved>>) {
     let mut c = case.clone();
-    let mut warm: Option<State> = None;
+    let mut solved_here: Vec<Option<Solved>> = Vec::with_capacity(MODES.len());
     let mut out = Vec::with_capacity(MODES.len());
     for (j, mode) in MODES.into_iter().enumerate() {
         set_row_operation(&mut c, bit_md_m, mode, op);
         c.operation.wob_n = wob_n.get(j).copied().unwrap_or(c.operation.wob_n);
-        let (outcome, state) = stiff_row(&c, warm.take());
-        warm = state;
+        // a case that did not converge leaves the last converged state for the next one
+        let last = solved_here.iter().rev().find_map(|s| s.as_ref());
+        let prev = previous_depth.get(j).and_then(|p| p.as_ref());
+        let warm = match (prev, last) {
+            (Some(p), _) => Some((p, Start::PreviousDepth)),
+            (None, Some(l)) => Some((l, Start::PreviousCase)),
+            (None, None) => None,
+        };
+        let (outcome, solved) = stiff_row(&c, warm);
+        solved_here.push(solved);
         out.push(outcome);
     }
-    out
+    (out, solved_here)
+}
+
+/// The `hybrid` row of `case` (string and operation set for the row): the stiff bottom-hole
+/// assembly cut where it lies on the wall, and the soft string from the coupling point to the
+/// surface ([`crate::fidelity`]); cold-started (the cut model is short). The largest contact
+/// force is the larger of the FEM's largest nodal force and the soft string's per-joint force.
+pub fn hybrid_row(case: &Case) -> StiffOutcome {
+    let ctl = SolveControls::from_settings(&case.solver);
+    let t0 = std::time::Instant::now();
+    let lr = match run_level(
+        case,
+        choose(crate::case::Fidelity::Hybrid, crate::fidelity::Purpose::Loads),
+        &ctl,
+    ) {
+        Ok(lr) => lr,
+        Err(e) => return StiffOutcome::Failed(e.to_string()),
+    };
+    debug_assert_eq!(lr.choice.level, Level::Hybrid);
+    let iterations = lr.fem.as_ref().map_or(0, |f| f.stats.iterations);
+    if !lr.converged {
+        let residual = lr
+            .fem
+            .as_ref()
+            .and_then(|f| f.stats.residual_history.last().copied())
+            .unwrap_or(f64::NAN);
+        return StiffOutcome::NotConverged { iterations, residual };
+    }
+    let (Some(hook), Some(torque)) = (lr.hook_load_n, lr.surface_torque_nm) else {
+        return StiffOutcome::Failed("the hybrid level gave no surface values".into());
+    };
+    // stiff results are reported up to the coupling node (above it the cut's clamp disturbs
+    // them); the soft string above adds no torque without rotation
+    let (mut max_f, friction_torque) = lr.fem.as_ref().map_or((0.0, 0.0), |f| {
+        let k = crate::fidelity::coupling_node(case, &f.model);
+        let max_f = f.results.nodes[..=k]
+            .iter()
+            .map(|n| n.contact_force_n)
+            .fold(0.0, f64::max);
+        (max_f, rotating_friction_torque(&f.model, &f.results, k))
+    });
+    if let Some(s) = &lr.soft {
+        max_f = max_f.max(soft_loads(s, &case.string, case.operation.bit_md_m).max_contact_force_n);
+    }
+    StiffOutcome::Converged {
+        loads: RowLoads {
+            hook_load_n: hook,
+            surface_torque_nm: clean_torque(
+                torque,
+                case.operation.omega_rad_s(),
+                friction_torque,
+                hook,
+                top_radius(case),
+            ),
+            max_contact_force_n: max_f,
+            max_side_force_n_per_m: 0.0,
+        },
+        iterations,
+        seconds: t0.elapsed().as_secs_f64(),
+        start: Start::Cold,
+    }
+}
+
+/// The [`hybrid_row`]s of the five load cases ([`MODES`] order) for `case` with its string
+/// already refitted to `bit_md_m`; `wob_n` as in [`stiff_depth`].
+pub fn hybrid_depth(case: &Case, bit_md_m: f64, op: &ChartOperation, wob_n: &[f64]) -> Vec<StiffOutcome> {
+    let mut c = case.clone();
+    MODES
+        .into_iter()
+        .enumerate()
+        .map(|(j, mode)| {
+            set_row_operation(&mut c, bit_md_m, mode, op);
+            c.operation.wob_n = wob_n.get(j).copied().unwrap_or(c.operation.wob_n);
+            hybrid_row(&c)
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reference: the rule of [`clean_torque`] by hand. Hook load 300 kN, top radius 0.0635 m,
+    /// contacts' rotating friction torque 3.5 kN.m: allowance 0.01 x 3500 + 1e-6 x 300e3 x
+    /// 0.0635 = 35.019 N.m.
+    #[test]
+    fn non_rotating_torque_is_cleaned_within_the_allowance_only() {
+        let (h, r, tf) = (300e3, 0.0635, 3500.0);
+        assert_eq!(clean_torque(-0.64, 0.0, tf, h, r), 0.0);
+        assert_eq!(clean_torque(35.0, 0.0, tf, h, r), 0.0);
+        assert_eq!(clean_torque(35.1, 0.0, tf, h, r), 35.1);
+        assert_eq!(clean_torque(-0.64, 7.0, tf, h, r), -0.64);
+    }
 }

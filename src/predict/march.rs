@@ -169,26 +169,7 @@ pub fn hole_for_prediction(case: &Case, to_md_m: f64) -> HoleSize {
     HoleSize::new(sections, hole.caliper().to_vec())
 }
 
-/// Carry a solved state to the model with the bit moved: each node keeps its position and
-/// triad relative to its node basis (the hole frame at its reference MD), its contact force
-/// and normal; the hook load is kept.
-pub fn transport_state(prev_model: &Model, prev: &State, model: &Model) -> State {
-    let mut st = model.initial_state();
-    for i in 0..model.nodes().min(prev_model.nodes()) {
-        let qp = &prev_model.basis[i];
-        let qn = &model.basis[i];
-        let rel = qn * qp.transpose();
-        let p_prev = prev_model.path.point_at(prev_model.md_ref[i]).position;
-        let p_new = model.path.point_at(model.md_ref[i]).position;
-        st.x[i] = p_new + rel * (prev.x[i] - p_prev);
-        st.lam[i] = crate::fem::rotation::orthonormalize(&(rel * prev.lam[i]));
-        st.md[i] = model.md_ref[i] + (prev.md[i] - prev_model.md_ref[i]);
-        st.lambda[i] = prev.lambda[i];
-        st.normal[i] = rel * prev.normal[i];
-    }
-    st.hook_load_n = prev.hook_load_n;
-    st
-}
+pub use crate::warm::transport_state;
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
 /// full cold [`solve`] (its own start and fallbacks).
