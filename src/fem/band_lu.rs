@@ -100,6 +100,34 @@ impl GeneralBand {
         }
     }
 
+    /// `A[first + r, first + c] += k[c * 12 + r]` (a column-major 12x12 on 12 consecutive
+    /// DOFs: a beam element of the node chain). Reads the block as it is stored instead of
+    /// through a transposed copy (the copy cost more than the additions).
+    ///
+    /// # Panics
+    /// If the block reaches past the matrix or the half-bandwidth is below 11.
+    pub fn add_block_12(&mut self, first: usize, k: &[f64]) {
+        assert!(
+            first + 12 <= self.n && self.b >= 11 && k.len() >= 144,
+            "GeneralBand::add_block_12: block at {first} outside n = {} or half-bandwidth {} < 11",
+            self.n,
+            self.b
+        );
+        for r in 0..12 {
+            let gr = first + r;
+            let start = gr * self.w + self.b - gr + first;
+            let dst = &mut self.data[start..start + 12];
+            for (c, x) in dst.iter_mut().enumerate() {
+                *x += k[c * 12 + r];
+            }
+        }
+    }
+
+    /// Zero rows `rows` (all their stored entries).
+    pub fn clear_rows(&mut self, rows: std::ops::Range<usize>) {
+        self.data[rows.start * self.w..rows.end * self.w].fill(0.0);
+    }
+
     /// Copy values and constraint scale from `other` (same shape) without reallocating.
     ///
     /// # Panics
@@ -144,9 +172,18 @@ impl GeneralBand {
     }
     /// `y = A x`.
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
-        for (i, yi) in y.iter_mut().enumerate().take(self.n) {
-            let lo = i.saturating_sub(self.b);
-            let hi = (i + self.b).min(self.n - 1);
+        let (n, b, w) = (self.n, self.b, self.w);
+        for (i, yi) in y.iter_mut().enumerate().take(n) {
+            if b == CHAIN_HALF_BANDWIDTH && i >= b && i + b < n {
+                // interior row of the node chain: fixed-length dot with independent partial sums
+                const W: usize = 2 * CHAIN_HALF_BANDWIDTH + 1;
+                let row: &[f64; W] = self.data[i * w..(i + 1) * w].try_into().expect("row length");
+                let v: &[f64; W] = x[i - b..=i + b].try_into().expect("window length");
+                *yi = tree_dot::<W>(row, v, 0, W);
+                continue;
+            }
+            let lo = i.saturating_sub(b);
+            let hi = (i + b).min(n - 1);
             let row = &self.data[self.idx(i, lo)..=self.idx(i, hi)];
             *yi = row.iter().zip(&x[lo..=hi]).map(|(a, v)| a * v).sum();
         }
@@ -223,6 +260,16 @@ impl BandLu {
             "BandLu::factor_rows: shape mismatch"
         );
         let w = self.f.w;
+        if self.f.b == CHAIN_HALF_BANDWIDTH {
+            // fixed-length row copy: inlined moves instead of a memmove call per row
+            const W: usize = 2 * CHAIN_HALF_BANDWIDTH + 1;
+            return self.eliminate(|i, row| {
+                let dst: &mut [f64; W] = row.try_into().expect("row length");
+                let src: &[f64; W] = a.data[i * W..(i + 1) * W].try_into().expect("row length");
+                *dst = *src;
+                finish_row(i, row);
+            });
+        }
         self.eliminate(|i, row| {
             row.copy_from_slice(&a.data[i * w..(i + 1) * w]);
             finish_row(i, row);
@@ -285,65 +332,118 @@ impl BandLu {
     /// Solve `A x = rhs` in place.
     pub fn solve_in_place(&self, x: &mut [f64]) {
         assert!(self.ok, "BandLu::solve_in_place without a valid factor");
-        let (n, b, w) = (self.f.n, self.f.b, self.f.w);
-        let data = &self.f.data;
+        let n = self.f.n;
         assert!(
             x.len() == n,
             "BandLu::solve_in_place: rhs length {} != n = {n}",
             x.len()
         );
+        if self.f.b == CHAIN_HALF_BANDWIDTH {
+            self.substitute_fixed::<CHAIN_HALF_BANDWIDTH, 1>([x]);
+        } else {
+            self.substitute_generic([x]);
+        }
+    }
+
+    /// Solve `A x = x0` and `A y = y0` in place with one pass over the factor for both (the
+    /// solves are memory bound).
+    pub fn solve2_in_place(&self, x: &mut [f64], y: &mut [f64]) {
+        assert!(self.ok, "BandLu::solve2_in_place without a valid factor");
+        let n = self.f.n;
+        assert!(
+            x.len() == n && y.len() == n,
+            "BandLu::solve2_in_place: rhs length != n = {n}"
+        );
+        if self.f.b == CHAIN_HALF_BANDWIDTH {
+            self.substitute_fixed::<CHAIN_HALF_BANDWIDTH, 2>([x, y]);
+        } else {
+            self.substitute_generic([x, y]);
+        }
+    }
+
+    /// Forward and backward substitution of `R` right-hand sides, any half-bandwidth.
+    fn substitute_generic<const R: usize>(&self, mut xs: [&mut [f64]; R]) {
+        let (n, b, w) = (self.f.n, self.f.b, self.f.w);
+        let data = &self.f.data;
         // forward: x_i -= L[i, lo..i] . x[lo..i] (row i stores column j at j + b - i)
         for i in 0..n {
             let lo = i.saturating_sub(b);
             let row = &data[i * w + (lo + b - i)..i * w + b];
-            let acc: f64 = row.iter().zip(&x[lo..i]).map(|(l, v)| l * v).sum();
-            x[i] -= acc;
+            for x in xs.iter_mut() {
+                let acc: f64 = row.iter().zip(&x[lo..i]).map(|(l, v)| l * v).sum();
+                x[i] -= acc;
+            }
         }
         // backward: x_i = (x_i - U[i, i+1..=hi] . x[i+1..=hi]) / U_ii
         for i in (0..n).rev() {
             let hi = (i + b).min(n - 1);
             let row = &data[i * w + b + 1..i * w + b + 1 + (hi - i)];
-            let acc: f64 = row.iter().zip(&x[i + 1..=hi]).map(|(u, v)| u * v).sum();
-            x[i] = (x[i] - acc) / data[i * w + b];
+            let d = data[i * w + b];
+            for x in xs.iter_mut() {
+                let acc: f64 = row.iter().zip(&x[i + 1..=hi]).map(|(u, v)| u * v).sum();
+                x[i] = (x[i] - acc) / d;
+            }
+        }
+    }
+
+    /// Forward and backward substitution of `R` right-hand sides for half-bandwidth `B`.
+    /// Hand-optimized because the substitutions are a chain: `x_i` needs `x_{i-1}` (forward)
+    /// or `x_{i+1}` (backward). A plain left-to-right dot product puts all `B` additions on
+    /// that chain; here the `B - 1` terms that do not involve the neighbour are summed first
+    /// in a tree (they overlap with the previous row), and only the neighbour's term is added
+    /// on the chain. Rows within `B` of either end use the generic loops.
+    fn substitute_fixed<const B: usize, const R: usize>(&self, mut xs: [&mut [f64]; R]) {
+        let (n, w) = (self.f.n, self.f.w);
+        let data = &self.f.data;
+        let edge = B.min(n);
+        for i in 0..edge {
+            let row = &data[i * w + (B - i)..i * w + B];
+            for x in xs.iter_mut() {
+                let acc: f64 = row.iter().zip(&x[..i]).map(|(l, v)| l * v).sum();
+                x[i] -= acc;
+            }
+        }
+        for i in edge..n {
+            // columns i - B ..= i - 1; the last one (i - 1) is the neighbour on the chain
+            let row: &[f64; B] = data[i * w..i * w + B].try_into().expect("row length B");
+            for x in xs.iter_mut() {
+                let v: &[f64; B] = x[i - B..i].try_into().expect("window length B");
+                let far = tree_dot::<B>(row, v, 0, B - 1);
+                x[i] -= far + row[B - 1] * v[B - 1];
+            }
+        }
+        let back_start = n.saturating_sub(B);
+        for i in (back_start..n).rev() {
+            let hi = n - 1;
+            let row = &data[i * w + B + 1..i * w + B + 1 + (hi - i)];
+            let d = data[i * w + B];
+            for x in xs.iter_mut() {
+                let acc: f64 = row.iter().zip(&x[i + 1..=hi]).map(|(u, v)| u * v).sum();
+                x[i] = (x[i] - acc) / d;
+            }
+        }
+        for i in (0..back_start).rev() {
+            // columns i + 1 ..= i + B; the first one (i + 1) is the neighbour on the chain
+            let row: &[f64; B] = data[i * w + B + 1..i * w + 2 * B + 1].try_into().expect("row length B");
+            let d = data[i * w + B];
+            for x in xs.iter_mut() {
+                let v: &[f64; B] = x[i + 1..i + 1 + B].try_into().expect("window length B");
+                let far = tree_dot::<B>(row, v, 1, B);
+                x[i] = (x[i] - (far + row[0] * v[0])) / d;
+            }
         }
     }
 }
 
-impl BandLu {
-    /// Solve `A x = x0` and `A y = y0` in place with one pass over the factor for both (the
-    /// solves are memory bound).
-    pub fn solve2_in_place(&self, x: &mut [f64], y: &mut [f64]) {
-        assert!(self.ok, "BandLu::solve2_in_place without a valid factor");
-        let (n, b, w) = (self.f.n, self.f.b, self.f.w);
-        assert!(
-            x.len() == n && y.len() == n,
-            "BandLu::solve2_in_place: rhs length != n = {n}"
-        );
-        let data = &self.f.data;
-        for i in 0..n {
-            let lo = i.saturating_sub(b);
-            let row = &data[i * w + (lo + b - i)..i * w + b];
-            let (mut ax, mut ay) = (0.0, 0.0);
-            for ((l, u), v) in row.iter().zip(&x[lo..i]).zip(&y[lo..i]) {
-                ax += l * u;
-                ay += l * v;
-            }
-            x[i] -= ax;
-            y[i] -= ay;
-        }
-        for i in (0..n).rev() {
-            let hi = (i + b).min(n - 1);
-            let row = &data[i * w + b + 1..i * w + b + 1 + (hi - i)];
-            let (mut ax, mut ay) = (0.0, 0.0);
-            for ((l, u), v) in row.iter().zip(&x[i + 1..=hi]).zip(&y[i + 1..=hi]) {
-                ax += l * u;
-                ay += l * v;
-            }
-            let d = data[i * w + b];
-            x[i] = (x[i] - ax) / d;
-            y[i] = (y[i] - ay) / d;
-        }
+/// `sum_{j in lo..hi} a_j b_j` with four independent partial sums (a short dependency chain;
+/// the order of the additions differs from a left-to-right sum only by rounding).
+#[inline(always)]
+fn tree_dot<const B: usize>(a: &[f64; B], b: &[f64; B], lo: usize, hi: usize) -> f64 {
+    let mut acc = [0.0; 4];
+    for j in lo..hi {
+        acc[(j - lo) % 4] += a[j] * b[j];
     }
+    (acc[0] + acc[1]) + (acc[2] + acc[3])
 }
 
 #[cfg(test)]

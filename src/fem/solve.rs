@@ -425,11 +425,13 @@ impl Linear {
             Linear::General(_, f) => f.solve_in_place(x),
         }
     }
-    /// A copy of the assembled matrix (before constraints).
-    fn clone_matrix(&self) -> Linear {
+    /// What the interior point keeps of the assembled matrix (before constraints) while it
+    /// factors modified copies: LU factors straight from this object's matrix in one
+    /// streaming pass and needs no copy (`None`); LDL^T factors in place and needs one.
+    fn keep_base(&self) -> Option<Linear> {
         match self {
-            Linear::Symmetric(k, _) => Linear::Symmetric(k.clone(), BandLdlt::new(1, 1)),
-            Linear::General(k, _) => Linear::General(k.clone(), BandLu::new(1, 1)),
+            Linear::Symmetric(k, _) => Some(Linear::Symmetric(k.clone(), BandLdlt::new(1, 1))),
+            Linear::General(..) => None,
         }
     }
     /// Replace the matrix with a stored copy.
@@ -440,47 +442,59 @@ impl Linear {
             _ => unreachable!("matrix kinds match"),
         }
     }
-    /// Factor the stored copy `base` plus the same additions given two ways: `add_row(i, row)`
-    /// adds to row `i` of the general band storage (column `c` at offset `c + hb - i`, `hb`
-    /// the half-bandwidth), `add` assembles them as blocks; the DOFs `constrained` are held
-    /// (row and column zeroed, diagonal `constraint_scale`). LU: one streaming pass, each row
-    /// copied, changed and eliminated while in cache; LDL^T: copy, assemble, factor. This
-    /// object's own matrix is left unspecified.
+    /// Factor the assembled matrix (the stored copy `base` from [`Linear::keep_base`], or this
+    /// object's own when that is `None`) plus the same additions given two ways:
+    /// `add_row(i, row)` adds to row `i` of the general band storage (column `c` at offset
+    /// `c + hb - i`, `hb` the half-bandwidth), `add` assembles them as blocks; the DOFs
+    /// `constrained` are held (row and column zeroed, diagonal `constraint_scale`). LU: one
+    /// streaming pass, each row copied, changed and eliminated while in cache (the matrix is
+    /// not changed); LDL^T: copy, assemble, factor (the matrix is left unspecified).
     fn factor_modified(
         &mut self,
-        base: &Linear,
+        base: Option<&Linear>,
         constrained: &[usize],
         constraint_scale: f64,
         mut add_row: impl FnMut(usize, &mut [f64]),
         mut add: impl FnMut(&mut dyn StiffnessSink),
     ) -> Result<(), FactorError> {
-        if let (Linear::General(_, f), Linear::General(b, _)) = (&mut *self, base) {
+        if let Linear::General(k, f) = &mut *self {
             let hb = HALF_BANDWIDTH;
-            return f.factor_rows(b, |i, row| {
-                if constrained.contains(&i) {
+            let k: &GeneralBand = match base {
+                Some(Linear::General(b, _)) => b,
+                _ => k,
+            };
+            // rows within the half-bandwidth of a constrained DOF (their column is zeroed)
+            let (lo, hi) = constrained
+                .iter()
+                .fold((usize::MAX, 0), |(lo, hi), &c| (lo.min(c), hi.max(c)));
+            return f.factor_rows(k, |i, row| {
+                let near = i + hb >= lo && i <= hi + hb;
+                if near && constrained.contains(&i) {
                     row.fill(0.0);
                     row[hb] = constraint_scale;
                     return;
                 }
                 add_row(i, row);
-                for &c in constrained {
-                    if c.abs_diff(i) <= hb {
-                        row[c + hb - i] = 0.0;
+                if near {
+                    for &c in constrained {
+                        if c.abs_diff(i) <= hb {
+                            row[c + hb - i] = 0.0;
+                        }
                     }
                 }
             });
         }
-        self.set_matrix(base);
+        self.set_matrix(base.expect("LDL^T keeps a copy of the matrix"));
         add(self.sink());
         for &d in constrained {
             self.constrain(d);
         }
         self.factor()
     }
-    /// `y += A x` with the stored copy's matrix `a`.
-    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64], work: &mut Vec<f64>) {
+    /// `y += A x` with the assembled matrix (`base`, or this object's own when `None`).
+    fn matrix_mul_add(&self, base: Option<&Linear>, x: &[f64], y: &mut [f64], work: &mut Vec<f64>) {
         work.resize(x.len(), 0.0);
-        match a {
+        match base.unwrap_or(self) {
             Linear::Symmetric(k, _) => k.mul_vec(x, work),
             Linear::General(k, _) => k.mul_vec(x, work),
         }
@@ -973,11 +987,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             break;
         }
         // the base matrix K (before interior-point terms) is kept to rebuild each iteration
-        let base = lin.clone_matrix();
+        let base = lin.keep_base();
         // diagonal given to the constrained DOFs (any positive value: they are decoupled)
         let constraint_scale = {
             let (sum, cnt) = (0..n)
-                .map(|d| base.get(d, d).abs())
+                .map(|d| base.as_ref().unwrap_or(&lin).get(d, d).abs())
                 .filter(|v| *v > 0.0 && v.is_finite())
                 .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
             if cnt > 0 {
@@ -1022,7 +1036,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         for _ip in 0..MAX_IP_ITERATIONS {
             // residuals
             rd.copy_from_slice(&r0);
-            lin.matrix_mul_add(&base, &du, &mut rd, &mut work);
+            lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
             for j in 0..m {
                 for k in 0..6 {
                     rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
@@ -1063,7 +1077,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                     row[off + cc] += e * normals[j][cc];
                 }
             };
-            let factored = lin.factor_modified(&base, &constrained, constraint_scale, add_row, |sink| {
+            let factored = lin.factor_modified(base.as_ref(), &constrained, constraint_scale, add_row, |sink| {
                 for j in 0..m {
                     let dj = r_f[j] / s_v[j];
                     let nv = normals[j];
