@@ -214,6 +214,43 @@ fn eliminate_fixed<const B: usize>(data: &mut [f64], k: usize, pivot: f64) {
     }
 }
 
+/// [`eliminate_fixed`] for a pivot row of the 6-DOF node chain whose last `L` rows below and
+/// columns right of the pivot hold the chain's structural nonzeros (`L = 11 - k` for local
+/// DOF `k` of the pivot's node): the rows and columns past them are exact zeros in the
+/// matrix and stay zero in the factor (fill-in stays inside each row's profile), so skipping
+/// them gives the same factor bit for bit with `(11 - k)^2` instead of 121 updates (38% of
+/// the work on average).
+#[inline(always)]
+fn eliminate_chain<const B: usize, const L: usize>(data: &mut [f64], k: usize, pivot: f64) {
+    let w = 2 * B + 1;
+    let (head, tail) = data.split_at_mut((k + 1) * w);
+    let mut row_k = [0.0; L];
+    row_k.copy_from_slice(&head[k * w + B + 1..k * w + B + 1 + L]);
+    for d in 1..=L {
+        let row_i = &mut tail[(d - 1) * w..d * w];
+        let off = B - d;
+        let lik = row_i[off] / pivot;
+        row_i[off] = lik;
+        let dst = &mut row_i[off + 1..off + 1 + L];
+        for (x, &u) in dst.iter_mut().zip(row_k.iter()) {
+            *x -= lik * u;
+        }
+    }
+}
+
+/// DOFs per node of the node chain (the block size behind [`CHAIN_HALF_BANDWIDTH`]).
+const CHAIN_NODE_DOFS: usize = 6;
+
+/// Whether row `i` of a half-bandwidth-11 band (storage `row`) is inside the node-chain
+/// profile: zero left of the previous node's first column and right of the next node's
+/// last column (the `5 - k` leftmost and `k` rightmost stored entries, `k = i mod 6`).
+#[inline(always)]
+fn in_chain_profile(i: usize, row: &[f64]) -> bool {
+    let k = i % CHAIN_NODE_DOFS;
+    let w = row.len();
+    row[..CHAIN_NODE_DOFS - 1 - k].iter().all(|&v| v == 0.0) && row[w - k..].iter().all(|&v| v == 0.0)
+}
+
 /// LU factor (Doolittle, no pivoting) of a [`GeneralBand`], stored in place of a copy.
 #[derive(Debug, Clone)]
 pub struct BandLu {
@@ -284,9 +321,14 @@ impl BandLu {
         self.diag.resize(n, 0.0);
         let diag = &mut self.diag;
         let data = &mut self.f.data;
+        // the node-chain kernel skips the chain's structural zeros while every row loaded so
+        // far lies inside the chain profile (checked as each row is loaded; a row outside it
+        // switches to the full kernel from there on, before any pivot that the row affects)
+        let mut chain = b == CHAIN_HALF_BANDWIDTH;
         for i in 0..b.min(n) {
             load(i, &mut data[i * w..(i + 1) * w]);
             diag[i] = data[i * w + b];
+            chain = chain && in_chain_profile(i, &data[i * w..(i + 1) * w]);
         }
         // columns whose whole band lies inside the matrix: a kernel with the node-chain
         // half-bandwidth fixed at compile time (fully unrolled), the rest generic
@@ -300,13 +342,26 @@ impl BandLu {
                 let i = k + b;
                 load(i, &mut data[i * w..(i + 1) * w]);
                 diag[i] = data[i * w + b];
+                chain = chain && in_chain_profile(i, &data[i * w..(i + 1) * w]);
             }
             let pivot = data[k * w + b];
             if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
                 return Err(FactorError::ZeroPivot { column: k, pivot });
             }
             if k < fixed_end {
-                eliminate_fixed::<CHAIN_HALF_BANDWIDTH>(data, k, pivot);
+                const B: usize = CHAIN_HALF_BANDWIDTH;
+                if chain {
+                    match k % CHAIN_NODE_DOFS {
+                        0 => eliminate_chain::<B, 11>(data, k, pivot),
+                        1 => eliminate_chain::<B, 10>(data, k, pivot),
+                        2 => eliminate_chain::<B, 9>(data, k, pivot),
+                        3 => eliminate_chain::<B, 8>(data, k, pivot),
+                        4 => eliminate_chain::<B, 7>(data, k, pivot),
+                        _ => eliminate_chain::<B, 6>(data, k, pivot),
+                    }
+                } else {
+                    eliminate_fixed::<B>(data, k, pivot);
+                }
                 continue;
             }
             let hi = (k + b).min(n - 1);
@@ -541,6 +596,58 @@ mod tests {
         lu.solve_in_place(&mut y1);
         assert_eq!(x2, x);
         assert_eq!(y2, y1);
+    }
+
+    #[test]
+    fn node_chain_kernel_matches_dense_solve() {
+        // A block-tridiagonal matrix of 6x6 blocks (the node chain: 15 nodes, unsymmetric,
+        // diagonally dominant) takes the structure-skipping kernel; reference: nalgebra's
+        // dense LU, tolerance 1e-11. Then one entry outside the chain profile (row 40,
+        // column 51) makes the factor fall back to the full kernel: again against dense LU.
+        let (n, b) = (90, CHAIN_HALF_BANDWIDTH);
+        for outside in [false, true] {
+            let mut a = GeneralBand::zeros(n, b);
+            let mut dense = DMatrix::<f64>::zeros(n, n);
+            for i in 0..n {
+                let lo = (i / 6).saturating_sub(1) * 6;
+                let hi = ((i / 6 + 1) * 6 + 5).min(n - 1);
+                for j in lo..=hi {
+                    let v = if i == j {
+                        40.0 + (i % 5) as f64
+                    } else {
+                        ((i * 11 + j * 7) % 19) as f64 / 19.0 - 0.5
+                    };
+                    a.add(i, j, v);
+                    dense[(i, j)] = v;
+                }
+            }
+            assert!((0..n).all(|i| in_chain_profile(i, &a.data[i * a.w..(i + 1) * a.w])));
+            if outside {
+                a.add(40, 51, 0.3);
+                dense[(40, 51)] += 0.3;
+                assert!(!in_chain_profile(40, &a.data[40 * a.w..41 * a.w]));
+            }
+            let rhs: Vec<f64> = (0..n).map(|i| (0.7 * i as f64).sin()).collect();
+            let mut x = rhs.clone();
+            let mut lu = BandLu::new(n, b);
+            lu.factor(&a).unwrap();
+            lu.solve_in_place(&mut x);
+            let xd = dense.lu().solve(&DVector::from_vec(rhs)).unwrap();
+            for i in 0..n {
+                assert!(
+                    (x[i] - xd[i]).abs() < 1e-11,
+                    "outside {outside}, {i}: {} vs {}",
+                    x[i],
+                    xd[i]
+                );
+            }
+            // A x reproduces the right-hand side (the fixed-width rows of mul_vec)
+            let mut y = vec![0.0; n];
+            a.mul_vec(&x, &mut y);
+            for (i, yi) in y.iter().enumerate() {
+                assert!((yi - (0.7 * i as f64).sin()).abs() < 1e-12, "A x at {i}");
+            }
+        }
     }
 
     #[test]

@@ -207,6 +207,9 @@ pub struct Evaluation {
     pub gaps: Vec<Option<GapResponse>>,
     /// Radial clearance per node, m.
     pub clearance: Vec<f64>,
+    /// Nearest axis point of each gap node (position m, unit tangent) at `state.md`, as the
+    /// gaps were evaluated (zeros for nodes without a gap).
+    pub axis: Vec<(Vec3, Vec3)>,
 }
 
 impl Model {
@@ -459,13 +462,15 @@ impl Model {
         // gaps
         let mut gaps = vec![None; nn];
         let mut clearance = vec![0.0; nn];
+        let mut axis = vec![(Vec3::zeros(), Vec3::zeros()); nn];
         for i in 0..nn {
             if !self.mesh.nodes[i].has_gap {
                 continue;
             }
             let md = self.path.nearest_md(&state.x[i], state.md[i]);
             state.md[i] = md;
-            let p = self.path.point_at(md);
+            let p = self.path.axis_at(md);
+            axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
             clearance[i] = eo;
             let g = evaluate(&GapInput {
@@ -532,6 +537,7 @@ impl Model {
             elements,
             gaps,
             clearance,
+            axis,
         }
     }
 

@@ -362,18 +362,18 @@ pub(crate) struct GapGeometry {
     pub(crate) radial: f64,
 }
 
-/// `state.md[i]` must be the node's nearest axis point, as [`Model::evaluate`] leaves it.
-fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
-    let md = state.md[i];
-    let p = model.path.point_at(md);
-    let d = state.x[i] - p.position;
-    let d = d - p.tangent * p.tangent.dot(&d);
+/// Gap geometry of node `i` from the axis point that the evaluation `ev` of `state` used
+/// (its nearest axis point: no new search along the path).
+fn gap_geometry(state: &State, ev: &Evaluation, i: usize) -> GapGeometry {
+    let (position, tangent) = ev.axis[i];
+    let d = state.x[i] - position;
+    let d = d - tangent * tangent.dot(&d);
     let s = d.norm();
     let normal = if s > 1e-9 { d / s } else { state.normal[i] };
     GapGeometry {
         normal,
-        gap: s - model.clearance(i, md),
-        tangent: p.tangent,
+        gap: s - ev.clearance[i],
+        tangent,
         radial: s,
     }
 }
@@ -925,7 +925,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // friction proportional to the unknown normal force
         let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
         for &i in &qidx {
-            let g = gap_geometry(model, &state, i);
+            let g = gap_geometry(&state, &ev, i);
             let (nrm, s) = (g.normal, g.radial);
             state.normal[i] = nrm;
             let q = &model.basis[i];
