@@ -1221,20 +1221,36 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             }
         }
         // geometric step with caps
-        let mut ratio: f64 = 0.0;
+        let (mut rot_ratio, mut rot_node): (f64, usize) = (0.0, 0);
         for i in 0..nn {
             let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
-            ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
+            if rot / MAX_BENDING_ROTATION_STEP > rot_ratio {
+                (rot_ratio, rot_node) = (rot / MAX_BENDING_ROTATION_STEP, i);
+            }
         }
         // and lateral motion of the gap nodes to a few clearances: the linearized gaps bound
         // only the motion along each node's current normal, so a long step can carry nodes
         // around and through the wall
+        let (mut lat_ratio, mut lat_node): (f64, usize) = (0.0, 0);
         for &i in &qidx {
             let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
-            ratio = ratio.max(lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3)));
+            let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3));
+            if r > lat_ratio {
+                (lat_ratio, lat_node) = (r, i);
+            }
         }
+        let ratio = rot_ratio.max(lat_ratio);
         let alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
-        tracing::debug!(ip_iters, alpha, "interior-point iterations and step cap");
+        tracing::debug!(
+            ip_iters,
+            alpha,
+            rot_ratio,
+            rot_s = model.mesh.nodes[rot_node].s_m,
+            lat_ratio,
+            lat_s = model.mesh.nodes[lat_node].s_m,
+            "interior-point iterations and step cap (bending-rotation and lateral caps: ratio and \
+             distance from the bit of the node that sets each)"
+        );
         likely_converged = alpha == 1.0 && rn < LIKELY_CONVERGED_RESIDUAL;
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
