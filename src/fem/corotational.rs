@@ -163,33 +163,38 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
     gt[(1, 8)] = -1.0 / ln;
     gt[(2, 1)] = -1.0 / ln;
     gt[(2, 7)] = 1.0 / ln;
-    // P_A = [0 I 0 0] - G^T, P_B = [0 0 0 I] - G^T, then T_s^-1, all on node-basis DOFs:
-    // B rows 1-3 = T_s^-1(theta_A) P_A M, rows 4-6 = T_s^-1(theta_B) P_B M.
-    // Hand-optimized: G^T has 10 nonzeros, so P M is formed block by block from the rows of
-    // M (instead of a dense 3x12 G^T, a 7x12 local B and a 7x12 by block-diagonal product).
-    // G^T M by blocks (the chord columns of G^T act on M_A and M_B with opposite signs):
-    let mrow = |m: &Matrix3<f64>, r: usize| m.row(r).into_owned();
-    let (ma0, ma1, ma2) = (mrow(&ma, 0), mrow(&ma, 1), mrow(&ma, 2));
-    let (mb0, mb1, mb2) = (mrow(&mb, 0), mrow(&mb, 1), mrow(&mb, 2));
-    let chord = |m2: &nalgebra::RowVector3<f64>, m1: &nalgebra::RowVector3<f64>| {
-        Matrix3::from_rows(&[m2 * (eta / ln), m2 / ln, -m1 / ln])
-    };
-    let g0 = chord(&ma2, &ma1); // G^T block xA times M_A
-    let g2 = -chord(&mb2, &mb1); // G^T block xB times M_B
-    let zero = nalgebra::RowVector3::zeros();
-    let g1 = Matrix3::from_rows(&[ma0 * (e12 / 2.0) - ma1 * (e11 / 2.0), zero, zero]);
-    let g3 = Matrix3::from_rows(&[mb0 * (e22 / 2.0) - mb1 * (e21 / 2.0), zero, zero]);
-    let pa = [-g0, ma - g1, -g2, -g3];
-    let pb = [-g0, -g1, -g2, mb - g3];
-    let mut b = SMatrix::<f64, 7, 12>::zeros();
-    // du = r1 . (duB - duA): r1 = e1 in local components, so row 0 is [-M_A row 0, 0, M_B row 0, 0]
-    for c in 0..3 {
-        b[(0, c)] = -ma[(0, c)];
-        b[(0, 6 + c)] = mb[(0, c)];
+    // P_A = [0 I 0 0] - G^T, P_B = [0 0 0 I] - G^T, then T_s^-1.
+    let mut pa = -gt;
+    let mut pb = -gt;
+    for i in 0..3 {
+        pa[(i, 3 + i)] += 1.0;
+        pb[(i, 9 + i)] += 1.0;
     }
-    for j in 0..4 {
-        b.fixed_view_mut::<3, 3>(1, 3 * j).copy_from(&(k.ti_a * pa[j]));
-        b.fixed_view_mut::<3, 3>(4, 3 * j).copy_from(&(k.ti_b * pb[j]));
+    let ta = k.ti_a * pa;
+    let tb = k.ti_b * pb;
+    // B in local-component DOFs (7 x 12), then to node bases by M.
+    let mut bl = SMatrix::<f64, 7, 12>::zeros();
+    // du = r1 . (duB - duA): in local components r1 = e1.
+    bl[(0, 0)] = -1.0;
+    bl[(0, 6)] = 1.0;
+    for j in 0..12 {
+        for i in 0..3 {
+            bl[(1 + i, j)] = ta[(i, j)];
+            bl[(4 + i, j)] = tb[(i, j)];
+        }
+    }
+    let mut b = SMatrix::<f64, 7, 12>::zeros();
+    for blk in 0..4 {
+        let m = if blk < 2 { &ma } else { &mb };
+        for i in 0..7 {
+            for c in 0..3 {
+                let mut acc = 0.0;
+                for r in 0..3 {
+                    acc += bl[(i, 3 * blk + r)] * m[(r, c)];
+                }
+                b[(i, 3 * blk + c)] = acc;
+            }
+        }
     }
     (b, k)
 }

@@ -1072,10 +1072,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let mut work = Vec::new();
         let mut ip_iters = 0usize;
         let mut stalled = 0usize;
-        for _ip in 0..MAX_IP_ITERATIONS {
-            // residuals
+        for ip in 0..MAX_IP_ITERATIONS {
+            // residuals (K du vanishes before the first step: du starts at zero)
             rd.copy_from_slice(&r0);
-            lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
+            if ip > 0 {
+                lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
+            }
             for j in 0..m {
                 for k in 0..6 {
                     rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
