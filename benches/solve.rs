@@ -1,21 +1,26 @@
-//! Whole-string solve timings (issue 3): converged `solve` at the default mesh of
+//! Solve timings (issues 3 and 5): converged `solve` at the default mesh of
 //! - a BHA-only model (~100 m: bit, near-bit stabilizer, collars, string stabilizer, collars,
 //!   42 m of HWDP; its top node is the top of the model) at 3,000 m in the 3,000 m well, cold
 //!   and warm-started from the previous solution after a 5% WOB change (what the trajectory
 //!   predictor does at each step);
-//! - a 3,000 m and an 8,000 m string (the same BHA, 140 m HWDP, 5 in drill pipe to surface)
-//!   in generated build-and-hold wells (vertical to 600 m, 2.5 deg/30 m to 35 deg resp.
-//!   60 deg, hold to TD; 12.25 in casing to 1,000 m, 8.5 in open hole), rotating on bottom;
-//! - two example wells (seed-daqing 727 m, s-shape 1,650 m).
+//! - 1,000, 3,000 and 10,000 m strings (the cost against length) and an 8,000 m string (the
+//!   same BHA, 140 m HWDP, 5 in drill pipe to surface) in generated build-and-hold wells
+//!   (vertical to 600 m, 2.5 deg/30 m to 35 deg, or 60 deg for 8,000 m, hold to TD;
+//!   12.25 in casing to 1,000 m, or to half the depth when that is shallower, 8.5 in open
+//!   hole), rotating on bottom;
+//! - two example wells (seed-daqing 727 m, s-shape 1,650 m);
+//! - one soft-string pass (`softstring::from_case`) over the 3,000 m string.
 //!
 //! Before timing, each case prints one line `case: DOF, Newton iterations, factorizations`.
-//! Run: `cargo bench --bench solve -- --warm-up-time 1 --measurement-time 10`.
+//! Run: `cargo bench --bench solve -- --warm-up-time 1 --measurement-time 10` (a filter such
+//! as `string_3000m` after `--` times one case; the set-up solves of all cases still run).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use drillpath::case::Case;
 use drillpath::fem::model::Model;
 use drillpath::fem::solve::{solve, solve_ip_from, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::softstring;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -87,14 +92,16 @@ tool_joint_od = "6.625 in"
 joint_length = "30 ft"
 "#;
 
-/// A generated case: `td_m` bit depth, `hold_deg` hold inclination, the string table.
+/// A generated case: `td_m` bit depth, `hold_deg` hold inclination, the string table; casing
+/// to 1,000 m (to `td_m / 2` when shallower).
 fn generated_case(td_m: f64, hold_deg: f64, strings: &str) -> Case {
+    let shoe_m = 1000.0f64.min(0.5 * td_m);
     let case = format!(
         r#"
 [well]
 survey = "survey.csv"
 hole = [
-  {{ to_md = "1000 m", diameter = "12.25 in", friction = 0.2 }},
+  {{ to_md = "{shoe_m} m", diameter = "12.25 in", friction = 0.2 }},
   {{ to_md = "{td_m} m", diameter = "8.5 in" }},
 ]
 [mud]
@@ -150,7 +157,12 @@ fn bench_solve(c: &mut Criterion) {
             "bha_100m",
             bha_only(generated_case(3000.0, 35.0, &(bha(42.0) + DRILL_PIPE))),
         ),
+        ("string_1000m", generated_case(1000.0, 35.0, &(bha(140.0) + DRILL_PIPE))),
         ("string_3000m", generated_case(3000.0, 35.0, &(bha(140.0) + DRILL_PIPE))),
+        (
+            "string_10000m",
+            generated_case(10000.0, 35.0, &(bha(140.0) + DRILL_PIPE)),
+        ),
         ("string_8000m", generated_case(8000.0, 60.0, &(bha(140.0) + DRILL_PIPE))),
         ("seed-daqing", example_case("seed-daqing")),
         ("s-shape", example_case("s-shape")),
@@ -196,6 +208,18 @@ fn bench_solve(c: &mut Criterion) {
             });
         }
     }
+    // soft-string pass over the 3,000 m string (issue 5 target: < 0.5 ms)
+    let soft = generated_case(3000.0, 35.0, &(bha(140.0) + DRILL_PIPE));
+    let r = softstring::from_case(&soft, soft.solver.element_length_m);
+    println!(
+        "softstring_3000m: hook load {:.1} kN, {} points",
+        r.hook_load_n / 1e3,
+        r.points.len()
+    );
+    group.sample_size(50);
+    group.bench_function("softstring_3000m", |b| {
+        b.iter(|| softstring::from_case(&soft, soft.solver.element_length_m).hook_load_n)
+    });
     group.finish();
 }
 

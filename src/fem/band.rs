@@ -115,6 +115,11 @@ impl BandMatrix {
         self.data.fill(0.0);
     }
 
+    /// Zero the stored entries of columns `cols` (the lower triangle: rows `c ..= c + hb`).
+    pub fn clear_columns(&mut self, cols: std::ops::Range<usize>) {
+        self.data[cols.start * self.ld..cols.end * self.ld].fill(0.0);
+    }
+
     /// Copies values and constraint scale from `other` (same `n` and half-bandwidth) without
     /// reallocating.
     ///

@@ -61,6 +61,22 @@ pub struct ElementResponse {
     pub length: f64,
 }
 
+/// Element response without the tangent: what the evaluation keeps per element.
+#[derive(Debug, Clone)]
+pub struct ElementForces {
+    /// Internal force `dU/dp` (forces N, moments N.m), node-basis DOFs `[uA, wA, uB, wB]`.
+    pub force: Vec12,
+    /// Axial force N, tension positive.
+    pub axial_force: f64,
+    /// Local end moments `[mA1, mA2, mA3, mB1, mB2, mB3]` in the element frame, N.m
+    /// (index 0/3: torque; the others bending).
+    pub local_moments: [f64; 6],
+    /// Element frame (columns r1, r2, r3).
+    pub frame: Matrix3<f64>,
+    /// Current chord length, m.
+    pub length: f64,
+}
+
 /// Element frame and local deformations, shared by the force and its finite-difference test.
 struct Kinematics {
     rr: Matrix3<f64>,
@@ -71,6 +87,9 @@ struct Kinematics {
     q_loc: Vec3,
     qa_loc: Vec3,
     qb_loc: Vec3,
+    /// `T_s^-1(theta_A)`, `T_s^-1(theta_B)` (used by `B` and by the geometric tangent).
+    ti_a: Matrix3<f64>,
+    ti_b: Matrix3<f64>,
 }
 
 fn kinematics(st: &ElementState, l0: f64) -> Kinematics {
@@ -95,6 +114,8 @@ fn kinematics(st: &ElementState, l0: f64) -> Kinematics {
         q_loc: rr.transpose() * q,
         qa_loc: rr.transpose() * qa,
         qb_loc: rr.transpose() * qb,
+        ti_a: tangent_inverse(&th_a),
+        ti_b: tangent_inverse(&th_b),
     }
 }
 
@@ -149,8 +170,8 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
         pa[(i, 3 + i)] += 1.0;
         pb[(i, 9 + i)] += 1.0;
     }
-    let ta = tangent_inverse(&k.th_a) * pa;
-    let tb = tangent_inverse(&k.th_b) * pb;
+    let ta = k.ti_a * pa;
+    let tb = k.ti_b * pb;
     // B in local-component DOFs (7 x 12), then to node bases by M.
     let mut bl = SMatrix::<f64, 7, 12>::zeros();
     // du = r1 . (duB - duA): in local components r1 = e1.
@@ -186,12 +207,64 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
 /// otherwise only its axial-force part `N/l (I - r1 r1^T)`.
 /// The consistent form matters when the string carries torque (rotary friction).
 pub fn element_response(st: &ElementState, s: &BeamSection, with_geometric: bool, consistent: bool) -> ElementResponse {
-    response(st, s, with_geometric, consistent, true)
+    let mut tangent = Mat12::zeros();
+    let f = element_response_into(st, s, with_geometric, consistent, &mut tangent);
+    ElementResponse {
+        force: f.force,
+        tangent,
+        axial_force: f.axial_force,
+        local_moments: f.local_moments,
+        frame: f.frame,
+        length: f.length,
+    }
+}
+
+/// [`element_response`] with the tangent written into `tangent` (overwritten) and the rest
+/// returned: the assembly keeps the forces per element but not the 12x12.
+pub fn element_response_into(
+    st: &ElementState,
+    s: &BeamSection,
+    with_geometric: bool,
+    consistent: bool,
+    tangent: &mut Mat12,
+) -> ElementForces {
+    response(st, s, with_geometric, consistent, Some(tangent))
 }
 
 /// Internal force only (the tangent is left zero): for residual evaluations in line searches.
 pub fn element_force(st: &ElementState, s: &BeamSection, with_geometric: bool) -> ElementResponse {
-    response(st, s, with_geometric, false, false)
+    let f = element_forces(st, s, with_geometric);
+    ElementResponse {
+        force: f.force,
+        tangent: Mat12::zeros(),
+        axial_force: f.axial_force,
+        local_moments: f.local_moments,
+        frame: f.frame,
+        length: f.length,
+    }
+}
+
+/// Internal force and section results only (no tangent).
+pub fn element_forces(st: &ElementState, s: &BeamSection, with_geometric: bool) -> ElementForces {
+    response(st, s, with_geometric, false, None)
+}
+
+/// `B^T K B` for a symmetric 7x7 `K`: only the upper triangle of the (symmetric) result is
+/// formed and mirrored (hand-written: about 2/3 of the multiplications of the plain product).
+fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
+    let c = kl * b;
+    let mut out = Mat12::zeros();
+    for j in 0..12 {
+        for i in 0..=j {
+            let mut acc = 0.0;
+            for r in 0..7 {
+                acc += b[(r, i)] * c[(r, j)];
+            }
+            out[(i, j)] = acc;
+            out[(j, i)] = acc;
+        }
+    }
+    out
 }
 
 fn response(
@@ -199,51 +272,37 @@ fn response(
     s: &BeamSection,
     with_geometric: bool,
     consistent: bool,
-    need_tangent: bool,
-) -> ElementResponse {
+    tangent_out: Option<&mut Mat12>,
+) -> ElementForces {
     let (b, k) = b_matrix(st, s.l0);
     let loc = local_response(s, &k.p, with_geometric);
     let rr = k.rr;
     let ln = k.ln;
     let fl = SVector::<f64, 7>::from_row_slice(&loc.force);
-    let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
     let force = b.transpose() * fl;
     let n = loc.axial_force;
-    if !need_tangent {
-        return ElementResponse {
-            force,
-            tangent: Mat12::zeros(),
-            axial_force: n,
-            local_moments: [
-                loc.force[1],
-                loc.force[2],
-                loc.force[3],
-                loc.force[4],
-                loc.force[5],
-                loc.force[6],
-            ],
-            frame: rr,
-            length: ln,
-        };
-    }
-    let mut tangent = b.transpose() * kl * b;
+    let forces = ElementForces {
+        force,
+        axial_force: n,
+        local_moments: [
+            loc.force[1],
+            loc.force[2],
+            loc.force[3],
+            loc.force[4],
+            loc.force[5],
+            loc.force[6],
+        ],
+        frame: rr,
+        length: ln,
+    };
+    let Some(tangent) = tangent_out else {
+        return forces;
+    };
+    let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
+    *tangent = congruence(&b, &kl);
     if consistent {
-        tangent += geometric_tangent(st, &k, &fl);
-        return ElementResponse {
-            force,
-            tangent,
-            axial_force: n,
-            local_moments: [
-                loc.force[1],
-                loc.force[2],
-                loc.force[3],
-                loc.force[4],
-                loc.force[5],
-                loc.force[6],
-            ],
-            frame: rr,
-            length: ln,
-        };
+        *tangent += geometric_tangent(st, &k, &fl);
+        return forces;
     }
     // Geometric term of the elongation: N/l (I - r1 r1^T) on the translations (node bases).
     let r1 = rr.column(0).into_owned();
@@ -260,21 +319,7 @@ fn response(
             }
         }
     }
-    ElementResponse {
-        force,
-        tangent,
-        axial_force: n,
-        local_moments: [
-            loc.force[1],
-            loc.force[2],
-            loc.force[3],
-            loc.force[4],
-            loc.force[5],
-            loc.force[6],
-        ],
-        frame: rr,
-        length: ln,
-    }
+    forces
 }
 
 /// `d(T^-T(theta) m)/d(theta)` for the inverse tangent operator of [`tangent_inverse`]
@@ -298,46 +343,6 @@ fn d_tinv_t_m(theta: &Vec3, m: &Vec3) -> Matrix3<f64> {
         + (Matrix3::identity() * tm + theta * m.transpose() - m * theta.transpose() * 2.0) * eta
 }
 
-/// A row of four 3x3 blocks (a 3 x 12 map on `[xA, wA, xB, wB]`).
-type BlockRow = [Matrix3<f64>; 4];
-
-/// The 12-vector `[-u, 0, u, 0]` (`ld^T u`, `ld` the chord-difference map `dd = dxB - dxA`).
-fn dvec(u: &Vec3) -> Vec12 {
-    let mut v = Vec12::zeros();
-    v.fixed_rows_mut::<3>(0).copy_from(&(-u));
-    v.fixed_rows_mut::<3>(6).copy_from(u);
-    v
-}
-
-/// `k += ld^T m ld`: `m` on the (xA, xA) and (xB, xB) blocks, `-m` on the (xA, xB) pair.
-fn add_chord_pattern(k: &mut Mat12, m: &Matrix3<f64>) {
-    for (bi, bj, sgn) in [(0, 0, 1.0), (0, 2, -1.0), (2, 0, -1.0), (2, 2, 1.0)] {
-        let mut blk = k.fixed_view_mut::<3, 3>(3 * bi, 3 * bj);
-        blk += m * sgn;
-    }
-}
-
-/// `k[block row r] += row`.
-fn add_block_row(k: &mut Mat12, r: usize, row: &BlockRow) {
-    for (j, b) in row.iter().enumerate() {
-        let mut blk = k.fixed_view_mut::<3, 3>(3 * r, 3 * j);
-        blk += b;
-    }
-}
-
-/// `k[block column c] += col^T` for the block row `col` (block `(i, c)` gets `col[i]^T`).
-fn add_block_col_t(k: &mut Mat12, c: usize, col: &BlockRow) {
-    for (i, b) in col.iter().enumerate() {
-        let mut blk = k.fixed_view_mut::<3, 3>(3 * i, 3 * c);
-        blk += b.transpose();
-    }
-}
-
-/// `m * row` block by block.
-fn mul_row(m: &Matrix3<f64>, row: &BlockRow) -> BlockRow {
-    [m * row[0], m * row[1], m * row[2], m * row[3]]
-}
-
 /// Analytic geometric part of the consistent tangent, `(dB^T/dp_global) f_local` at fixed
 /// `f_local` (node-basis DOFs): the derivative of the internal force `B^T f_local` through the
 /// element frame, the inverse tangent operators and the node triads (Crisfield 1990;
@@ -346,11 +351,19 @@ fn mul_row(m: &Matrix3<f64>, row: &BlockRow) -> BlockRow {
 /// `f . dp = N r1 . dd + vA . (wA - w_r) + vB . (wB - w_r)`, `dd = dxB - dxA`,
 /// `v = R_r T^-T m`, frame spin `w_r = Omega dp = r1 x dd / l + r1 E`,
 /// `E = e . dp = [w . dq - (q1 / l) w . dd] / c^2` (`q` the mean second axis, `w = r1 x q`,
-/// `c = |w|`, `q1 = q . r1`); each factor is then varied in turn. The products are formed
-/// block by block (the chord, node-spin and `dq` maps are block-sparse, `Omega` is a 3x3
-/// pattern plus a rank-one part). Checked against [`geometric_tangent_by_differences`] in
-/// the tests.
+/// `c = |w|`, `q1 = q . r1`); each factor is then varied in turn.
+///
+/// Hand-optimized (it was the largest single cost of a whole-string solve): the 12x12 is kept
+/// as 4x4 spatial 3x3 blocks; the chord map `ld = [-I, 0, I, 0]`, the node-spin maps and the
+/// `dq` map are block-sparse, so their products are formed block by block; `Omega` is applied
+/// as its 3x3 pattern plus the rank-one part `r1 e^T` (a matrix-vector product and an outer
+/// product instead of a 3x3 product); the rank-one terms of the variation of `E` and of `e`
+/// are gathered into one `e z^T` and one chord-row term before they touch the blocks; the
+/// node bases are applied once at the end. The dense 3 x 12 form of the same derivation
+/// (`geometric_tangent_dense` in the tests) and central differences
+/// ([`geometric_tangent_by_differences`]) check it.
 fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) -> Mat12 {
+    type Blocks = [[Matrix3<f64>; 4]; 4];
     let rr = k.rr;
     let l = k.ln;
     let r1: Vec3 = rr.column(0).into_owned();
@@ -367,89 +380,115 @@ fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) ->
     let m_a = Vec3::new(fl[1], fl[2], fl[3]);
     let m_b = Vec3::new(fl[4], fl[5], fl[6]);
     let (sqa, sqb) = (skew(&qa) * 0.5, skew(&qb) * 0.5);
-    // lq^T u = [0, S(qa) u / 2, 0, S(qb) u / 2]
-    let lq_t = |u: &Vec3| -> Vec12 {
-        let mut v = Vec12::zeros();
-        v.fixed_rows_mut::<3>(3).copy_from(&(sqa * u));
-        v.fixed_rows_mut::<3>(9).copy_from(&(sqb * u));
-        v
-    };
-    // frame spin: Omega = S(r1) ld / l + r1 e^T
-    let nvec = lq_t(&w) - dvec(&w) * (q1 / l);
-    let e = nvec / c2;
-    let e_blk = |j: usize| -> Vec3 { e.fixed_rows::<3>(3 * j).into_owned() };
-    let omega: BlockRow = [
-        -s1 / l + r1 * e_blk(0).transpose(),
-        r1 * e_blk(1).transpose(),
-        s1 / l + r1 * e_blk(2).transpose(),
-        r1 * e_blk(3).transpose(),
-    ];
-    let ti_a = tangent_inverse(&k.th_a);
-    let ti_b = tangent_inverse(&k.th_b);
-    let v_a = rr * ti_a.transpose() * m_a;
-    let v_b = rr * ti_b.transpose() * m_b;
+    // e = [lq^T w - (q1/l) ld^T w] / c^2 by blocks (lq^T u = [0, S(qa) u/2, 0, S(qb) u/2])
+    let e0 = w * (q1 / (l * c2));
+    let eb = [e0, sqa * w / c2, -e0, sqb * w / c2];
+    let ti_a = k.ti_a;
+    let ti_b = k.ti_b;
+    let v_a = rr * (ti_a.transpose() * m_a);
+    let v_b = rr * (ti_b.transpose() * m_b);
     let v = v_a + v_b;
     // X = R_r (d(T^-T m)/d theta) T^-1 R_r^T: moments times the variation of T^-T
-    let x_a = rr * d_tinv_t_m(&k.th_a, &m_a) * ti_a * rr.transpose();
-    let x_b = rr * d_tinv_t_m(&k.th_b, &m_b) * ti_b * rr.transpose();
-    let mut kg = Mat12::zeros();
-    // 1. axial force times the chord rotation
-    add_chord_pattern(&mut kg, &(p * (n / l)));
-    // 2.-3. (wA - w_r)^T X_A (wA - w_r) + (B) - wA^T S(vA) w_r - wB^T S(vB) w_r + w_r^T S(v) w_r
-    {
-        let mut blk = kg.fixed_view_mut::<3, 3>(3, 3);
-        blk += x_a;
-    }
-    {
-        let mut blk = kg.fixed_view_mut::<3, 3>(9, 9);
-        blk += x_b;
-    }
-    let neg = |r: BlockRow| -> BlockRow { [-r[0], -r[1], -r[2], -r[3]] };
-    add_block_row(&mut kg, 1, &neg(mul_row(&(x_a + skew(&v_a)), &omega)));
-    add_block_row(&mut kg, 3, &neg(mul_row(&(x_b + skew(&v_b)), &omega)));
-    add_block_col_t(&mut kg, 1, &neg(mul_row(&x_a.transpose(), &omega)));
-    add_block_col_t(&mut kg, 3, &neg(mul_row(&x_b.transpose(), &omega)));
-    // Omega^T Y Omega with Omega = S ld / l + r1 e^T
+    let x_a = rr * (d_tinv_t_m(&k.th_a, &m_a) * ti_a) * rr.transpose();
+    let x_b = rr * (d_tinv_t_m(&k.th_b, &m_b) * ti_b) * rr.transpose();
+    let mut kb: Blocks = [[Matrix3::zeros(); 4]; 4];
+    // ld^T m ld: `m` on the (xA, xA) and (xB, xB) blocks, `-m` on the (xA, xB) pair
+    let chord = |kb: &mut Blocks, m: &Matrix3<f64>| {
+        kb[0][0] += m;
+        kb[2][2] += m;
+        kb[0][2] -= m;
+        kb[2][0] -= m;
+    };
+    // 1. axial force times the chord rotation, plus the frame-spin terms
+    //    Omega^T S(v) ... of item 4 that have the chord pattern
     let y = x_a + x_b + skew(&v);
-    add_chord_pattern(&mut kg, &(s1.transpose() * y * s1 / (l * l)));
-    kg += dvec(&(s1.transpose() * y * r1 / l)) * e.transpose();
-    kg += e * dvec(&(s1.transpose() * y.transpose() * r1 / l)).transpose();
-    kg += e * e.transpose() * r1.dot(&(y * r1));
-    // 4. -V . (variation of the frame-spin map) dp
-    // variation of w: lw = -S(q) P ld / l + S(r1) lq (block row)
-    let sqp = skew(&q) * p / l;
-    let lw: BlockRow = [sqp, -(s1 * sqa), -sqp, -(s1 * sqb)];
-    // (lq^T - (q1/l) ld^T) lw, block rows 0..3
-    let mut dnum = Mat12::zeros();
-    add_block_row(&mut dnum, 0, &mul_row(&(eye * (q1 / l)), &lw));
-    add_block_row(&mut dnum, 1, &mul_row(&sqa, &lw));
-    add_block_row(&mut dnum, 2, &mul_row(&(eye * (-q1 / l)), &lw));
-    add_block_row(&mut dnum, 3, &mul_row(&sqb, &lw));
-    // w . (variation of dq)
-    {
-        let mut blk = dnum.fixed_view_mut::<3, 3>(3, 3);
-        blk += (qa * w.transpose() - eye * w.dot(&qa)) * 0.5;
+    let chord_sum =
+        p * (n / l) + (s1.transpose() * y * s1) / (l * l) - (skew(&v) * p - v.cross(&r1) * r1.transpose()) / (l * l);
+    chord(&mut kb, &chord_sum);
+    // 2.-3. (wA - w_r)^T X_A (wA - w_r) + (B) - wA^T S(vA) w_r - wB^T S(vB) w_r, with
+    // Omega_j = D_j + r1 e_j^T, D = [-S(r1)/l, 0, S(r1)/l, 0]
+    kb[1][1] += x_a;
+    kb[3][3] += x_b;
+    for (row, x) in [(1usize, x_a), (3usize, x_b)] {
+        let v_node = if row == 1 { v_a } else { v_b };
+        let xs = x + skew(&v_node);
+        let xs_d = xs * s1 / l;
+        let xs_r1 = xs * r1;
+        let xt_r1 = x.transpose() * r1;
+        let xt_d = s1.transpose() * x / l; // D_0^T X = -this, D_2^T X = this
+        for j in 0..4 {
+            // row block: -(X + S(v)) Omega_j
+            kb[row][j] -= xs_r1 * eb[j].transpose();
+            // column block: -(X^T Omega_j)^T = -Omega_j^T X
+            kb[j][row] -= eb[j] * xt_r1.transpose();
+        }
+        kb[row][0] += xs_d;
+        kb[row][2] -= xs_d;
+        kb[0][row] += xt_d;
+        kb[2][row] -= xt_d;
     }
-    {
-        let mut blk = dnum.fixed_view_mut::<3, 3>(9, 9);
-        blk += (qb * w.transpose() - eye * w.dot(&qb)) * 0.5;
-    }
-    let ldw = dvec(&w);
-    let lq1 = lq_t(&r1) + dvec(&(p * q)) / l;
-    let lc = (lq_t(&q) - lq1 * q1) * 2.0;
-    dnum -= ldw * lq1.transpose() / l;
-    dnum += ldw * dvec(&r1).transpose() * (q1 / (l * l));
+    // 4. -V . (variation of the frame-spin map) dp: the block part of -(vr/c^2) dnum,
+    // dnum = L lw with L = [(q1/l) I, S(qa)/2, -(q1/l) I, S(qb)/2] (block column) and the
+    // variation of w, lw = [-S(q) P/l... ] (block row), plus w . (variation of dq)
     let vr = v.dot(&r1);
-    kg -= dnum * (vr / c2);
-    kg += nvec * lc.transpose() * (vr / (c2 * c2));
-    add_chord_pattern(&mut kg, &(-(skew(&v) * p - v.cross(&r1) * r1.transpose()) / (l * l)));
-    kg -= e * dvec(&(p * v / l)).transpose();
+    let f = vr / c2;
+    let sqp = skew(&q) * p / l;
+    let lw = [sqp, -(s1 * sqa), -sqp, -(s1 * sqb)];
+    for j in 0..4 {
+        let t = lw[j] * (f * q1 / l);
+        kb[0][j] -= t;
+        kb[2][j] += t;
+        kb[1][j] -= sqa * lw[j] * f;
+        kb[3][j] -= sqb * lw[j] * f;
+    }
+    kb[1][1] -= (qa * w.transpose() - eye * w.dot(&qa)) * (0.5 * f);
+    kb[3][3] -= (qb * w.transpose() - eye * w.dot(&qb)) * (0.5 * f);
+    // rank-one terms, gathered:
+    //   Omega^T Y Omega:  ld^T a e^T + e b^T ld + (r1 . Y r1) e e^T,
+    //                     a = S(r1)^T Y r1 / l, b = S(r1)^T Y^T r1 / l
+    //   -(vr/c^2) dnum:   ld^T w z2^T, z2 = (vr / (c^2 l)) (lq1 - (q1/l) ld^T r1)
+    //   nvec lc^T vr/c^4: e lc^T (vr/c^2)
+    //   -e (ld^T P v / l)^T
+    // = e z1^T + ld^T H, H = a e^T + w z2^T (3 x 12)
+    let a = s1.transpose() * (y * r1) / l;
+    let b = s1.transpose() * (y.transpose() * r1) / l;
+    let c0 = r1.dot(&(y * r1));
+    let pq = p * q / l;
+    let pv = p * v / l;
+    // lq1 = lq^T r1 + ld^T P q / l, lc = 2 (lq^T q - q1 lq1)
+    let lq1 = [-pq, sqa * r1, pq, sqb * r1];
+    let lc = [
+        pq * (2.0 * q1),
+        (sqa * q - sqa * r1 * q1) * 2.0,
+        pq * (-2.0 * q1),
+        (sqb * q - sqb * r1 * q1) * 2.0,
+    ];
+    let g2 = vr / (c2 * l);
+    let r1q = r1 * (q1 / l);
+    let z2 = [(lq1[0] + r1q) * g2, lq1[1] * g2, (lq1[2] - r1q) * g2, lq1[3] * g2];
+    let z1 = [
+        -b + eb[0] * c0 + lc[0] * f + pv,
+        eb[1] * c0 + lc[1] * f,
+        b + eb[2] * c0 + lc[2] * f - pv,
+        eb[3] * c0 + lc[3] * f,
+    ];
+    for i in 0..4 {
+        for j in 0..4 {
+            kb[i][j] += eb[i] * z1[j].transpose();
+        }
+    }
+    for j in 0..4 {
+        let h = a * eb[j].transpose() + w * z2[j].transpose();
+        kb[0][j] -= h;
+        kb[2][j] += h;
+    }
     // to node bases: K = Qblk^T K_s Qblk
     let qs = [st.q_a, st.q_a, st.q_b, st.q_b];
     let mut out = Mat12::zeros();
     for bi in 0..4 {
+        let qt = qs[bi].transpose();
         for bj in 0..4 {
-            let blk = qs[bi].transpose() * kg.fixed_view::<3, 3>(3 * bi, 3 * bj) * qs[bj];
+            let blk = qt * kb[bi][bj] * qs[bj];
             out.fixed_view_mut::<3, 3>(3 * bi, 3 * bj).copy_from(&blk);
         }
     }

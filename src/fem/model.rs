@@ -9,7 +9,7 @@
 use super::band::BandMatrix;
 use super::band_lu::GeneralBand;
 use super::beam::BeamSection;
-use super::corotational::{element_force, element_response, ElementResponse, ElementState};
+use super::corotational::{element_forces, element_response_into, ElementForces, ElementState, Mat12};
 use super::mesh::{build_mesh, Mesh};
 use crate::case::{Case, Mode};
 use crate::contact::gap::{evaluate, GapInput, GapResponse};
@@ -31,6 +31,17 @@ pub trait StiffnessSink {
     fn clear(&mut self);
     /// `A[dofs[r], dofs[c]] += k[r * ld + c]`.
     fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize);
+    /// Zero the stored entries of the storage lines of `dofs` (rows of the general band,
+    /// columns of the symmetric band's lower triangle). On the node chain these lines hold
+    /// exactly the entries that the blocks touching those DOFs' node write, so an assembly
+    /// that calls this for each node just before the first block touching it needs no
+    /// [`StiffnessSink::clear`] (and no separate pass over the whole matrix).
+    fn clear_dofs(&mut self, dofs: std::ops::Range<usize>);
+    /// `A[first + r, first + c] += k[(r, c)]` for an element's 12 consecutive DOFs.
+    fn add_element(&mut self, first: usize, k: &Mat12) {
+        let dofs: [usize; 12] = std::array::from_fn(|j| first + j);
+        self.add_block(&dofs, k.transpose().as_slice(), 12);
+    }
 }
 
 impl StiffnessSink for BandMatrix {
@@ -40,6 +51,9 @@ impl StiffnessSink for BandMatrix {
     fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
         BandMatrix::add_block(self, dofs, k, ld);
     }
+    fn clear_dofs(&mut self, dofs: std::ops::Range<usize>) {
+        BandMatrix::clear_columns(self, dofs);
+    }
 }
 
 impl StiffnessSink for GeneralBand {
@@ -48,6 +62,12 @@ impl StiffnessSink for GeneralBand {
     }
     fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
         GeneralBand::add_block(self, dofs, k, ld);
+    }
+    fn clear_dofs(&mut self, dofs: std::ops::Range<usize>) {
+        GeneralBand::clear_rows(self, dofs);
+    }
+    fn add_element(&mut self, first: usize, k: &Mat12) {
+        GeneralBand::add_block_12(self, first, k.as_slice());
     }
 }
 
@@ -182,11 +202,14 @@ pub struct Evaluation {
     /// Residual `f_int - f_ext`, DOF order (surface first), node bases.
     pub residual: Vec<f64>,
     /// Element responses, bit upward (`elements[e]` joins nodes e+1 = end A and e = end B).
-    pub elements: Vec<ElementResponse>,
+    pub elements: Vec<ElementForces>,
     /// Gap responses per node (None: no gap or open far from the wall).
     pub gaps: Vec<Option<GapResponse>>,
     /// Radial clearance per node, m.
     pub clearance: Vec<f64>,
+    /// Nearest axis point of each gap node (position m, unit tangent) at `state.md`, as the
+    /// gaps were evaluated (zeros for nodes without a gap).
+    pub axis: Vec<(Vec3, Vec3)>,
 }
 
 impl Model {
@@ -364,10 +387,13 @@ impl Model {
         let mut r = vec![0.0; self.dofs()];
         let mut kmat = k;
         if let Some(km) = kmat.as_deref_mut() {
-            km.clear();
+            if nn < 2 {
+                km.clear();
+            }
         }
         let mut elements = Vec::with_capacity(nn - 1);
         let ed = Vec3::new(0.0, 0.0, 1.0);
+        let mut tangent = Mat12::zeros();
         for e in 0..nn - 1 {
             // Node A is the upper node (e + 1), B the lower (e): the chord points down the hole
             // like the triads' first axis.
@@ -381,14 +407,15 @@ impl Model {
                 q_b: &self.basis[b],
             };
             let resp = if kmat.is_some() {
-                element_response(
+                element_response_into(
                     &st,
                     &self.sections[e],
                     self.geometric_stiffness,
                     self.consistent_tangent,
+                    &mut tangent,
                 )
             } else {
-                element_force(&st, &self.sections[e], self.geometric_stiffness)
+                element_forces(&st, &self.sections[e], self.geometric_stiffness)
             };
             // gravity: consistent nodal loads of q = w_b e_D on the current chord
             let l = self.sections[e].l0;
@@ -411,7 +438,15 @@ impl Model {
                 r[d] += resp.force[j] - ext[j / 3][j % 3];
             }
             if let Some(km) = kmat.as_deref_mut() {
-                km.add_block(&dofs, resp.tangent.transpose().as_slice(), 12);
+                // each node's lines are zeroed just before the first element that touches
+                // them (element e is the first for node e + 1, element 0 also for node 0):
+                // the matrix is built in one pass while its rows are in cache
+                if e == 0 {
+                    km.clear_dofs(self.dof(b, 0)..self.dof(b, 0) + 6);
+                }
+                km.clear_dofs(self.dof(a, 0)..self.dof(a, 0) + 6);
+                debug_assert!(dofs.windows(2).all(|p| p[1] == p[0] + 1));
+                km.add_element(dofs[0], &tangent);
             }
             elements.push(resp);
         }
@@ -427,13 +462,15 @@ impl Model {
         // gaps
         let mut gaps = vec![None; nn];
         let mut clearance = vec![0.0; nn];
+        let mut axis = vec![(Vec3::zeros(), Vec3::zeros()); nn];
         for i in 0..nn {
             if !self.mesh.nodes[i].has_gap {
                 continue;
             }
             let md = self.path.nearest_md(&state.x[i], state.md[i]);
             state.md[i] = md;
-            let p = self.path.point_at(md);
+            let p = self.path.axis_at(md);
+            axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
             clearance[i] = eo;
             let g = evaluate(&GapInput {
@@ -500,6 +537,7 @@ impl Model {
             elements,
             gaps,
             clearance,
+            axis,
         }
     }
 

@@ -307,6 +307,12 @@ pub const IP_START_SHIFT: f64 = 0.1;
 /// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
 pub const IP_STALL_STEPS: usize = 5;
 
+/// Outer residual (relative to the load scale) below which a full Newton step of the
+/// interior-point Newton is expected to converge: the next evaluation is then made without
+/// the tangent first (the converged one needs none), and redone with it if the expectation
+/// fails. Newton converges quadratically here (e.g. 8e-3, 8e-5, 3e-8 on a 3,000 m string).
+pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
+
 /// Interior-point iterations allowed per Newton step.
 pub const MAX_IP_ITERATIONS: usize = 60;
 
@@ -362,18 +368,18 @@ pub(crate) struct GapGeometry {
     pub(crate) radial: f64,
 }
 
-/// `state.md[i]` must be the node's nearest axis point, as [`Model::evaluate`] leaves it.
-fn gap_geometry(model: &Model, state: &State, i: usize) -> GapGeometry {
-    let md = state.md[i];
-    let p = model.path.point_at(md);
-    let d = state.x[i] - p.position;
-    let d = d - p.tangent * p.tangent.dot(&d);
+/// Gap geometry of node `i` from the axis point that the evaluation `ev` of `state` used
+/// (its nearest axis point: no new search along the path).
+fn gap_geometry(state: &State, ev: &Evaluation, i: usize) -> GapGeometry {
+    let (position, tangent) = ev.axis[i];
+    let d = state.x[i] - position;
+    let d = d - tangent * tangent.dot(&d);
     let s = d.norm();
     let normal = if s > 1e-9 { d / s } else { state.normal[i] };
     GapGeometry {
         normal,
-        gap: s - model.clearance(i, md),
-        tangent: p.tangent,
+        gap: s - ev.clearance[i],
+        tangent,
         radial: s,
     }
 }
@@ -425,11 +431,13 @@ impl Linear {
             Linear::General(_, f) => f.solve_in_place(x),
         }
     }
-    /// A copy of the assembled matrix (before constraints).
-    fn clone_matrix(&self) -> Linear {
+    /// What the interior point keeps of the assembled matrix (before constraints) while it
+    /// factors modified copies: LU factors straight from this object's matrix in one
+    /// streaming pass and needs no copy (`None`); LDL^T factors in place and needs one.
+    fn keep_base(&self) -> Option<Linear> {
         match self {
-            Linear::Symmetric(k, _) => Linear::Symmetric(k.clone(), BandLdlt::new(1, 1)),
-            Linear::General(k, _) => Linear::General(k.clone(), BandLu::new(1, 1)),
+            Linear::Symmetric(k, _) => Some(Linear::Symmetric(k.clone(), BandLdlt::new(1, 1))),
+            Linear::General(..) => None,
         }
     }
     /// Replace the matrix with a stored copy.
@@ -440,47 +448,59 @@ impl Linear {
             _ => unreachable!("matrix kinds match"),
         }
     }
-    /// Factor the stored copy `base` plus the same additions given two ways: `add_row(i, row)`
-    /// adds to row `i` of the general band storage (column `c` at offset `c + hb - i`, `hb`
-    /// the half-bandwidth), `add` assembles them as blocks; the DOFs `constrained` are held
-    /// (row and column zeroed, diagonal `constraint_scale`). LU: one streaming pass, each row
-    /// copied, changed and eliminated while in cache; LDL^T: copy, assemble, factor. This
-    /// object's own matrix is left unspecified.
+    /// Factor the assembled matrix (the stored copy `base` from [`Linear::keep_base`], or this
+    /// object's own when that is `None`) plus the same additions given two ways:
+    /// `add_row(i, row)` adds to row `i` of the general band storage (column `c` at offset
+    /// `c + hb - i`, `hb` the half-bandwidth), `add` assembles them as blocks; the DOFs
+    /// `constrained` are held (row and column zeroed, diagonal `constraint_scale`). LU: one
+    /// streaming pass, each row copied, changed and eliminated while in cache (the matrix is
+    /// not changed); LDL^T: copy, assemble, factor (the matrix is left unspecified).
     fn factor_modified(
         &mut self,
-        base: &Linear,
+        base: Option<&Linear>,
         constrained: &[usize],
         constraint_scale: f64,
         mut add_row: impl FnMut(usize, &mut [f64]),
         mut add: impl FnMut(&mut dyn StiffnessSink),
     ) -> Result<(), FactorError> {
-        if let (Linear::General(_, f), Linear::General(b, _)) = (&mut *self, base) {
+        if let Linear::General(k, f) = &mut *self {
             let hb = HALF_BANDWIDTH;
-            return f.factor_rows(b, |i, row| {
-                if constrained.contains(&i) {
+            let k: &GeneralBand = match base {
+                Some(Linear::General(b, _)) => b,
+                _ => k,
+            };
+            // rows within the half-bandwidth of a constrained DOF (their column is zeroed)
+            let (lo, hi) = constrained
+                .iter()
+                .fold((usize::MAX, 0), |(lo, hi), &c| (lo.min(c), hi.max(c)));
+            return f.factor_rows(k, |i, row| {
+                let near = i + hb >= lo && i <= hi + hb;
+                if near && constrained.contains(&i) {
                     row.fill(0.0);
                     row[hb] = constraint_scale;
                     return;
                 }
                 add_row(i, row);
-                for &c in constrained {
-                    if c.abs_diff(i) <= hb {
-                        row[c + hb - i] = 0.0;
+                if near {
+                    for &c in constrained {
+                        if c.abs_diff(i) <= hb {
+                            row[c + hb - i] = 0.0;
+                        }
                     }
                 }
             });
         }
-        self.set_matrix(base);
+        self.set_matrix(base.expect("LDL^T keeps a copy of the matrix"));
         add(self.sink());
         for &d in constrained {
             self.constrain(d);
         }
         self.factor()
     }
-    /// `y += A x` with the stored copy's matrix `a`.
-    fn matrix_mul_add(&self, a: &Linear, x: &[f64], y: &mut [f64], work: &mut Vec<f64>) {
+    /// `y += A x` with the assembled matrix (`base`, or this object's own when `None`).
+    fn matrix_mul_add(&self, base: Option<&Linear>, x: &[f64], y: &mut [f64], work: &mut Vec<f64>) {
         work.resize(x.len(), 0.0);
-        match a {
+        match base.unwrap_or(self) {
             Linear::Symmetric(k, _) => k.mul_vec(x, work),
             Linear::General(k, _) => k.mul_vec(x, work),
         }
@@ -514,15 +534,26 @@ pub(crate) fn bordered_parts(
     ev: &Evaluation,
     constrained: &[usize],
 ) -> (Vec<(usize, f64)>, f64, Vec<f64>) {
+    let (c, r) = free_residual(model, ev, constrained);
+    (bit_row(model, lin, constrained), c, r)
+}
+
+/// Row of the bit's axial DOF of the assembled tangent over the free columns.
+fn bit_row(model: &Model, lin: &Linear, constrained: &[usize]) -> Vec<(usize, f64)> {
     let bit_ax = model.dof(0, 0);
-    let kb: Vec<(usize, f64)> = (0..6)
+    (0..6)
         .map(|c| model.dof(0, c))
         .chain((0..6).map(|c| model.dof(1, c)))
         .filter(|d| !constrained.contains(d))
         .map(|d| (d, lin.get(bit_ax, d)))
-        .collect();
+        .collect()
+}
+
+/// The WOB equation's residual `c` (0 when the hook load is given) and the residual with
+/// constrained entries zeroed.
+fn free_residual(model: &Model, ev: &Evaluation, constrained: &[usize]) -> (f64, Vec<f64>) {
     let c = if model.loads.hook_load_n.is_none() {
-        ev.residual[bit_ax] + model.loads.wob_n
+        ev.residual[model.dof(0, 0)] + model.loads.wob_n
     } else {
         0.0
     };
@@ -530,7 +561,7 @@ pub(crate) fn bordered_parts(
     for &d in constrained {
         r[d] = 0.0;
     }
-    (kb, c, r)
+    (c, r)
 }
 
 /// Apply the boundary conditions to the tangent and factor it; a zero pivot becomes a
@@ -900,19 +931,31 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     state.lcp_nodes = Some(managed.clone());
     state.implicit_friction = true;
     let mut ev;
+    // the previous Newton step was full and its outer residual small: this evaluation is
+    // likely the converged one, so it is first made without the tangent (then redone with it
+    // if the solution is not converged after all)
+    let mut likely_converged = false;
+    let mut redo = false;
     loop {
         // linearize with the managed gaps carrying only their lagged friction
-        ev = model.evaluate(&mut state, Some(lin.sink()));
-        let (kb, c, r0) = bordered_parts(model, &lin, &ev, &constrained);
+        let skip_tangent = likely_converged && !redo;
+        redo = false;
+        ev = if skip_tangent {
+            model.evaluate(&mut state, None)
+        } else {
+            model.evaluate(&mut state, Some(lin.sink()))
+        };
+        let (c, r0) = free_residual(model, &ev, &constrained);
         // contact geometry of the managed gaps (node-basis normals, gaps)
         let mut normals = Vec::with_capacity(m);
         let mut gaps0 = Vec::with_capacity(m);
+        let mut geometry = Vec::with_capacity(m);
         // equilibrium column of each contact force: [n + f v^ ; f R_c n x v^] (node basis),
         // friction proportional to the unknown normal force
         let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
         for &i in &qidx {
-            let g = gap_geometry(model, &state, i);
-            let (nrm, s) = (g.normal, g.radial);
+            let g = gap_geometry(&state, &ev, i);
+            let nrm = g.normal;
             state.normal[i] = nrm;
             let q = &model.basis[i];
             normals.push(q.transpose() * nrm);
@@ -928,15 +971,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             let em = q.transpose() * fm;
             eq_cols.push([et.x, et.y, et.z, em.x, em.y, em.z]);
             gaps0.push(g.gap);
-            // circle stiffness of the current contact force
-            let lam = state.lambda[i];
-            if lam > 0.0 && s > 1e-9 {
-                let t = g.tangent;
-                let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / s);
-                let kl = q.transpose() * kc * q;
-                let dofs: [usize; 3] = std::array::from_fn(|k| model.dof(i, k));
-                lin.sink().add_block(&dofs, kl.transpose().as_slice(), 3);
-            }
+            geometry.push(g);
         }
         // outer residual with the current multipliers as the contact forces
         let mut rt = r0.clone();
@@ -949,7 +984,6 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             rt[d] = 0.0;
         }
         let rn = residual_norm(&rt, scale).max(c.abs() / scale);
-        stats.residual_history.push(rn);
         let mut pen: f64 = 0.0;
         let mut compl: f64 = 0.0;
         for (j, &i) in qidx.iter().enumerate() {
@@ -957,6 +991,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             pen = pen.max(gaps0[j] / eo);
             compl = compl.max((state.lambda[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
         }
+        let done = rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && compl < 1e-6;
+        if skip_tangent && !done && stats.iterations < ctl.max_iterations {
+            redo = true;
+            continue;
+        }
+        stats.residual_history.push(rn);
         stats.max_penetration = pen.max(0.0);
         tracing::debug!(
             iteration = stats.iterations,
@@ -965,19 +1005,32 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             compl,
             "ip newton"
         );
-        if rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && compl < 1e-6 {
+        if done {
             converged = true;
             break;
         }
         if stats.iterations >= ctl.max_iterations {
             break;
         }
+        // circle stiffness of the current contact forces
+        for (j, &i) in qidx.iter().enumerate() {
+            let (g, lam) = (&geometry[j], state.lambda[i]);
+            if lam > 0.0 && g.radial > 1e-9 {
+                let (t, nrm) = (g.tangent, g.normal);
+                let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / g.radial);
+                let q = &model.basis[i];
+                let kl = q.transpose() * kc * q;
+                let dofs: [usize; 3] = std::array::from_fn(|k| model.dof(i, k));
+                lin.sink().add_block(&dofs, kl.transpose().as_slice(), 3);
+            }
+        }
+        let kb = bit_row(model, &lin, &constrained);
         // the base matrix K (before interior-point terms) is kept to rebuild each iteration
-        let base = lin.clone_matrix();
+        let base = lin.keep_base();
         // diagonal given to the constrained DOFs (any positive value: they are decoupled)
         let constraint_scale = {
             let (sum, cnt) = (0..n)
-                .map(|d| base.get(d, d).abs())
+                .map(|d| base.as_ref().unwrap_or(&lin).get(d, d).abs())
                 .filter(|v| *v > 0.0 && v.is_finite())
                 .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
             if cnt > 0 {
@@ -1019,10 +1072,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let mut work = Vec::new();
         let mut ip_iters = 0usize;
         let mut stalled = 0usize;
-        for _ip in 0..MAX_IP_ITERATIONS {
-            // residuals
+        for ip in 0..MAX_IP_ITERATIONS {
+            // residuals (K du vanishes before the first step: du starts at zero)
             rd.copy_from_slice(&r0);
-            lin.matrix_mul_add(&base, &du, &mut rd, &mut work);
+            if ip > 0 {
+                lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
+            }
             for j in 0..m {
                 for k in 0..6 {
                     rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
@@ -1063,7 +1118,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                     row[off + cc] += e * normals[j][cc];
                 }
             };
-            let factored = lin.factor_modified(&base, &constrained, constraint_scale, add_row, |sink| {
+            let factored = lin.factor_modified(base.as_ref(), &constrained, constraint_scale, add_row, |sink| {
                 for j in 0..m {
                     let dj = r_f[j] / s_v[j];
                     let nv = normals[j];
@@ -1168,20 +1223,37 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             }
         }
         // geometric step with caps
-        let mut ratio: f64 = 0.0;
+        let (mut rot_ratio, mut rot_node): (f64, usize) = (0.0, 0);
         for i in 0..nn {
             let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
-            ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
+            if rot / MAX_BENDING_ROTATION_STEP > rot_ratio {
+                (rot_ratio, rot_node) = (rot / MAX_BENDING_ROTATION_STEP, i);
+            }
         }
         // and lateral motion of the gap nodes to a few clearances: the linearized gaps bound
         // only the motion along each node's current normal, so a long step can carry nodes
         // around and through the wall
+        let (mut lat_ratio, mut lat_node): (f64, usize) = (0.0, 0);
         for &i in &qidx {
             let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
-            ratio = ratio.max(lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3)));
+            let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3));
+            if r > lat_ratio {
+                (lat_ratio, lat_node) = (r, i);
+            }
         }
+        let ratio = rot_ratio.max(lat_ratio);
         let alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
-        tracing::debug!(ip_iters, alpha, "interior-point iterations and step cap");
+        tracing::debug!(
+            ip_iters,
+            alpha,
+            rot_ratio,
+            rot_s = model.mesh.nodes[rot_node].s_m,
+            lat_ratio,
+            lat_s = model.mesh.nodes[lat_node].s_m,
+            "interior-point iterations and step cap (bending-rotation and lateral caps: ratio and \
+             distance from the bit of the node that sets each)"
+        );
+        likely_converged = alpha == 1.0 && rn < LIKELY_CONVERGED_RESIDUAL;
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
         for (j, &i) in qidx.iter().enumerate() {

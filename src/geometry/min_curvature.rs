@@ -50,6 +50,20 @@ pub struct AxisPoint {
     pub dt_ds: Vec3,
 }
 
+/// Position, tangent and curvature of the axis at one MD (an [`AxisPoint`] without the
+/// angles).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxisGeometry {
+    /// Position (north, east, tvd), m.
+    pub position: Vec3,
+    /// Unit tangent down the hole.
+    pub tangent: Vec3,
+    /// Curvature of the axis here, rad/m (0 outside the survey).
+    pub curvature_per_m: f64,
+    /// `dt/ds` here (curvature vector), 1/m.
+    pub dt_ds: Vec3,
+}
+
 /// Why a survey cannot be turned into a well path.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GeometryProblem {
@@ -186,6 +200,27 @@ impl WellPath {
 
     /// The axis point at measured depth `md_m` (any value: straight extrapolation outside).
     pub fn point_at(&self, md_m: f64) -> AxisPoint {
+        let (g, k) = self.axis_geometry(md_m);
+        let (inc, azi) = inc_azi(&g.tangent, self.ref_azi[k]);
+        AxisPoint {
+            md_m,
+            position: g.position,
+            tangent: g.tangent,
+            inc_rad: inc,
+            azi_rad: azi,
+            curvature_per_m: g.curvature_per_m,
+            dt_ds: g.dt_ds,
+        }
+    }
+
+    /// Position, tangent and curvature of the axis at `md_m`: [`WellPath::point_at`] without
+    /// the inclination and azimuth (two `atan2`), for the solver's nearest-point searches.
+    pub fn axis_at(&self, md_m: f64) -> AxisGeometry {
+        self.axis_geometry(md_m).0
+    }
+
+    /// The axis geometry at `md_m` and the index of the station interval (or end) used.
+    fn axis_geometry(&self, md_m: f64) -> (AxisGeometry, usize) {
         let n = self.md.len();
         let (position, t, kappa, dt_ds, k) = if n == 1 || md_m <= self.md[0] {
             let t = self.tan[0];
@@ -219,16 +254,15 @@ impl WellPath {
             };
             (p, t, kappa, dt, k)
         };
-        let (inc, azi) = inc_azi(&t, self.ref_azi[k]);
-        AxisPoint {
-            md_m,
-            position,
-            tangent: t,
-            inc_rad: inc,
-            azi_rad: azi,
-            curvature_per_m: kappa,
-            dt_ds,
-        }
+        (
+            AxisGeometry {
+                position,
+                tangent: t,
+                curvature_per_m: kappa,
+                dt_ds,
+            },
+            k,
+        )
     }
 
     /// Borehole frame (t, h, r) at `md_m`; where vertical, h points to the surveyed azimuth of
@@ -284,7 +318,7 @@ impl WellPath {
     pub fn nearest_md(&self, x: &Vec3, md_guess: f64) -> f64 {
         let mut s = md_guess;
         for _ in 0..30 {
-            let p = self.point_at(s);
+            let p = self.axis_at(s);
             let d = p.position - x;
             let g = d.dot(&p.tangent);
             let dg = 1.0 + d.dot(&p.dt_ds);
