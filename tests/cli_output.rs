@@ -359,20 +359,50 @@ fn progress_bar_only_on_a_terminal_and_not_with_quiet() {
     assert!(quiet.contains("predict: "));
 }
 
+/// `solve --report` at the cut levels: the report shows the stiff part (bit to coupling
+/// point) with a note naming the level; `hybrid` shows the soft string's hook load, `bha` says
+/// it is not computed; `soft` (nothing stiff to draw) is refused before anything runs, with one
+/// error naming `--report`, and no file.
 #[test]
-fn report_needs_the_whole_string_level() {
+fn report_at_the_cut_levels() {
+    let tmp = tempfile::tempdir().unwrap();
+    for level in ["hybrid", "bha"] {
+        let file = tmp.path().join(format!("{level}.html"));
+        let out = bin()
+            .args([
+                "solve",
+                &well("j-shape"),
+                "--fidelity",
+                level,
+                "--report",
+                file.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let html = std::fs::read_to_string(&file).unwrap();
+        assert!(
+            html.contains(&format!("Fidelity {level}: stiff model of the bottom")),
+            "{level}"
+        );
+        assert_eq!(html.contains("not computed (bha)"), level == "bha", "{level}");
+        assert!(!html.contains("NaN"));
+    }
+    let file = tmp.path().join("soft.html");
     let out = bin()
         .args([
             "solve",
             &well("j-shape"),
             "--fidelity",
-            "hybrid",
+            "soft",
             "--report",
-            "/tmp/never.html",
+            file.to_str().unwrap(),
         ])
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--report") && err.contains("whole"), "{err}");
+    assert!(err.contains("--report") && err.contains("soft"), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!file.exists());
 }

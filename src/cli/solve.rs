@@ -33,13 +33,10 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     }
     let choice = super::solve_levels::configure(&a, &mut case)?;
     if choice.level != crate::fidelity::Level::Whole {
-        if a.report.is_some() {
+        if a.report.is_some() && choice.level == crate::fidelity::Level::Soft {
             return Err(InputError::option(
                 "--report",
-                format!(
-                    "the solve report shows the whole string (contacts, deflection and stresses along it) and needs fidelity whole (or auto), not `{}`",
-                    choice.level.name()
-                ),
+                "fidelity soft has no stiff results to draw (contacts, deflection, stresses along the string); use bha, hybrid or whole",
             )
             .into());
         }
@@ -84,7 +81,18 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
             .with_context(|| format!("cannot write {}", dir.display()))?;
     }
     if let Some(file) = &a.report {
-        crate::report::solve_report::write(file, &case, &res, &marks, &sol.stats, sol.converged, a.units)?;
+        crate::report::solve_report::write(
+            file,
+            &case,
+            &res,
+            &marks,
+            &sol.stats,
+            sol.converged,
+            &crate::report::solve_report::ReportOptions {
+                units: a.units,
+                ..Default::default()
+            },
+        )?;
     }
     let mut out = std::io::stdout().lock();
     if a.json {

@@ -96,6 +96,9 @@ pub fn run(a: &SolveArgs, case: &Case, choice: Choice, quiet: bool) -> anyhow::R
         write_atomic(&dir.join("string.csv"), csv.as_bytes())
             .with_context(|| format!("cannot write {}", dir.display()))?;
     }
+    if let Some(file) = &a.report {
+        write_level_report(file, a, case, &lr)?;
+    }
     let mut out = std::io::stdout().lock();
     if a.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
@@ -211,4 +214,39 @@ fn print_summary(
         writeln!(out, "  wrote {}/summary.json and string.csv", dir.display())?;
     }
     Ok(())
+}
+
+/// The solve report of a `bha` or `hybrid` result: the stiff part from the bit to the coupling
+/// point, with the level's hook load and surface torque (hybrid) or none (bha).
+fn write_level_report(file: &std::path::Path, a: &SolveArgs, case: &Case, lr: &LevelResult) -> anyhow::Result<()> {
+    // soft is refused before the solve (cli::solve)
+    let Some((res, marks, surface)) = crate::report::levels_output::reported_stiff_part(case, lr) else {
+        bail!(
+            "internal error: no stiff part to report for fidelity {}",
+            lr.choice.level.name()
+        );
+    };
+    let fem = lr.fem.as_ref().expect("a stiff part");
+    let shown = res
+        .nodes
+        .last()
+        .map(|n| case.operation.bit_md_m - n.md_m)
+        .unwrap_or(0.0);
+    let note = format!(
+        "Fidelity {}: stiff model of the bottom {} of the string only (cut {} above the bit, results shown up to the coupling point); {}",
+        lr.choice.level.name(),
+        a.units.depth().fmt(shown, 1),
+        a.units.depth().fmt(lr.cut_m.unwrap_or(shown), 1),
+        if surface {
+            "hook load and surface torque from the soft string above the coupling point."
+        } else {
+            "no hook load or surface torque (use hybrid or whole)."
+        }
+    );
+    let scope = crate::report::solve_report::ReportOptions {
+        units: a.units,
+        note: Some(note),
+        no_surface_values: !surface,
+    };
+    crate::report::solve_report::write(file, case, &res, &marks, &fem.stats, lr.converged, &scope)
 }

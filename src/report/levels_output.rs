@@ -325,3 +325,28 @@ pub fn levels_summary(case: &Case, lr: &LevelResult, marks: &[Mark]) -> Result<V
         "buckling": buckling_json(marks, model)?,
     }))
 }
+
+/// The stiff results of a `bha` or `hybrid` result as the solve report shows them: the FEM
+/// nodes from the bit to the coupling point with their buckling marks; for `hybrid` the hook
+/// load and surface torque are the level's (soft string above the cut), for `bha` they are not
+/// computed (`surface_values` false). None for `soft` (no stiff part).
+pub fn reported_stiff_part(
+    case: &Case,
+    lr: &LevelResult,
+) -> Option<(crate::fem::results::SolveResults, Vec<Mark>, bool)> {
+    let part = lr.fem.as_ref()?;
+    let last = last_reported(case, lr, part);
+    let mut res = crate::fem::results::SolveResults {
+        nodes: part.results.nodes[..=last].to_vec(),
+        ..part.results.clone()
+    };
+    let surface = match (lr.hook_load_n, lr.surface_torque_nm) {
+        (Some(h), Some(t)) => {
+            res.hook_load_n = h;
+            res.surface_torque_nm = t;
+            true
+        }
+        _ => false,
+    };
+    Some((res, fem_marks(case, part, last), surface))
+}

@@ -110,15 +110,30 @@ pub fn axial_force_chart(res: &SolveResults, marks: &[Mark], du: DisplayUnit, fu
     c
 }
 
-/// The report's HTML text (`marks`: buckling marks at the nodes of `res`, may be empty).
+/// How a solve report is shown: units, and what part of the string it covers.
+#[derive(Debug, Clone, Default)]
+pub struct ReportOptions {
+    /// Units shown.
+    pub units: UnitSystem,
+    /// A sentence shown at the top when the report does not cover the whole stiff string
+    /// (the fidelity level and what it leaves out); None for the whole string.
+    pub note: Option<String>,
+    /// False when the model gives no hook load or surface torque (`bha`): the key results
+    /// say "not computed" instead of showing `res`'s values (the axial force at the cut).
+    pub no_surface_values: bool,
+}
+
+/// The report's HTML text (`marks`: buckling marks at the nodes of `res`, may be empty;
+/// `scope`: units and what the results cover).
 pub fn solve_report(
     case: &Case,
     res: &SolveResults,
     marks: &[Mark],
     stats: &SolveStats,
     converged: bool,
-    units: UnitSystem,
+    scope: &ReportOptions,
 ) -> Result<String, String> {
+    let units = scope.units;
     let (du, su, fu, tu, pu) = (
         units.depth(),
         units.small_length(),
@@ -130,6 +145,9 @@ pub fn solve_report(
     let mut page = Page::new(&format!("drillpath solve: {}", case.name));
     if !converged {
         page.warning("NOT CONVERGED: the results below are flagged and not valid.");
+    }
+    if let Some(note) = &scope.note {
+        page.note(note);
     }
     page.heading("Key results");
     let contacts: Vec<_> = res
@@ -152,8 +170,22 @@ pub fn solve_report(
             format!("{} deg", signed(b.tilt_azi_rad.to_degrees(), 4)),
         ),
         ("bit torque".into(), tu.fmt(b.torque_nm, 2)),
-        ("hook load".into(), fu.fmt(res.hook_load_n, 1)),
-        ("surface torque".into(), tu.fmt(res.surface_torque_nm, 2)),
+        (
+            "hook load".into(),
+            if scope.no_surface_values {
+                "not computed (bha)".into()
+            } else {
+                fu.fmt(res.hook_load_n, 1)
+            },
+        ),
+        (
+            "surface torque".into(),
+            if scope.no_surface_values {
+                "not computed (bha)".into()
+            } else {
+                tu.fmt(res.surface_torque_nm, 2)
+            },
+        ),
         ("contact nodes".into(), contacts.len().to_string()),
         ("largest contact force".into(), fu.fmt(max_contact, 2)),
     ];
@@ -342,9 +374,9 @@ pub fn write(
     marks: &[Mark],
     stats: &SolveStats,
     converged: bool,
-    units: UnitSystem,
+    scope: &ReportOptions,
 ) -> anyhow::Result<()> {
-    let html = solve_report(case, res, marks, stats, converged, units)
+    let html = solve_report(case, res, marks, stats, converged, scope)
         .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
     super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
 }
