@@ -8,7 +8,7 @@ use drillpath::buckling_marks::{marks, BuckleState};
 use drillpath::case::Case;
 use drillpath::fem::model::{Model, State};
 use drillpath::fem::results::{extract, SolveResults};
-use drillpath::fem::solve::{solve, solve_ip_from, SolveControls};
+use drillpath::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use std::f64::consts::FRAC_PI_2;
 
@@ -56,6 +56,20 @@ bha_element_length = "0.5 m"
     load_case(&dir.join("case.toml"), &CaseOverrides::default()).unwrap()
 }
 
+/// One load step of a continuation: the model of `case` solved from `prev` (the last step's
+/// state) with the interior-point Newton, or cold for the first step.
+fn continuation_step(case: &Case, prev: Option<State>, ctl: &SolveControls) -> (Model, Solution) {
+    let mut model = Model::from_case(case);
+    let sol = match prev {
+        None => solve(&model, ctl).unwrap(),
+        Some(st) => {
+            model.consistent_tangent = true;
+            solve_ip_from(&model, st, ctl).unwrap()
+        }
+    };
+    (model, sol)
+}
+
 /// Largest turn of the contact point away from the low side (deg) over nodes in contact.
 fn max_roll_deg(res: &SolveResults) -> f64 {
     res.nodes
@@ -82,14 +96,7 @@ fn stiff_sinusoidal_onset_within_10_percent_of_dawson_paslay() {
     for k in 0..=40 {
         let frac = 0.85 + 0.01 * k as f64;
         let case = horizontal_case(dir.path(), frac * fs);
-        let mut model = Model::from_case(&case);
-        let sol = match prev.take() {
-            None => solve(&model, &ctl).unwrap(),
-            Some(st) => {
-                model.consistent_tangent = true;
-                solve_ip_from(&model, st, &ctl).unwrap()
-            }
-        };
+        let (model, sol) = continuation_step(&case, prev.take(), &ctl);
         assert!(sol.converged, "not converged at {frac} F_s");
         let res = extract(&model, &sol, case.mud.density_kg_m3);
         let roll = max_roll_deg(&res);
@@ -182,14 +189,7 @@ fn post_buckled_pipe_lies_on_the_wall_beyond_the_helical_load() {
     let mut spread = 0.0;
     while frac <= target + 1e-9 {
         let case = horizontal_case(dir.path(), frac * fs);
-        let mut model = Model::from_case(&case);
-        let sol = match prev.take() {
-            None => solve(&model, &ctl).unwrap(),
-            Some(st) => {
-                model.consistent_tangent = true;
-                solve_ip_from(&model, st, &ctl).unwrap()
-            }
-        };
+        let (model, sol) = continuation_step(&case, prev.take(), &ctl);
         assert!(sol.converged, "not converged at {frac:.2} F_s");
         assert!(
             sol.stats.max_penetration <= ctl.gap_tolerance,
