@@ -225,6 +225,37 @@ pub fn marks(
         .collect()
 }
 
+/// Marks at the nodes of a stiff solve of `case`: the results `nodes` (bit first, possibly
+/// fewer than the mesh's) on the mesh of `model`.
+pub fn stiff_marks(
+    case: &crate::case::Case,
+    model: &crate::fem::model::Model,
+    nodes: &[crate::fem::results::NodeResult],
+) -> Vec<Mark> {
+    marks(
+        nodes
+            .iter()
+            .zip(&model.mesh.nodes)
+            .map(|(n, m)| (n.md_m, m.s_m, n.axial_force_n)),
+        &case.string,
+        &case.well.path,
+        &case.well.hole,
+        case.mud.density_kg_m3,
+    )
+}
+
+/// Marks at the points of the soft-string result `soft` of `case`, from point `skip` on.
+pub fn soft_marks(case: &crate::case::Case, soft: &crate::softstring::SoftStringResult, skip: usize) -> Vec<Mark> {
+    let bit = case.operation.bit_md_m;
+    marks(
+        soft.points[skip..].iter().map(|p| (p.md_m, bit - p.md_m, p.tension_n)),
+        &case.string,
+        &case.well.path,
+        &case.well.hole,
+        case.mud.density_kg_m3,
+    )
+}
+
 /// Contiguous buckled zones of `marks` (nodes in order along the string).
 pub fn zones(marks: &[Mark]) -> Vec<Zone> {
     let mut out: Vec<Zone> = Vec::new();

@@ -10,7 +10,7 @@
 //! Neither proves the stiff solve impossible, but both tell the user the case is at the edge
 //! of what the string can do, not only of what the solver can do.
 
-use crate::buckling_marks::{marks, zones, BuckleState};
+use crate::buckling_marks::{soft_marks, zones, BuckleState};
 use crate::case::Case;
 use crate::softstring;
 
@@ -31,14 +31,7 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
             case.operation.mode.name()
         ));
     }
-    let bit_md = case.operation.bit_md_m;
-    let m = marks(
-        soft.points.iter().map(|p| (p.md_m, bit_md - p.md_m, p.tension_n)),
-        &case.string,
-        &case.well.path,
-        &case.well.hole,
-        case.mud.density_kg_m3,
-    );
+    let m = soft_marks(case, &soft, 0);
     let helical: Vec<_> = zones(&m)
         .into_iter()
         .filter(|z| z.state == BuckleState::Helical)

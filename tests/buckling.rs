@@ -4,7 +4,7 @@
 //! Run with `cargo test --release --test buckling -- --nocapture` to see the ramp.
 
 use drillpath::analytical::buckling::sinusoidal_dawson_paslay;
-use drillpath::buckling_marks::{marks, BuckleState};
+use drillpath::buckling_marks::{stiff_marks, BuckleState};
 use drillpath::case::Case;
 use drillpath::fem::model::{Model, State};
 use drillpath::fem::results::{extract, SolveResults};
@@ -107,16 +107,7 @@ fn stiff_sinusoidal_onset_within_10_percent_of_dawson_paslay() {
         if roll > 5.0 {
             onset = Some(frac);
             // the marks on the FEM's axial force call the pipe buckled where it has rolled
-            let m = marks(
-                res.nodes
-                    .iter()
-                    .zip(&model.mesh.nodes)
-                    .map(|(n, mn)| (n.md_m, mn.s_m, n.axial_force_n)),
-                &case.string,
-                &case.well.path,
-                &case.well.hole,
-                case.mud.density_kg_m3,
-            );
+            let m = stiff_marks(&case, &model, &res.nodes);
             let inner = &m[20..m.len() - 20];
             assert!(
                 inner.iter().all(|x| x.state == BuckleState::Sinusoidal),
@@ -146,16 +137,7 @@ fn marks_below_onset_are_not_buckled() {
     assert!(sol.converged);
     let res = extract(&model, &sol, case.mud.density_kg_m3);
     assert!(max_roll_deg(&res) < 2.0);
-    let m = marks(
-        res.nodes
-            .iter()
-            .zip(&model.mesh.nodes)
-            .map(|(n, mn)| (n.md_m, mn.s_m, n.axial_force_n)),
-        &case.string,
-        &case.well.path,
-        &case.well.hole,
-        case.mud.density_kg_m3,
-    );
+    let m = stiff_marks(&case, &model, &res.nodes);
     assert!(m.iter().all(|x| x.state == BuckleState::None));
     let worst = m
         .iter()

@@ -71,15 +71,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     let csv = string_csv(&res).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let (csv, marks) =
         super::solve_levels::annotate_whole(&case, &choice, &model, &res, sol.stats.seconds, &mut summary, csv)?;
-    if let Some(dir) = &a.out {
-        write_atomic(
-            &dir.join("summary.json"),
-            serde_json::to_string_pretty(&summary)?.as_bytes(),
-        )
-        .with_context(|| format!("cannot write {}", dir.display()))?;
-        write_atomic(&dir.join("string.csv"), csv.as_bytes())
-            .with_context(|| format!("cannot write {}", dir.display()))?;
-    }
+    write_outputs(a.out.as_deref(), &summary, &csv)?;
     if let Some(file) = &a.report {
         crate::report::solve_report::write(
             file,
@@ -167,4 +159,15 @@ pub fn hints_suffix(case: &crate::case::Case) -> String {
         .iter()
         .map(|h| format!("; {h}"))
         .collect()
+}
+
+/// Write `summary.json` and `string.csv` into `dir` (each atomically), when `--out` is given.
+pub fn write_outputs(dir: Option<&std::path::Path>, summary: &serde_json::Value, csv: &str) -> anyhow::Result<()> {
+    let Some(dir) = dir else { return Ok(()) };
+    write_atomic(
+        &dir.join("summary.json"),
+        serde_json::to_string_pretty(summary)?.as_bytes(),
+    )
+    .with_context(|| format!("cannot write {}", dir.display()))?;
+    write_atomic(&dir.join("string.csv"), csv.as_bytes()).with_context(|| format!("cannot write {}", dir.display()))
 }

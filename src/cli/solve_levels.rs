@@ -14,7 +14,6 @@ use crate::report::display_units::{fixed, signed, UnitSystem};
 use crate::report::levels_output::{
     append_buckling_columns, buckling_json, levels_csv, levels_summary, requested_name,
 };
-use crate::report::write_atomic;
 use anyhow::{bail, Context};
 use std::io::Write;
 
@@ -35,18 +34,7 @@ pub fn annotate_whole(
     summary: &mut serde_json::Value,
     csv: String,
 ) -> anyhow::Result<(String, Vec<Mark>)> {
-    let nodes = res
-        .nodes
-        .iter()
-        .zip(&model.mesh.nodes)
-        .map(|(n, m)| (n.md_m, m.s_m, n.axial_force_n));
-    let marks = crate::buckling_marks::marks(
-        nodes,
-        &case.string,
-        &case.well.path,
-        &case.well.hole,
-        case.mud.density_kg_m3,
-    );
+    let marks = crate::buckling_marks::stiff_marks(case, model, &res.nodes);
     summary["fidelity"] = serde_json::json!({
         "requested": requested_name(choice.requested),
         "used": Level::Whole.name(),
@@ -87,15 +75,7 @@ pub fn run(a: &SolveArgs, case: &Case, choice: Choice, quiet: bool) -> anyhow::R
     }
     let (csv, marks) = levels_csv(case, &lr).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let summary = levels_summary(case, &lr, &marks).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
-    if let Some(dir) = &a.out {
-        write_atomic(
-            &dir.join("summary.json"),
-            serde_json::to_string_pretty(&summary)?.as_bytes(),
-        )
-        .with_context(|| format!("cannot write {}", dir.display()))?;
-        write_atomic(&dir.join("string.csv"), csv.as_bytes())
-            .with_context(|| format!("cannot write {}", dir.display()))?;
-    }
+    super::solve::write_outputs(a.out.as_deref(), &summary, &csv)?;
     if let Some(file) = &a.report {
         write_level_report(file, a, case, &lr)?;
     }

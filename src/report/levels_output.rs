@@ -5,7 +5,7 @@
 
 use super::solve_output::{CONTACT_THRESHOLD_N, STRING_HEADER};
 use super::{finite, num};
-use crate::buckling_marks::{marks, zones, BuckleState, Mark};
+use crate::buckling_marks::{soft_marks, stiff_marks, zones, BuckleState, Mark};
 use crate::case::{Case, Fidelity};
 use crate::fidelity::{coupling_node, FemPart, Level, LevelResult};
 use crate::softstring::SoftStringResult;
@@ -23,30 +23,7 @@ fn opt(x: Option<f64>, scale: f64) -> Result<Value, String> {
 
 /// Buckling marks at the nodes of the stiff part `part` (up to node `last` included).
 pub fn fem_marks(case: &Case, part: &FemPart, last: usize) -> Vec<Mark> {
-    let nodes = part.results.nodes[..=last]
-        .iter()
-        .zip(&part.model.mesh.nodes)
-        .map(|(n, m)| (n.md_m, m.s_m, n.axial_force_n));
-    marks(
-        nodes,
-        &case.string,
-        &case.well.path,
-        &case.well.hole,
-        case.mud.density_kg_m3,
-    )
-}
-
-/// Buckling marks at the points of a soft-string result (`skip` first points left out).
-pub fn soft_marks(case: &Case, soft: &SoftStringResult, skip: usize) -> Vec<Mark> {
-    let bit = case.operation.bit_md_m;
-    let nodes = soft.points[skip..].iter().map(|p| (p.md_m, bit - p.md_m, p.tension_n));
-    marks(
-        nodes,
-        &case.string,
-        &case.well.path,
-        &case.well.hole,
-        case.mud.density_kg_m3,
-    )
+    stiff_marks(case, &part.model, &part.results.nodes[..=last])
 }
 
 fn mark_cells(m: &Mark) -> Result<String, String> {
