@@ -84,8 +84,8 @@
 use super::band_lu::{BandLu, GeneralBand};
 use super::model::{Evaluation, Model, State, StiffnessSink, HALF_BANDWIDTH};
 use super::solve::{
-    constrain_and_factor, load_scale, residual_norm, smooth_start, soft_string_start, wind_up_start, Linear, Solution,
-    SolveControls, SolveError, SolveStats, MAX_BENDING_ROTATION_STEP,
+    bordered_step, constrain_and_factor, load_scale, residual_norm, smooth_start, soft_string_start, wind_up_start,
+    Linear, Solution, SolveControls, SolveError, SolveStats, MAX_BENDING_ROTATION_STEP,
 };
 use crate::contact::gap::{evaluate as gap_evaluate, GapInput, ZERO_CLEARANCE_M};
 use std::time::Instant;
@@ -634,19 +634,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
         stats.iterations += 1;
         stats.residual_history.push(rn);
         inner += 1;
-        let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
-        lin.solve(&mut a);
-        let (du, dh) = if bordered {
-            let mut b = vec![0.0; n];
-            b[top_ax] = 1.0;
-            lin.solve(&mut b);
-            let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
-            let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
-            let dh = if kbb.abs() > 1e-30 { (c + kba) / kbb } else { 0.0 };
-            (a.iter().zip(&b).map(|(x, y)| x - dh * y).collect::<Vec<f64>>(), dh)
-        } else {
-            (a, 0.0)
-        };
+        let (du, dh) = bordered_step(&lin, &r, &kb, c, top_ax, bordered);
         let mut ratio: f64 = 0.0;
         let mut worst = 0usize;
         for i in 0..nn {

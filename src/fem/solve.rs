@@ -538,6 +538,32 @@ pub(crate) fn bordered_parts(
     (bit_row(model, lin, constrained), c, r)
 }
 
+/// Newton step of the bordered system with the factored tangent in `lin`: `K du = -r` with
+/// the hook-load column at the top axial DOF `top_ax` when `bordered` (the WOB equation
+/// `kb . du = -c` fixes the hook-load change `dh`; two back-substitutions of the same factor),
+/// else `K du = -r` alone with `dh = 0`. Returns `(du, dh)`.
+pub(crate) fn bordered_step(
+    lin: &Linear,
+    r: &[f64],
+    kb: &[(usize, f64)],
+    c: f64,
+    top_ax: usize,
+    bordered: bool,
+) -> (Vec<f64>, f64) {
+    let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
+    lin.solve(&mut a);
+    if !bordered {
+        return (a, 0.0);
+    }
+    let mut b = vec![0.0; r.len()];
+    b[top_ax] = 1.0;
+    lin.solve(&mut b);
+    let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
+    let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
+    let dh = if kbb.abs() > 1e-30 { (c + kba) / kbb } else { 0.0 };
+    (a.iter().zip(&b).map(|(x, y)| x - dh * y).collect(), dh)
+}
+
 /// Row of the bit's axial DOF of the assembled tangent over the free columns.
 fn bit_row(model: &Model, lin: &Linear, constrained: &[usize]) -> Vec<(usize, f64)> {
     let bit_ax = model.dof(0, 0);
@@ -687,7 +713,6 @@ pub fn solve_from(
     strategy: &Strategy,
 ) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
-    let n = model.dofs();
     let mut lin = Linear::for_model(model);
     let constrained = model.constrained_dofs();
     let top = model.nodes() - 1;
@@ -805,21 +830,9 @@ pub fn solve_from(
         constrain_and_factor(model, &mut lin, &constrained)?;
         stats.factorizations += 1;
         stats.negative_pivots = lin.negative_pivots();
-        let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
-        lin.solve(&mut a);
         let hook_before = state.hook_load_n;
-        let du = if bordered {
-            let mut b = vec![0.0; n];
-            b[top_ax] = 1.0;
-            lin.solve(&mut b);
-            let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
-            let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();
-            let dh = if kbb.abs() > 1e-30 { (c + kba) / kbb } else { 0.0 };
-            state.hook_load_n += dh;
-            a.iter().zip(&b).map(|(x, y)| x - dh * y).collect::<Vec<f64>>()
-        } else {
-            a
-        };
+        let (du, dh) = bordered_step(&lin, &r, &kb, c, top_ax, bordered);
+        state.hook_load_n += dh;
         // cap lateral motion to one clearance per iteration (physics.md 4.5)
         let mut ratio: f64 = 0.0;
         for i in 0..model.nodes() {
