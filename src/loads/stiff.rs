@@ -37,7 +37,7 @@ use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::Case;
 use crate::fem::model::{Model, State};
 use crate::fem::results::{extract, SolveResults};
-use crate::fem::solve::{solve, solve_ip_from, SolveControls};
+use crate::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
 use crate::fidelity::{choose, run as run_level, Level};
 use crate::string::DrillString;
 use crate::warm::{source_by_distance, transport_mapped, Source};
@@ -229,12 +229,10 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
         };
         match solve_ip_from(&consistent, state, &warm_ctl) {
             Ok(sol) if sol.converged => {
-                let res = extract(&model, &sol, case.mud.density_kg_m3);
-                let friction_torque = rotating_friction_torque(&model, &res, model.nodes() - 1);
                 let out = converged(
                     case,
-                    &res,
-                    friction_torque,
+                    &model,
+                    &sol,
                     sol.stats.iterations,
                     t0.elapsed().as_secs_f64(),
                     start,
@@ -250,12 +248,10 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
     }
     match solve(&model, &ctl) {
         Ok(sol) if sol.converged => {
-            let res = extract(&model, &sol, case.mud.density_kg_m3);
-            let friction_torque = rotating_friction_torque(&model, &res, model.nodes() - 1);
             let out = converged(
                 case,
-                &res,
-                friction_torque,
+                &model,
+                &sol,
                 iterations + sol.stats.iterations,
                 t0.elapsed().as_secs_f64(),
                 Start::Cold,
@@ -277,14 +273,17 @@ fn top_radius(case: &Case) -> f64 {
     case.string.components.last().map_or(0.0, |c| c.body_od_m / 2.0)
 }
 
+/// The row of a converged whole-string solve `sol` of `model` (`iterations` over its attempts).
 fn converged(
     case: &Case,
-    res: &SolveResults,
-    friction_torque_nm: f64,
+    model: &Model,
+    sol: &Solution,
     iterations: usize,
     seconds: f64,
     start: Start,
 ) -> StiffOutcome {
+    let res = extract(model, sol, case.mud.density_kg_m3);
+    let friction_torque_nm = rotating_friction_torque(model, &res, model.nodes() - 1);
     let max_f = res.nodes.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     StiffOutcome::Converged {
         loads: RowLoads {
