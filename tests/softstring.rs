@@ -44,6 +44,55 @@ fn pipe(len: f64, w_air: f64, tj: Option<f64>) -> Component {
     }
 }
 
+/// The straight section of physics.md 6.5 exact check (b): 1,200 m of 300 N/m pipe (contact
+/// radius `R_C`, its tool joints) hanging from 100 m MD in a straight 40 deg hole (azimuth
+/// 30 deg) of 8.5 in, 1.1 sg mud, friction `F`, bit at 1,300 m, no WOB or bit torque, 3.3 m
+/// elements.
+struct StraightSection {
+    p: WellPath,
+    hole: HoleSize,
+    s: DrillString,
+    /// Inclination, rad.
+    inc: f64,
+    /// Buoyed weight, N/m.
+    w_b: f64,
+}
+
+impl StraightSection {
+    const L: f64 = 1200.0;
+    const F: f64 = 0.3;
+    const R_C: f64 = 0.0841375;
+
+    fn new() -> StraightSection {
+        StraightSection {
+            p: path(&[(0.0, 40.0, 30.0), (1500.0, 40.0, 30.0)]),
+            hole: HoleSize::uniform(0.2159),
+            s: DrillString {
+                components: vec![pipe(Self::L, 300.0, Some(2.0 * Self::R_C))],
+            },
+            inc: 40f64.to_radians(),
+            w_b: 300.0 * (1.0 - 1100.0 / 7850.0),
+        }
+    }
+
+    /// The pass's input with axial speed `v_a` (m/s) and rotary speed `omega` (rad/s).
+    fn input(&self, v_a: f64, omega: f64) -> SoftStringInput<'_> {
+        SoftStringInput {
+            path: &self.p,
+            hole: &self.hole,
+            string: &self.s,
+            mud_density_kg_m3: 1100.0,
+            bit_md_m: 1300.0,
+            wob_n: 0.0,
+            bit_torque_nm: 0.0,
+            axial_speed_m_s: v_a,
+            omega_rad_s: omega,
+            friction: Self::F,
+            max_element_m: 3.3,
+        }
+    }
+}
+
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
@@ -328,28 +377,15 @@ fn exact_hanging_weight_when_rotating() {
 /// tension: F = w_b L (cos I +/- f sin I), torque f w_b L sin I R_c (1e-9 relative).
 #[test]
 fn exact_straight_inclined_section() {
-    let (inc, l, f, r_c) = (40f64.to_radians(), 1200.0, 0.3, 0.0841375);
-    let p = path(&[(0.0, 40.0, 30.0), (1500.0, 40.0, 30.0)]);
-    let hole = HoleSize::uniform(0.2159);
-    let s = DrillString {
-        components: vec![pipe(l, 300.0, Some(2.0 * r_c))],
-    };
-    let w_b = 300.0 * (1.0 - 1100.0 / 7850.0);
-    let run = |v_a: f64, omega: f64| {
-        soft_string(&SoftStringInput {
-            path: &p,
-            hole: &hole,
-            string: &s,
-            mud_density_kg_m3: 1100.0,
-            bit_md_m: 1300.0,
-            wob_n: 0.0,
-            bit_torque_nm: 0.0,
-            axial_speed_m_s: v_a,
-            omega_rad_s: omega,
-            friction: f,
-            max_element_m: 3.3,
-        })
-    };
+    let sec = StraightSection::new();
+    let (inc, l, f, r_c, w_b) = (
+        sec.inc,
+        StraightSection::L,
+        StraightSection::F,
+        StraightSection::R_C,
+        sec.w_b,
+    );
+    let run = |v_a: f64, omega: f64| soft_string(&sec.input(v_a, omega));
     let out = run(-0.5, 0.0);
     let inn = run(0.5, 0.0);
     let rot = run(0.0, 5.0);
@@ -377,26 +413,15 @@ fn exact_straight_inclined_section() {
 /// enters (N = w_b sin I / sqrt(1 + (f v_t/|v|)^2)); sliding without rotation is Johancsik's.
 #[test]
 fn stiff_contact_variant_straight_inclined_section() {
-    let (inc, l, f, r_c) = (40f64.to_radians(), 1200.0, 0.3, 0.0841375);
-    let p = path(&[(0.0, 40.0, 30.0), (1500.0, 40.0, 30.0)]);
-    let hole = HoleSize::uniform(0.2159);
-    let s = DrillString {
-        components: vec![pipe(l, 300.0, Some(2.0 * r_c))],
-    };
-    let w_b = 300.0 * (1.0 - 1100.0 / 7850.0);
-    let input = |v_a: f64, omega: f64| SoftStringInput {
-        path: &p,
-        hole: &hole,
-        string: &s,
-        mud_density_kg_m3: 1100.0,
-        bit_md_m: 1300.0,
-        wob_n: 0.0,
-        bit_torque_nm: 0.0,
-        axial_speed_m_s: v_a,
-        omega_rad_s: omega,
-        friction: f,
-        max_element_m: 3.3,
-    };
+    let sec = StraightSection::new();
+    let (inc, l, f, r_c, w_b) = (
+        sec.inc,
+        StraightSection::L,
+        StraightSection::F,
+        StraightSection::R_C,
+        sec.w_b,
+    );
+    let input = |v_a: f64, omega: f64| sec.input(v_a, omega);
     let rot = soft_string_stiff_contact(&input(0.0, 5.0));
     let n = w_b * inc.sin() / (1.0 + f * f).sqrt();
     assert!(rel(rot.surface_torque_nm, f * n * l * r_c) < 1e-9);
