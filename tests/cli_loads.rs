@@ -234,6 +234,40 @@ fn fidelity_options_are_checked_and_reported() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole")), "{csv}");
+    // stdout prints a second table with the stiff values: its last line (1,000 m) shows the
+    // stiff trip-out hook load of loads.csv (reference: the CSV, to the printed 0.1 kN), which
+    // differs from the soft one printed in the first table
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let tables: Vec<&str> = stdout
+        .lines()
+        .filter(|l| l.trim_start().starts_with("1000.0 |"))
+        .collect();
+    assert_eq!(tables.len(), 2, "{stdout}");
+    let trip_out = |line: &str| -> f64 {
+        line.split('|')
+            .nth(1)
+            .unwrap()
+            .split_whitespace()
+            .nth(1)
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let column = |row: &str, name: &str| -> f64 {
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let k = header.iter().position(|h| *h == name).unwrap();
+        row.split(',').nth(k).unwrap().parse().unwrap()
+    };
+    let row = csv.lines().find(|l| l.starts_with("1000.00,trip_out,")).unwrap();
+    assert!(
+        (trip_out(tables[1]) - column(row, "stiff_hook_load_kN")).abs() <= 0.051,
+        "{stdout}"
+    );
+    assert!(
+        (trip_out(tables[0]) - column(row, "hook_load_kN")).abs() <= 0.051,
+        "{stdout}"
+    );
+    assert!((trip_out(tables[0]) - trip_out(tables[1])).abs() > 0.2, "{stdout}");
     let out = run(dir.path(), &["--fidelity", "auto", "--out", "out"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(stdout.contains("fidelity soft: auto:"), "{stdout}");

@@ -10,7 +10,7 @@ use crate::fidelity::{choose, Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::io::measured_csv::read_measured_csv;
 use crate::loads::calibrate::{calibrate, calibrated_case};
-use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow};
+use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow, RowLoads};
 use crate::loads::stiff::{hybrid_depth, stiff_depth, Solved, Start, StiffOutcome};
 use crate::loads::{check_fits, depth_list, string_at_depth, ChartOperation, MODES};
 use crate::report::display_units::{fixed, UnitSystem};
@@ -187,7 +187,14 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     }
     print_summary(&rows, &depths, soft_s, a.units, &mut out)?;
     if stiff {
-        print_stiff_summary(&rows, choice.level, t1.elapsed().as_secs_f64(), a.units, &mut out)?;
+        print_stiff_summary(
+            &rows,
+            &depths,
+            choice.level,
+            t1.elapsed().as_secs_f64(),
+            a.units,
+            &mut out,
+        )?;
     }
     match &a.out {
         Some(dir) => writeln!(out, "  wrote {}/loads.csv", dir.display())?,
@@ -266,9 +273,10 @@ fn run_stiff(
     }
 }
 
-/// Time, iterations and starts of the stiff rows, and the rows that did not converge.
+/// Time, iterations and starts of the stiff rows, their table, and the rows that did not converge.
 fn print_stiff_summary(
     rows: &[LoadRow],
+    depths: &[f64],
     level: Level,
     seconds: f64,
     units: UnitSystem,
@@ -304,6 +312,14 @@ fn print_stiff_summary(
     } else {
         writeln!(out, " (each row cold-started)")?;
     }
+    print_table(
+        rows,
+        depths,
+        units,
+        |r| r.stiff.as_ref().and_then(StiffOutcome::loads),
+        false,
+        out,
+    )?;
     let bad: Vec<String> = rows
         .iter()
         .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
@@ -316,6 +332,60 @@ fn print_stiff_summary(
             bad.len(),
             bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
         )?;
+    }
+    Ok(())
+}
+
+/// The chart's table in `units`: per bit depth (at most about 40 lines) the hook loads of the
+/// five load cases and the rotating torques taken from `loads` of each row ("-" where it gives
+/// none, e.g. a stiff row that did not converge), with the sliding row's sinusoidally buckled
+/// length when `buckled_column`.
+fn print_table<'a>(
+    rows: &'a [LoadRow],
+    depths: &[f64],
+    units: UnitSystem,
+    loads: impl Fn(&'a LoadRow) -> Option<&'a RowLoads>,
+    buckled_column: bool,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    write!(
+        out,
+        "  bit MD {} | hook load {}: trip_in  trip_out  rot_off  drilling  sliding | torque {}: rot_off  drilling",
+        du.label, fu.label, tu.label
+    )?;
+    if buckled_column {
+        write!(out, " | buckled {} (sliding)", du.label)?;
+    }
+    writeln!(out)?;
+    let stride = depths.len().div_ceil(40).max(1);
+    for (k, d) in depths.iter().enumerate() {
+        if k % stride != 0 && k + 1 != depths.len() {
+            continue;
+        }
+        let value = |m, f: &dyn Fn(&RowLoads) -> String| loads(row(rows, k, m)).map_or("-".to_string(), f);
+        let h = |m| value(m, &|l| fu.num(l.hook_load_n, 1));
+        let t = |m| value(m, &|l| tu.num(l.surface_torque_nm, 2));
+        write!(
+            out,
+            "  {:>9} | {:>9} {:>9} {:>8} {:>9} {:>8} | {:>8} {:>9}",
+            du.num(*d, 1),
+            h(Mode::TripIn),
+            h(Mode::TripOut),
+            h(Mode::RotatingOffBottom),
+            h(Mode::Drilling),
+            h(Mode::Sliding),
+            t(Mode::RotatingOffBottom),
+            t(Mode::Drilling),
+        )?;
+        if buckled_column {
+            write!(
+                out,
+                " | {:>7}",
+                du.num(row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m, 1)
+            )?;
+        }
+        writeln!(out)?;
     }
     Ok(())
 }
@@ -342,32 +412,7 @@ fn print_summary(
         MODES.len(),
         seconds
     )?;
-    writeln!(
-        out,
-        "  bit MD {} | hook load {}: trip_in  trip_out  rot_off  drilling  sliding | torque {}: rot_off  drilling | buckled {} (sliding)",
-        du.label, fu.label, tu.label, du.label
-    )?;
-    let stride = depths.len().div_ceil(40).max(1);
-    for (k, d) in depths.iter().enumerate() {
-        if k % stride != 0 && k + 1 != depths.len() {
-            continue;
-        }
-        let h = |m| fu.num(row(rows, k, m).soft.hook_load_n, 1);
-        let t = |m| tu.num(row(rows, k, m).soft.surface_torque_nm, 2);
-        writeln!(
-            out,
-            "  {:>9} | {:>9} {:>9} {:>8} {:>9} {:>8} | {:>8} {:>9} | {:>7}",
-            du.num(*d, 1),
-            h(Mode::TripIn),
-            h(Mode::TripOut),
-            h(Mode::RotatingOffBottom),
-            h(Mode::Drilling),
-            h(Mode::Sliding),
-            t(Mode::RotatingOffBottom),
-            t(Mode::Drilling),
-            du.num(row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m, 1)
-        )?;
-    }
+    print_table(rows, depths, units, |r| Some(&r.soft), true, out)?;
     let worst = rows
         .iter()
         .filter_map(|r| r.yield_.max_stress_ratio.map(|s| (s, r)))
