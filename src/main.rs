@@ -1,7 +1,7 @@
 //! The `drillpath` command: parse arguments, start logging, run, map errors to exit codes.
 
 use clap::Parser;
-use drillpath::cli::{args::Cli, run};
+use drillpath::cli::{args::Cli, progress::LogWriter, run};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
@@ -19,7 +19,7 @@ fn main() -> ExitCode {
         .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new(level));
     tracing_subscriber::fmt()
         .with_env_filter(filter)
-        .with_writer(std::io::stderr)
+        .with_writer(|| LogWriter)
         .without_time()
         .init();
     match run(cli) {

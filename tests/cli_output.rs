@@ -359,6 +359,60 @@ fn progress_bar_only_on_a_terminal_and_not_with_quiet() {
     assert!(quiet.contains("predict: "));
 }
 
+/// Log lines (`-vv`) on a terminal do not tear the progress bar: each is written on a cleared
+/// line (after indicatif's `\r` + erase-line, or at the start of a line), never appended to the
+/// bar's text. Reference: the escape sequences indicatif writes to clear its line.
+#[test]
+fn log_lines_do_not_tear_the_progress_bar() {
+    let have_script = Command::new("script")
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success());
+    if !have_script {
+        eprintln!("note: `script` (util-linux) not found; terminal progress not checked");
+        return;
+    }
+    let exe = env!("CARGO_BIN_EXE_drillpath");
+    let seed = well("seed-daqing");
+    let cmd = format!("'{exe}' -vv loads '{seed}' --from 700 --every 27 --fidelity whole");
+    let out = Command::new("script")
+        .args(["-q", "-e", "-c", &cmd, "/dev/null"])
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    let raw = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{raw}");
+    assert!(raw.contains("] 0/2"), "a bar is drawn: {raw}");
+    let pieces: Vec<&str> = raw.split("DEBUG").collect();
+    assert!(pieces.len() > 2, "debug lines are written: {raw}");
+    // what stands on the terminal line before "DEBUG": the text after the last carriage return
+    // or newline, without escape sequences (colour, erase line, cursor moves), must be empty
+    let visible = |tail: &str| -> String {
+        let mut text = String::new();
+        let mut chars = tail.chars();
+        while let Some(c) = chars.next() {
+            if c == '\x1b' {
+                for e in chars.by_ref() {
+                    if e.is_ascii_alphabetic() {
+                        break;
+                    }
+                }
+            } else {
+                text.push(c);
+            }
+        }
+        text
+    };
+    for before in &pieces[..pieces.len() - 1] {
+        let line = before.rsplit(['\r', '\n']).next().unwrap_or("");
+        assert!(
+            visible(line).is_empty(),
+            "log line appended to other output: ...{:?}",
+            &before[before.len().saturating_sub(120)..]
+        );
+    }
+}
+
 /// `solve --report` at the cut levels: the report shows the stiff part (bit to coupling
 /// point) with a note naming the level; `hybrid` shows the soft string's hook load, `bha` says
 /// it is not computed; `soft` (nothing stiff to draw) is refused before anything runs, with one
