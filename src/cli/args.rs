@@ -92,25 +92,12 @@ pub struct PredictArgs {
     /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Print summary.json on stdout instead of the readable summary.
-    #[arg(long)]
-    pub json: bool,
-    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
-    /// [default: no report].
-    #[arg(long, value_name = "FILE.html")]
-    pub report: Option<PathBuf>,
-    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
-    #[arg(long, value_enum, default_value = "si")]
-    pub units: UnitSystem,
-    /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
-    /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
-    /// forces) [default: the case's `[solver]` fidelity, auto].
-    #[arg(long, value_name = "LEVEL")]
-    pub fidelity: Option<String>,
-    /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
-    /// step; --step wins) [default: the case's `[solver]` accuracy, or its own settings].
-    #[arg(long, value_name = "PRESET")]
-    pub accuracy: Option<String>,
+    /// --json, --report, --units.
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// Model fidelity and accuracy preset.
+    #[command(flatten)]
+    pub model: PredictionModelArgs,
 }
 
 /// Arguments of `drillpath backanalyze`.
@@ -145,25 +132,12 @@ pub struct BackanalyzeArgs {
     /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate) [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Print summary.json on stdout instead of the readable summary.
-    #[arg(long)]
-    pub json: bool,
-    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
-    /// [default: no report].
-    #[arg(long, value_name = "FILE.html")]
-    pub report: Option<PathBuf>,
-    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
-    #[arg(long, value_enum, default_value = "si")]
-    pub units: UnitSystem,
-    /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
-    /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
-    /// forces) [default: the case's `[solver]` fidelity, auto].
-    #[arg(long, value_name = "LEVEL")]
-    pub fidelity: Option<String>,
-    /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
-    /// step; --step wins) [default: the case's `[solver]` accuracy, or its own settings].
-    #[arg(long, value_name = "PRESET")]
-    pub accuracy: Option<String>,
+    /// --json, --report, --units.
+    #[command(flatten)]
+    pub view: ViewArgs,
+    /// Model fidelity and accuracy preset.
+    #[command(flatten)]
+    pub model: PredictionModelArgs,
 }
 
 /// Arguments of `drillpath solve`.
@@ -174,22 +148,15 @@ pub struct SolveArgs {
     /// Bit measured depth (e.g. "2500 m", 8200ft; bare number = m) [default: the case's bit_md].
     #[arg(long, value_name = "MD")]
     pub bit_md: Option<String>,
-    /// Print summary.json on stdout instead of the readable summary.
-    #[arg(long)]
-    pub json: bool,
     /// Write summary.json and string.csv into this directory [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Write results of a non-converged solve, flagged `converged: false`, instead of failing.
     #[arg(long)]
     pub allow_unconverged: bool,
-    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
-    /// [default: no report].
-    #[arg(long, value_name = "FILE.html")]
-    pub report: Option<PathBuf>,
-    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
-    #[arg(long, value_enum, default_value = "si")]
-    pub units: UnitSystem,
+    /// --json, --report, --units.
+    #[command(flatten)]
+    pub view: ViewArgs,
     /// Model fidelity: auto, soft, bha, hybrid, whole [default: the case's `[solver]` fidelity, auto].
     #[arg(long, value_name = "LEVEL")]
     pub fidelity: Option<String>,
@@ -255,4 +222,33 @@ pub struct LoadsArgs {
     /// Units shown on stdout: si or oilfield (loads.csv and the calibration files stay SI).
     #[arg(long, value_enum, default_value = "si")]
     pub units: UnitSystem,
+}
+
+/// How a result is shown: `--json`, `--report`, `--units` (solve, predict, backanalyze).
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Print summary.json on stdout instead of the readable summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Write a self-contained HTML report (inline SVG plots, opens offline), e.g. `--report r.html`
+    /// [default: no report].
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Units shown on stdout and in the report: si or oilfield (CSV and JSON files stay SI).
+    #[arg(long, value_enum, default_value = "si")]
+    pub units: UnitSystem,
+}
+
+/// The model of a prediction: `--fidelity`, `--accuracy` (predict, backanalyze).
+#[derive(Debug, Args)]
+pub struct PredictionModelArgs {
+    /// Model fidelity: auto or bha (stiff bottom-hole assembly cut where it lies on the wall),
+    /// hybrid (same bit forces as bha), whole (stiff whole string, slower); soft is refused (no bit
+    /// forces) [default: the case's `[solver]` fidelity, auto].
+    #[arg(long, value_name = "LEVEL")]
+    pub fidelity: Option<String>,
+    /// Accuracy preset: fast, default, precise (sets element lengths, contact tolerance and the
+    /// step; --step wins) [default: the case's `[solver]` accuracy, or its own settings].
+    #[arg(long, value_name = "PRESET")]
+    pub accuracy: Option<String>,
 }

@@ -28,7 +28,7 @@ pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
 /// Run the command (`quiet`: no progress bar).
 pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let mut case = load_for_prediction(&a.case)?;
-    let choice = prediction_choice(&mut case, &a.fidelity, &a.accuracy)?;
+    let choice = prediction_choice(&mut case, &a.model.fidelity, &a.model.accuracy)?;
     let survey = &case.well.path;
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
@@ -186,16 +186,16 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
         )
         .with_context(ctx)?;
     }
-    if let Some(file) = &a.report {
+    if let Some(file) = &a.view.report {
         let split = a.calibrate.then_some(split_md);
-        crate::report::predict_report::write_backanalyze(file, &case, &results, split, a.units)?;
+        crate::report::predict_report::write_backanalyze(file, &case, &results, split, a.view.units)?;
     }
     let mut out = std::io::stdout().lock();
-    if a.json {
+    if a.view.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
-    let (du, eu) = (a.units.depth(), a.units.per_100());
+    let (du, eu) = (a.view.units.depth(), a.view.units.per_100());
     // error rates of the summary are in degrees per 100 m
     let rate = |deg_per_100m: f64| eu.fmt(deg_per_100m.to_radians() / 100.0, 3);
     writeln!(out, "backanalyze: {} ({})", case.name, name)?;

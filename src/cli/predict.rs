@@ -109,7 +109,7 @@ pub fn step_count(from: f64, to: f64, step: f64) -> u64 {
 
 fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::Result<CaseRun> {
     let mut case = load_for_prediction(path)?;
-    let choice = prediction_choice(&mut case, &a.fidelity, &a.accuracy)?;
+    let choice = prediction_choice(&mut case, &a.model.fidelity, &a.model.accuracy)?;
     let survey = &case.well.path;
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
@@ -134,7 +134,7 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
     let step = length_opt("--step", &a.step, MIN_STEP_M)?;
     let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M)?;
     let settings = settings_for(&case, step, cut, &choice)?;
-    let du = a.units.depth();
+    let du = a.view.units.depth();
     let step_m = settings.step_m.max(MIN_STEP_M);
     let n = step_count(from, to, step_m);
     // with --extrapolate: the march at the step (n steps), then at half of it (2n steps)
@@ -256,24 +256,24 @@ pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
         )
         .with_context(ctx)?;
     }
-    if let Some(file) = &a.report {
+    if let Some(file) = &a.view.report {
         let list: Vec<_> = runs.iter().map(|r| (&r.case, &r.pred)).collect();
-        crate::report::predict_report::write_predict(file, &list, a.units)?;
+        crate::report::predict_report::write_predict(file, &list, a.view.units)?;
     }
     let mut out = std::io::stdout().lock();
-    if a.json {
+    if a.view.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
     for r in &runs {
-        print_case(r, a.units, &mut out)?;
+        print_case(r, a.view.units, &mut out)?;
     }
     if !single {
         writeln!(
             out,
             "comparison (build/walk rates over the interval, means of the solved steps; comparison.csv in SI):"
         )?;
-        for line in comparison_table(&runs, a.units).lines() {
+        for line in comparison_table(&runs, a.view.units).lines() {
             writeln!(out, "  {line}")?;
         }
     }

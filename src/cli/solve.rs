@@ -33,7 +33,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     }
     let choice = super::solve_levels::configure(&a, &mut case)?;
     if choice.level != crate::fidelity::Level::Whole {
-        if a.report.is_some() && choice.level == crate::fidelity::Level::Soft {
+        if a.view.report.is_some() && choice.level == crate::fidelity::Level::Soft {
             return Err(InputError::option(
                 "--report",
                 "fidelity soft has no stiff results to draw (contacts, deflection, stresses along the string); use bha, hybrid or whole",
@@ -72,7 +72,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     let (csv, marks) =
         super::solve_levels::annotate_whole(&case, &choice, &model, &res, sol.stats.seconds, &mut summary, csv)?;
     write_outputs(a.out.as_deref(), &summary, &csv)?;
-    if let Some(file) = &a.report {
+    if let Some(file) = &a.view.report {
         crate::report::solve_report::write(
             file,
             &case,
@@ -81,17 +81,17 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
             &sol.stats,
             sol.converged,
             &crate::report::solve_report::ReportOptions {
-                units: a.units,
+                units: a.view.units,
                 ..Default::default()
             },
         )?;
     }
     let mut out = std::io::stdout().lock();
-    if a.json {
+    if a.view.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
-    let (du, fu) = (a.units.depth(), a.units.force());
+    let (du, fu) = (a.view.units.depth(), a.view.units.force());
     let b = &res.bit;
     let contacts: Vec<_> = res.nodes.iter().filter(|n| n.contact_force_n > 1.0).collect();
     writeln!(out, "solve: {} ({})", case.name, a.case.display())?;
@@ -103,7 +103,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         )?;
     }
     let lines = BitLines {
-        units: a.units,
+        units: a.view.units,
         case: &case,
         wob_n: b.wob_n,
         bit: Some(b),
@@ -114,7 +114,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         out,
         "  surface: hook load {}, torque {}",
         fu.fmt(res.hook_load_n, 1),
-        a.units.torque().fmt(res.surface_torque_nm, 2)
+        a.view.units.torque().fmt(res.surface_torque_nm, 2)
     )?;
     if let (Some(first), Some(last)) = (contacts.first(), contacts.last()) {
         let near: Vec<String> = contacts

@@ -76,11 +76,11 @@ pub fn run(a: &SolveArgs, case: &Case, choice: Choice, quiet: bool) -> anyhow::R
     let (csv, marks) = levels_csv(case, &lr).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     let summary = levels_summary(case, &lr, &marks).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     super::solve::write_outputs(a.out.as_deref(), &summary, &csv)?;
-    if let Some(file) = &a.report {
+    if let Some(file) = &a.view.report {
         write_level_report(file, a, case, &lr)?;
     }
     let mut out = std::io::stdout().lock();
-    if a.json {
+    if a.view.json {
         writeln!(out, "{}", serde_json::to_string_pretty(&summary)?)?;
         return Ok(());
     }
@@ -148,7 +148,7 @@ fn print_summary(
     summary: &serde_json::Value,
     out: &mut impl Write,
 ) -> std::io::Result<()> {
-    let (du, fu, tu) = (a.units.depth(), a.units.force(), a.units.torque());
+    let (du, fu, tu) = (a.view.units.depth(), a.view.units.force(), a.view.units.torque());
     writeln!(out, "solve: {} ({})", case.name, a.case.display())?;
     writeln!(out, "  fidelity {}: {}", lr.choice.level.name(), lr.choice.reason)?;
     if let Some(cut) = lr.cut_m {
@@ -166,7 +166,7 @@ fn print_summary(
         )?;
     }
     BitLines {
-        units: a.units,
+        units: a.view.units,
         case,
         wob_n: lr.wob_n,
         bit: lr.bit.as_ref(),
@@ -215,8 +215,8 @@ fn write_level_report(file: &std::path::Path, a: &SolveArgs, case: &Case, lr: &L
     let note = format!(
         "Fidelity {}: stiff model of the bottom {} of the string only (cut {} above the bit, results shown up to the coupling point); {}",
         lr.choice.level.name(),
-        a.units.depth().fmt(shown, 1),
-        a.units.depth().fmt(lr.cut_m.unwrap_or(shown), 1),
+        a.view.units.depth().fmt(shown, 1),
+        a.view.units.depth().fmt(lr.cut_m.unwrap_or(shown), 1),
         if surface {
             "hook load and surface torque from the soft string above the coupling point."
         } else {
@@ -224,7 +224,7 @@ fn write_level_report(file: &std::path::Path, a: &SolveArgs, case: &Case, lr: &L
         }
     );
     let scope = crate::report::solve_report::ReportOptions {
-        units: a.units,
+        units: a.view.units,
         note: Some(note),
         no_surface_values: !surface,
     };
