@@ -185,6 +185,42 @@ fn backanalyze_writes_errors_per_100m() {
     assert!(s["bit_rock"]["lateral_drillability"].as_f64().is_some());
 }
 
+/// Default start of back-analysis: below the hole sections more than 1 in wider than the bit
+/// (drilled by another BHA). Reference: the survey's stations; 12.25 in hole to 210 m above the
+/// 8.5 in bit's hole leaves the intervals 210-220-230-240 m (3); the same case without the wide
+/// section starts at 100 m (the first inclined station 30 m below the top: 5 intervals);
+/// `--from` overrides the rule.
+#[test]
+fn backanalyze_starts_below_the_wider_hole_by_default() {
+    let wide = CASE.replace(
+        r#"hole = [{ to_md = "1000 m", diameter = "8.5 in" }]"#,
+        r#"hole = [{ to_md = "210 m", diameter = "12.25 in" }, { to_md = "1000 m", diameter = "8.5 in" }]"#,
+    );
+    assert_ne!(wide, CASE);
+    let intervals = |case: &str, args: &[&str]| -> (u64, String) {
+        let dir = setup(case);
+        let mut all = vec!["--out", "out"];
+        all.extend_from_slice(args);
+        let o = run(dir.path(), "backanalyze", &all);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+        (
+            s["intervals"].as_u64().unwrap(),
+            String::from_utf8_lossy(&o.stdout).into_owned(),
+        )
+    };
+    let (n, stdout) = intervals(&wide, &[]);
+    assert_eq!(n, 3, "{stdout}");
+    assert!(stdout.contains("from: the hole below 210.0 m"), "{stdout}");
+    let (n, stdout) = intervals(CASE, &[]);
+    assert_eq!(n, 5, "{stdout}");
+    assert!(!stdout.contains("from: the hole below"), "{stdout}");
+    let (n, stdout) = intervals(&wide, &["--from", "200"]);
+    assert_eq!(n, 4, "{stdout}");
+    assert!(!stdout.contains("from: the hole below"), "{stdout}");
+}
+
 /// Design comparison: two BHAs (the case and a copy whose near-bit stabilizer is replaced by a
 /// collar, a pendulum-like string) over the same interval give one comparison table; the
 /// stabilized one builds more (textbook, physics.md 7.5).

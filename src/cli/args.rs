@@ -120,7 +120,8 @@ pub struct BackanalyzeArgs {
     #[arg(long, value_name = "LENGTH")]
     pub horizon: Option<String>,
     /// First interval starts at the first station at or below this MD [default: the first
-    /// station inclined 3 deg or more, with at least 30 m of hole above it].
+    /// station inclined 3 deg or more, with at least 30 m of hole above it, below the hole
+    /// sections wider than the bit (drilled by another BHA)].
     #[arg(long, value_name = "MD")]
     pub from: Option<String>,
     /// No interval ends below this MD [default: the last station].

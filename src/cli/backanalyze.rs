@@ -30,12 +30,15 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let mut case = load_for_prediction(&a.case)?;
     let choice = prediction_choice(&mut case, &a.model.fidelity, &a.model.accuracy)?;
     let survey = &case.well.path;
+    let bit_od_m = case.string.components.first().map_or(0.0, |c| c.contact_od_m);
+    // by default, only the hole this bit drilled: below the earlier (wider) hole sections
+    let previous_hole = case.well.hole.previous_hole_bottom_md(bit_od_m);
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
         None => survey
             .stations()
             .iter()
-            .find(|s| s.inc_rad >= DEFAULT_MIN_INCLINATION_DEG.to_radians())
+            .find(|s| s.inc_rad >= DEFAULT_MIN_INCLINATION_DEG.to_radians() && s.md_m >= previous_hole.unwrap_or(0.0))
             .map(|s| s.md_m)
             .unwrap_or(survey.md_end())
             .max(survey.md_start() + DEFAULT_START_DEPTH_M),
@@ -127,7 +130,13 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
             list.len()
         );
     }
-    let ncal = ((list.len() as f64 * a.split).round() as usize).clamp(2, list.len() - 2);
+    // calibration intervals (at least 2, and 2 left to score); used only with --calibrate, which
+    // needs 4 or more intervals (checked above)
+    let ncal = if list.len() >= 4 {
+        ((list.len() as f64 * a.split).round() as usize).clamp(2, list.len() - 2)
+    } else {
+        0
+    };
     let split_md = list[ncal].from_md_m;
     let stats_all = error_stats(&base);
     let mut summary = json!({
@@ -200,6 +209,13 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let rate = |deg_per_100m: f64| eu.fmt(deg_per_100m.to_radians() / 100.0, 3);
     writeln!(out, "backanalyze: {} ({})", case.name, name)?;
     writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
+    if let (None, Some(shoe)) = (&a.from, previous_hole) {
+        writeln!(
+            out,
+            "  from: the hole below {} (the wider hole above was drilled by another bit; give --from to include it)",
+            du.fmt(shoe, 1)
+        )?;
+    }
     for (iv, e) in &skipped {
         writeln!(
             out,

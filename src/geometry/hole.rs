@@ -79,7 +79,22 @@ impl HoleSize {
     pub fn deepest_md(&self) -> f64 {
         self.sections.last().map(|s| s.to_md_m).unwrap_or(0.0)
     }
+
+    /// Bottom of the hole drilled by larger bits than one of `bit_od_m`, m MD: the end of the run
+    /// of sections from the top that are more than [`PREVIOUS_HOLE_MARGIN_M`] wider than the bit
+    /// (the cased or earlier hole sections); `None` when the top section is not. A wide section
+    /// below bit-size hole is a washout, not earlier hole, and does not count.
+    pub fn previous_hole_bottom_md(&self, bit_od_m: f64) -> Option<f64> {
+        self.sections
+            .iter()
+            .take_while(|s| s.diameter_m > bit_od_m + PREVIOUS_HOLE_MARGIN_M)
+            .last()
+            .map(|s| s.to_md_m)
+    }
 }
+
+/// A hole section this much wider than the bit (1 in) was drilled by a larger bit, m.
+pub const PREVIOUS_HOLE_MARGIN_M: f64 = 0.0254;
 
 #[cfg(test)]
 mod tests {
@@ -109,5 +124,19 @@ mod tests {
         assert_eq!(h.diameter_at(4000.0), 0.216);
         assert_eq!(h.friction_at(500.0), Some(0.2));
         assert_eq!(h.friction_at(2000.0), None);
+        // reference: the 12.25 in (0.311 m) section ends at 1000 m above 8.5 in (0.216 m) hole
+        assert_eq!(h.previous_hole_bottom_md(0.216), Some(1000.0));
+        // a 12.25 in bit drilled all of it; a washout below bit-size hole is not earlier hole
+        assert_eq!(h.previous_hole_bottom_md(0.311), None);
+        let washout = |d: f64| HoleSection {
+            to_md_m: 0.0,
+            diameter_m: d,
+            friction: None,
+        };
+        let mut sections = vec![washout(0.216), washout(0.35), washout(0.216)];
+        for (k, s) in sections.iter_mut().enumerate() {
+            s.to_md_m = 100.0 * (k + 1) as f64;
+        }
+        assert_eq!(HoleSize::new(sections, vec![]).previous_hole_bottom_md(0.216), None);
     }
 }
