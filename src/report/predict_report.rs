@@ -36,6 +36,33 @@ fn measured(path: &WellPath, from: f64, to: f64) -> Vec<(f64, f64, f64, Vec3)> {
         .collect()
 }
 
+/// The "Trajectory" section of a report: the inclination and azimuth charts (both captioned
+/// `angles_caption`), the plan view and the vertical section along the azimuth at
+/// `section_azimuth_at` (e.g. "the start").
+fn trajectory_figures(
+    page: &mut Page,
+    [inc, azi, plan, sec]: [&Chart; 4],
+    angles_caption: &str,
+    section_azimuth_at: &str,
+) -> Result<(), String> {
+    page.heading("Trajectory");
+    page.figure("inclination", &render(inc)?, angles_caption);
+    page.figure("azimuth", &render(azi)?, angles_caption);
+    page.figure(
+        "plan-view",
+        &render(plan)?,
+        "north against east, same scale on both axes",
+    );
+    page.figure(
+        "vertical-section",
+        &render(sec)?,
+        &format!(
+            "TVD against the horizontal distance along the azimuth at {section_azimuth_at}, same scale on both axes"
+        ),
+    );
+    Ok(())
+}
+
 /// Azimuth in degrees kept continuous near `reference` (no jump at 0/360 within a plot).
 fn azi_deg(azi_rad: f64, reference_rad: f64) -> f64 {
     let d = crate::geometry::survey::wrap_pi(azi_rad - reference_rad);
@@ -291,27 +318,12 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
                 2 * k + 1,
             ));
     }
-    page.heading("Trajectory");
-    page.figure(
-        "inclination",
-        &render(&inc)?,
+    trajectory_figures(
+        &mut page,
+        [&inc, &azi, &plan, &sec],
         "predicted (line) and measured survey stations (points)",
-    );
-    page.figure(
-        "azimuth",
-        &render(&azi)?,
-        "predicted (line) and measured survey stations (points)",
-    );
-    page.figure(
-        "plan-view",
-        &render(&plan)?,
-        "north against east, same scale on both axes",
-    );
-    page.figure(
-        "vertical-section",
-        &render(&sec)?,
-        "TVD against the horizontal distance along the azimuth at the start, same scale on both axes",
-    );
+        "the start",
+    )?;
     page.heading("Bit");
     page.figure("bit-forces", &render(&forces)?, "bit side forces at each solved step");
     page.figure(
@@ -508,27 +520,12 @@ pub fn backanalyze_report(
         1,
     ));
     errors.zero_line = true;
-    page.heading("Trajectory");
-    page.figure(
-        "inclination",
-        &render(&inc)?,
+    trajectory_figures(
+        &mut page,
+        [&inc, &azi, &plan, &sec],
         "measured stations and the predicted value at each interval's end",
-    );
-    page.figure(
-        "azimuth",
-        &render(&azi)?,
-        "measured stations and the predicted value at each interval's end",
-    );
-    page.figure(
-        "plan-view",
-        &render(&plan)?,
-        "north against east, same scale on both axes",
-    );
-    page.figure(
-        "vertical-section",
-        &render(&sec)?,
-        "TVD against the horizontal distance along the azimuth at the last station, same scale on both axes",
-    );
+        "the last station",
+    )?;
     page.heading("Bit");
     page.figure(
         "bit-forces",
