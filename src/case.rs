@@ -206,7 +206,7 @@ pub struct SolverSettings {
 impl Default for SolverSettings {
     fn default() -> Self {
         SolverSettings {
-            element_length_m: 1.0,
+            element_length_m: 3.0,
             bha_element_length_m: 0.5,
             tolerance: 1e-4,
             fidelity: Fidelity::Auto,

@@ -266,7 +266,7 @@ pub fn run_with_progress(
     match out.choice.level {
         Level::Soft => {
             on_stage(0, n, "soft string");
-            let s = softstring::from_case(case, case.solver.element_length_m);
+            let s = softstring::from_case(case, softstring::segment_length_m(&case.solver));
             out.wob_n = -s.points[0].tension_n;
             out.bit_torque_nm = s.points[0].torque_nm;
             out.hook_load_n = Some(s.hook_load_n);
@@ -366,6 +366,6 @@ pub fn soft_above(case: &Case, part: &FemPart) -> SoftStringResult {
         axial_speed_m_s: op.axial_speed_m_s(),
         omega_rad_s: op.omega_rad_s(),
         friction: op.friction,
-        max_element_m: case.solver.element_length_m,
+        max_element_m: softstring::segment_length_m(&case.solver),
     })
 }

@@ -245,6 +245,17 @@ fn bit_diameter_m(string: &DrillString) -> Option<f64> {
         .map(|c| c.contact_od_m)
 }
 
+/// Longest soft-string segment, m: the soft string costs microseconds per 1,000 m, and its
+/// torque converges more slowly with the segment length than the stiff pipe mesh does (forge-16a
+/// surface torque: 0.9% between 1 m and 3 m segments; docs/performance.md "Pipe mesh").
+pub const MAX_SEGMENT_M: f64 = 1.0;
+
+/// The soft-string segment length for `settings`: its pipe element length, at most
+/// [`MAX_SEGMENT_M`], m.
+pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
+    settings.element_length_m.min(MAX_SEGMENT_M)
+}
+
 /// Soft-string pass for a case's operation, with elements of at most `max_element_m`.
 ///
 /// - Speeds from [`crate::case::Operation::axial_speed_m_s`] and

@@ -74,7 +74,7 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     }
     let settings = ChartSettings {
         op,
-        max_element_m: case.solver.element_length_m,
+        max_element_m: crate::softstring::segment_length_m(&case.solver),
     };
     let (du, su, fu, tu) = (
         a.units.depth(),
