@@ -138,62 +138,82 @@ pub fn strain_energy(st: &ElementState, s: &BeamSection) -> f64 {
         + 0.5 * s.gj / l0 * (tb1 - ta1).powi(2)
 }
 
-/// Internal force and tangent of the element in node-basis DOFs `[uA, wA, uB, wB]`.
 /// The matrix `B = d p_local / d p_global` (7 x 12, node-basis global DOFs) and the kinematics.
+///
+/// `B = [e1-row; T_s^-1(theta_A) P_A; T_s^-1(theta_B) P_B] M` with `P_A = [0 I 0 0] - G^T`,
+/// `P_B = [0 0 0 I] - G^T` (`G^T` the spin of the element frame, local components) and
+/// `M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B)`. Formed over the structural
+/// non-zeros only (`G^T` has 10 of 36, `P_A`/`P_B` zero columns 0, 6 and 11 or 5), each
+/// entry summed in the same order as the dense products (`b_matrix_dense` in the tests), so
+/// the result is bit for bit the dense one: a product with an exact zero adds nothing.
 fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
     let k = kinematics(st, l0);
     let rr = k.rr;
     let ln = k.ln;
-    // Local-component DOFs: p_loc = M p_hat, M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B).
     let ma = rr.transpose() * st.q_a;
     let mb = rr.transpose() * st.q_b;
-    // G^T: spin of the element frame in local components, acting on local-component DOFs.
     let q2 = k.q_loc.y;
     let eta = k.q_loc.x / q2;
     let (e11, e12) = (k.qa_loc.x / q2, k.qa_loc.y / q2);
     let (e21, e22) = (k.qb_loc.x / q2, k.qb_loc.y / q2);
-    let mut gt = SMatrix::<f64, 3, 12>::zeros();
-    gt[(0, 2)] = eta / ln;
-    gt[(0, 3)] = e12 / 2.0;
-    gt[(0, 4)] = -e11 / 2.0;
-    gt[(0, 8)] = -eta / ln;
-    gt[(0, 9)] = e22 / 2.0;
-    gt[(0, 10)] = -e21 / 2.0;
-    gt[(1, 2)] = 1.0 / ln;
-    gt[(1, 8)] = -1.0 / ln;
-    gt[(2, 1)] = -1.0 / ln;
-    gt[(2, 7)] = 1.0 / ln;
-    // P_A = [0 I 0 0] - G^T, P_B = [0 0 0 I] - G^T, then T_s^-1.
-    let mut pa = -gt;
-    let mut pb = -gt;
-    for i in 0..3 {
-        pa[(i, 3 + i)] += 1.0;
-        pb[(i, 9 + i)] += 1.0;
-    }
-    let ta = k.ti_a * pa;
-    let tb = k.ti_b * pb;
-    // B in local-component DOFs (7 x 12), then to node bases by M.
-    let mut bl = SMatrix::<f64, 7, 12>::zeros();
-    // du = r1 . (duB - duA): in local components r1 = e1.
-    bl[(0, 0)] = -1.0;
-    bl[(0, 6)] = 1.0;
-    for j in 0..12 {
-        for i in 0..3 {
-            bl[(1 + i, j)] = ta[(i, j)];
-            bl[(4 + i, j)] = tb[(i, j)];
-        }
-    }
-    let mut b = SMatrix::<f64, 7, 12>::zeros();
-    for blk in 0..4 {
-        let m = if blk < 2 { &ma } else { &mb };
-        for i in 0..7 {
-            for c in 0..3 {
-                let mut acc = 0.0;
-                for r in 0..3 {
-                    acc += bl[(i, 3 * blk + r)] * m[(r, c)];
-                }
-                b[(i, 3 * blk + c)] = acc;
+    // the non-zeros of -G^T (entries of P_A and P_B off their identity blocks)
+    let g02 = -(eta / ln);
+    let g03 = -(e12 / 2.0);
+    let g04 = -(-e11 / 2.0);
+    let g08 = -(-eta / ln);
+    let g09 = -(e22 / 2.0);
+    let g0a = -(-e21 / 2.0);
+    let g12 = -(1.0 / ln);
+    let g18 = -(-1.0 / ln);
+    let g21 = -(-1.0 / ln);
+    let g27 = -(1.0 / ln);
+    // T P (3 x 12) for one end: `a3`/`a4`/`a5` are the P entries of the identity block
+    // columns 3..6 (A end) or 9..12 (B end); columns with a zero P column stay zero
+    let tp = |ti: &Matrix3<f64>, end_b: bool| -> [[f64; 12]; 3] {
+        let mut t = [[0.0; 12]; 3];
+        for (i, row) in t.iter_mut().enumerate() {
+            let (c0, c1, c2) = (ti[(i, 0)], ti[(i, 1)], ti[(i, 2)]);
+            row[1] = c2 * g21;
+            row[2] = c0 * g02 + c1 * g12;
+            row[7] = c2 * g27;
+            row[8] = c0 * g08 + c1 * g18;
+            if end_b {
+                row[3] = c0 * g03;
+                row[4] = c0 * g04;
+                row[9] = c0 * (g09 + 1.0);
+                row[10] = c0 * g0a + c1;
+                row[11] = c2;
+            } else {
+                row[3] = c0 * (g03 + 1.0);
+                row[4] = c0 * g04 + c1;
+                row[5] = c2;
+                row[9] = c0 * g09;
+                row[10] = c0 * g0a;
             }
+        }
+        t
+    };
+    let ta = tp(&k.ti_a, false);
+    let tb = tp(&k.ti_b, true);
+    let mut b = SMatrix::<f64, 7, 12>::zeros();
+    // du = r1 . (duB - duA): the first row of M for each end
+    for c in 0..3 {
+        b[(0, c)] = 0.0 + -ma[(0, c)];
+        b[(0, 6 + c)] = 0.0 + mb[(0, c)];
+    }
+    // rows (T P) M, block by block over the rows of M that meet a non-zero of T P (the
+    // zero columns: 0, 6, 11 at the A end, 0, 5, 6 at the B end)
+    for i in 0..3 {
+        let (a, bb) = (&ta[i], &tb[i]);
+        for c in 0..3 {
+            b[(1 + i, c)] = 0.0 + a[1] * ma[(1, c)] + a[2] * ma[(2, c)];
+            b[(1 + i, 3 + c)] = 0.0 + a[3] * ma[(0, c)] + a[4] * ma[(1, c)] + a[5] * ma[(2, c)];
+            b[(1 + i, 6 + c)] = 0.0 + a[7] * mb[(1, c)] + a[8] * mb[(2, c)];
+            b[(1 + i, 9 + c)] = 0.0 + a[9] * mb[(0, c)] + a[10] * mb[(1, c)];
+            b[(4 + i, c)] = 0.0 + bb[1] * ma[(1, c)] + bb[2] * ma[(2, c)];
+            b[(4 + i, 3 + c)] = 0.0 + bb[3] * ma[(0, c)] + bb[4] * ma[(1, c)];
+            b[(4 + i, 6 + c)] = 0.0 + bb[7] * mb[(1, c)] + bb[8] * mb[(2, c)];
+            b[(4 + i, 9 + c)] = 0.0 + bb[9] * mb[(0, c)] + bb[10] * mb[(1, c)] + bb[11] * mb[(2, c)];
         }
     }
     (b, k)
@@ -249,10 +269,36 @@ pub fn element_forces(st: &ElementState, s: &BeamSection, with_geometric: bool) 
     response(st, s, with_geometric, false, None)
 }
 
+/// Local DOFs coupled by the local tangent: the axial force and bending (elongation and the
+/// bending rotations) and the twist; [`super::beam::local_response`] couples no DOF of one group
+/// to one of the other (the axial strain does not depend on the twist).
+const AXIAL_BENDING: [usize; 5] = [0, 2, 3, 5, 6];
+const TWIST: [usize; 2] = [1, 4];
+
 /// `B^T K B` for a symmetric 7x7 `K`: only the upper triangle of the (symmetric) result is
 /// formed and mirrored (hand-written: about 2/3 of the multiplications of the plain product).
+/// `K B` runs over the non-zeros of `K` only ([`AXIAL_BENDING`], [`TWIST`]), summed in the
+/// dense product's order, so the result is bit for bit that of `(K * B)`.
 fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
-    let c = kl * b;
+    debug_assert!(AXIAL_BENDING
+        .iter()
+        .all(|&i| TWIST.iter().all(|&r| kl[(i, r)] == 0.0 && kl[(r, i)] == 0.0)));
+    let mut c = SMatrix::<f64, 7, 12>::zeros();
+    let [a0, a1, a2, a3, a4] = AXIAL_BENDING;
+    let [t0, t1] = TWIST;
+    for j in 0..12 {
+        let bj = b.column(j);
+        for i in AXIAL_BENDING {
+            c[(i, j)] = kl[(i, a0)] * bj[a0]
+                + kl[(i, a1)] * bj[a1]
+                + kl[(i, a2)] * bj[a2]
+                + kl[(i, a3)] * bj[a3]
+                + kl[(i, a4)] * bj[a4];
+        }
+        for i in TWIST {
+            c[(i, j)] = kl[(i, t0)] * bj[t0] + kl[(i, t1)] * bj[t1];
+        }
+    }
     let mut out = Mat12::zeros();
     for j in 0..12 {
         for i in 0..=j {
@@ -749,6 +795,67 @@ mod tests {
             }
         }
     }
+    /// The dense form of [`b_matrix`] (its first version): the bit-for-bit oracle of the sparse
+    /// one.
+    fn b_matrix_dense(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
+        let k = kinematics(st, l0);
+        let rr = k.rr;
+        let ln = k.ln;
+        // Local-component DOFs: p_loc = M p_hat, M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B).
+        let ma = rr.transpose() * st.q_a;
+        let mb = rr.transpose() * st.q_b;
+        // G^T: spin of the element frame in local components, acting on local-component DOFs.
+        let q2 = k.q_loc.y;
+        let eta = k.q_loc.x / q2;
+        let (e11, e12) = (k.qa_loc.x / q2, k.qa_loc.y / q2);
+        let (e21, e22) = (k.qb_loc.x / q2, k.qb_loc.y / q2);
+        let mut gt = SMatrix::<f64, 3, 12>::zeros();
+        gt[(0, 2)] = eta / ln;
+        gt[(0, 3)] = e12 / 2.0;
+        gt[(0, 4)] = -e11 / 2.0;
+        gt[(0, 8)] = -eta / ln;
+        gt[(0, 9)] = e22 / 2.0;
+        gt[(0, 10)] = -e21 / 2.0;
+        gt[(1, 2)] = 1.0 / ln;
+        gt[(1, 8)] = -1.0 / ln;
+        gt[(2, 1)] = -1.0 / ln;
+        gt[(2, 7)] = 1.0 / ln;
+        // P_A = [0 I 0 0] - G^T, P_B = [0 0 0 I] - G^T, then T_s^-1.
+        let mut pa = -gt;
+        let mut pb = -gt;
+        for i in 0..3 {
+            pa[(i, 3 + i)] += 1.0;
+            pb[(i, 9 + i)] += 1.0;
+        }
+        let ta = k.ti_a * pa;
+        let tb = k.ti_b * pb;
+        // B in local-component DOFs (7 x 12), then to node bases by M.
+        let mut bl = SMatrix::<f64, 7, 12>::zeros();
+        // du = r1 . (duB - duA): in local components r1 = e1.
+        bl[(0, 0)] = -1.0;
+        bl[(0, 6)] = 1.0;
+        for j in 0..12 {
+            for i in 0..3 {
+                bl[(1 + i, j)] = ta[(i, j)];
+                bl[(4 + i, j)] = tb[(i, j)];
+            }
+        }
+        let mut b = SMatrix::<f64, 7, 12>::zeros();
+        for blk in 0..4 {
+            let m = if blk < 2 { &ma } else { &mb };
+            for i in 0..7 {
+                for c in 0..3 {
+                    let mut acc = 0.0;
+                    for r in 0..3 {
+                        acc += bl[(i, 3 * blk + r)] * m[(r, c)];
+                    }
+                    b[(i, 3 * blk + c)] = acc;
+                }
+            }
+        }
+        (b, k)
+    }
+
     /// Deterministic pseudo-random numbers in [-1, 1) (64-bit LCG, top bits).
     struct Lcg(u64);
     impl Lcg {
@@ -761,6 +868,61 @@ mod tests {
         }
         fn vec(&mut self, scale: f64) -> Vec3 {
             Vec3::new(self.next(), self.next(), self.next()) * scale
+        }
+    }
+
+    #[test]
+    fn sparse_b_and_congruence_equal_the_dense_products_bit_for_bit() {
+        // Oracle: the dense products of the first version (`b_matrix_dense`, `K * B` by
+        // nalgebra); tolerance: none (every entry identical), on random states far from the
+        // node bases with bending, twist and stretch, with and without the geometric term.
+        let mut rng = Lcg(777);
+        for case in 0..300 {
+            let q_a = exp_so3(&rng.vec(3.0));
+            let q_b = exp_so3(&rng.vec(0.05)) * q_a;
+            let rigid = exp_so3(&rng.vec(2.5));
+            let l0 = 0.5 + rng.next().abs();
+            let x_a = rng.vec(10.0);
+            let x_b = x_a + rigid * (q_a.column(0) * (l0 * (1.0 + 1e-3 * rng.next())) + rng.vec(0.05 * l0));
+            let lam_a = rigid * exp_so3(&rng.vec(0.3)) * q_a;
+            let lam_b = rigid * exp_so3(&(rng.vec(0.3) + q_a.column(0) * 0.5 * rng.next())) * q_a;
+            let st = ElementState {
+                x_a: &x_a,
+                x_b: &x_b,
+                lam_a: &lam_a,
+                lam_b: &lam_b,
+                q_a: &q_a,
+                q_b: &q_b,
+            };
+            let (b, k) = b_matrix(&st, l0);
+            let (bd, _) = b_matrix_dense(&st, l0);
+            for (x, y) in b.iter().zip(bd.iter()) {
+                assert_eq!(x.to_bits(), y.to_bits(), "case {case}: B {b} vs dense {bd}");
+            }
+            let s = BeamSection {
+                l0,
+                ea: 3.6e9,
+                ei: 7.3e6,
+                gj: 5.6e6,
+            };
+            let loc = local_response(&s, &k.p, case % 3 != 0);
+            let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
+            let c = kl * b;
+            let mut dense = Mat12::zeros();
+            for j in 0..12 {
+                for i in 0..=j {
+                    let mut acc = 0.0;
+                    for r in 0..7 {
+                        acc += b[(r, i)] * c[(r, j)];
+                    }
+                    dense[(i, j)] = acc;
+                    dense[(j, i)] = acc;
+                }
+            }
+            let sparse = congruence(&b, &kl);
+            for (x, y) in sparse.iter().zip(dense.iter()) {
+                assert_eq!(x.to_bits(), y.to_bits(), "case {case}: B^T K B");
+            }
         }
     }
 
