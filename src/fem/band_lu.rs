@@ -27,7 +27,19 @@ impl GeneralBand {
             n,
             b,
             w,
-            data: vec![0.0; n * w],
+            data: super::buffers::zeroed(n * w),
+            constraint_scale: None,
+        }
+    }
+    /// Matrix of order `n`, half-bandwidth `b`, with unspecified (finite) entries: storage
+    /// that is completely written before it is read (the LU factor).
+    fn for_overwrite(n: usize, b: usize) -> Self {
+        let w = 2 * b + 1;
+        GeneralBand {
+            n,
+            b,
+            w,
+            data: super::buffers::for_overwrite(n * w),
             constraint_scale: None,
         }
     }
@@ -190,6 +202,12 @@ impl GeneralBand {
     }
 }
 
+impl Drop for GeneralBand {
+    fn drop(&mut self) {
+        super::buffers::give_back(std::mem::take(&mut self.data));
+    }
+}
+
 /// Half-bandwidth of the 6-DOF node chain, for which [`BandLu::factor`] has an unrolled kernel.
 const CHAIN_HALF_BANDWIDTH: usize = 11;
 
@@ -266,7 +284,8 @@ impl BandLu {
     /// Allocate for order `n`, half-bandwidth `b`.
     pub fn new(n: usize, b: usize) -> Self {
         BandLu {
-            f: GeneralBand::zeros(n, b),
+            // every row is written (copied from the matrix) before the elimination reads it
+            f: GeneralBand::for_overwrite(n, b),
             ok: false,
             diag: vec![0.0; n],
             inv_pivot: vec![0.0; n],
