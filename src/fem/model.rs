@@ -383,7 +383,34 @@ impl Model {
     /// Evaluate residual (and, if `k` is given, assemble the tangent into it) at `state`.
     /// Updates each node's nearest-axis MD in `state.md`.
     pub fn evaluate(&self, state: &mut State, k: Option<&mut dyn StiffnessSink>) -> Evaluation {
+        self.evaluate_with(state, k, None)
+    }
+
+    /// [`Model::evaluate`] without the tangent, taking the element responses from `elements`
+    /// (the [`Evaluation::elements`] of an evaluation at the same node positions and triads)
+    /// instead of computing them again: for a second evaluation of the same configuration with
+    /// other contact settings (the solver's final evaluation with exact multipliers). The
+    /// result is the same as `evaluate(state, None)` bit for bit.
+    ///
+    /// # Panics
+    /// If `elements` does not hold one response per element.
+    pub fn evaluate_reusing_elements(&self, state: &mut State, elements: Vec<ElementForces>) -> Evaluation {
+        assert_eq!(
+            elements.len(),
+            self.nodes().saturating_sub(1),
+            "Model::evaluate_reusing_elements: one response per element"
+        );
+        self.evaluate_with(state, None, Some(elements))
+    }
+
+    fn evaluate_with(
+        &self,
+        state: &mut State,
+        k: Option<&mut dyn StiffnessSink>,
+        reuse: Option<Vec<ElementForces>>,
+    ) -> Evaluation {
         let nn = self.nodes();
+        let mut reuse = reuse.map(|v| v.into_iter());
         let mut r = vec![0.0; self.dofs()];
         let mut kmat = k;
         if let Some(km) = kmat.as_deref_mut() {
@@ -406,7 +433,9 @@ impl Model {
                 q_a: &self.basis[a],
                 q_b: &self.basis[b],
             };
-            let resp = if kmat.is_some() {
+            let resp = if let Some(prev) = reuse.as_mut() {
+                prev.next().expect("one response per element")
+            } else if kmat.is_some() {
                 element_response_into(
                     &st,
                     &self.sections[e],
