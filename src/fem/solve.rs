@@ -1280,9 +1280,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     state.lcp_nodes = None;
     state.implicit_friction = false;
     state.exact_multipliers = true;
-    let ev_final = model.evaluate(&mut state, None);
+    // same positions and triads as the last evaluation: its element responses are reused
+    let ev_final = model.evaluate_reusing_elements(&mut state, ev.elements);
     state.exact_multipliers = false;
-    let _ = ev;
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state,
