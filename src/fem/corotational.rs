@@ -299,15 +299,22 @@ fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
             c[(i, j)] = kl[(i, t0)] * bj[t0] + kl[(i, t1)] * bj[t1];
         }
     }
+    // B^T C column by column (each entry summed over r in order, as the triangular loop of
+    // the first version did; the full product vectorizes where the triangle did not), then
+    // the upper triangle mirrored
+    let bt = b.transpose();
     let mut out = Mat12::zeros();
     for j in 0..12 {
-        for i in 0..=j {
-            let mut acc = 0.0;
-            for r in 0..7 {
-                acc += b[(r, i)] * c[(r, j)];
+        let mut col = [0.0; 12];
+        for r in 0..7 {
+            let crj = c[(r, j)];
+            for (x, &v) in col.iter_mut().zip(bt.column(r).iter()) {
+                *x += v * crj;
             }
-            out[(i, j)] = acc;
-            out[(j, i)] = acc;
+        }
+        for (i, &v) in col.iter().enumerate().take(j + 1) {
+            out[(i, j)] = v;
+            out[(j, i)] = v;
         }
     }
     out
