@@ -147,6 +147,14 @@ pub fn strain_energy(st: &ElementState, s: &BeamSection) -> f64 {
 /// entry summed in the same order as the dense products (`b_matrix_dense` in the tests), so
 /// the result is bit for bit the dense one: a product with an exact zero adds nothing.
 fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
+    let mut b = SMatrix::<f64, 7, 12>::zeros();
+    let k = b_matrix_into(st, l0, &mut b);
+    (b, k)
+}
+
+/// [`b_matrix`] written into `b` (every entry set), the kinematics returned: no 7 x 12
+/// temporary moved around.
+fn b_matrix_into(st: &ElementState, l0: f64, b: &mut SMatrix<f64, 7, 12>) -> Kinematics {
     let k = kinematics(st, l0);
     let rr = k.rr;
     let ln = k.ln;
@@ -195,11 +203,12 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
     };
     let ta = tp(&k.ti_a, false);
     let tb = tp(&k.ti_b, true);
-    let mut b = SMatrix::<f64, 7, 12>::zeros();
     // du = r1 . (duB - duA): the first row of M for each end
     for c in 0..3 {
         b[(0, c)] = 0.0 + -ma[(0, c)];
+        b[(0, 3 + c)] = 0.0;
         b[(0, 6 + c)] = 0.0 + mb[(0, c)];
+        b[(0, 9 + c)] = 0.0;
     }
     // rows (T P) M, block by block over the rows of M that meet a non-zero of T P (the
     // zero columns: 0, 6, 11 at the A end, 0, 5, 6 at the B end)
@@ -216,7 +225,7 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
             b[(4 + i, 9 + c)] = 0.0 + bb[9] * mb[(0, c)] + bb[10] * mb[(1, c)] + bb[11] * mb[(2, c)];
         }
     }
-    (b, k)
+    k
 }
 
 /// Internal force and tangent of the element in node-basis DOFs `[uA, wA, uB, wB]`.
@@ -275,11 +284,11 @@ pub fn element_forces(st: &ElementState, s: &BeamSection, with_geometric: bool) 
 const AXIAL_BENDING: [usize; 5] = [0, 2, 3, 5, 6];
 const TWIST: [usize; 2] = [1, 4];
 
-/// `B^T K B` for a symmetric 7x7 `K`: only the upper triangle of the (symmetric) result is
+/// `B^T K B` for a symmetric 7x7 `K`, written into `out`: only the upper triangle of the (symmetric) result is
 /// formed and mirrored (hand-written: about 2/3 of the multiplications of the plain product).
 /// `K B` runs over the non-zeros of `K` only ([`AXIAL_BENDING`], [`TWIST`]), summed in the
 /// dense product's order, so the result is bit for bit that of `(K * B)`.
-fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
+fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>, out: &mut Mat12) {
     debug_assert!(AXIAL_BENDING
         .iter()
         .all(|&i| TWIST.iter().all(|&r| kl[(i, r)] == 0.0 && kl[(r, i)] == 0.0)));
@@ -303,7 +312,6 @@ fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
     // the first version did; the full product vectorizes where the triangle did not), then
     // the upper triangle mirrored
     let bt = b.transpose();
-    let mut out = Mat12::zeros();
     for j in 0..12 {
         let mut col = [0.0; 12];
         for r in 0..7 {
@@ -317,7 +325,6 @@ fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
             out[(j, i)] = v;
         }
     }
-    out
 }
 
 fn response(
@@ -327,7 +334,8 @@ fn response(
     consistent: bool,
     tangent_out: Option<&mut Mat12>,
 ) -> ElementForces {
-    let (b, k) = b_matrix(st, s.l0);
+    let mut b = SMatrix::<f64, 7, 12>::zeros();
+    let k = b_matrix_into(st, s.l0, &mut b);
     let loc = local_response(s, &k.p, with_geometric);
     let rr = k.rr;
     let ln = k.ln;
@@ -352,9 +360,9 @@ fn response(
         return forces;
     };
     let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
-    *tangent = congruence(&b, &kl);
+    congruence(&b, &kl, tangent);
     if consistent {
-        *tangent += geometric_tangent(st, &k, &fl);
+        add_geometric_tangent(st, &k, &fl, tangent);
         return forces;
     }
     // Geometric term of the elongation: N/l (I - r1 r1^T) on the translations (node bases).
@@ -415,7 +423,16 @@ fn d_tinv_t_m(theta: &Vec3, m: &Vec3) -> Matrix3<f64> {
 /// node bases are applied once at the end. The dense 3 x 12 form of the same derivation
 /// (`geometric_tangent_dense` in the tests) and central differences
 /// ([`geometric_tangent_by_differences`]) check it.
+#[cfg(test)]
 fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) -> Mat12 {
+    let mut out = Mat12::zeros();
+    add_geometric_tangent(st, k, fl, &mut out);
+    out
+}
+
+/// `out += (dB^T/dp_global) f_local` (see `geometric_tangent`, its test form, for the
+/// derivation), each entry added once (no 12x12 temporary).
+fn add_geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>, out: &mut Mat12) {
     type Blocks = [[Matrix3<f64>; 4]; 4];
     let rr = k.rr;
     let l = k.ln;
@@ -537,15 +554,14 @@ fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) ->
     }
     // to node bases: K = Qblk^T K_s Qblk
     let qs = [st.q_a, st.q_a, st.q_b, st.q_b];
-    let mut out = Mat12::zeros();
     for bi in 0..4 {
         let qt = qs[bi].transpose();
         for bj in 0..4 {
             let blk = qt * kb[bi][bj] * qs[bj];
-            out.fixed_view_mut::<3, 3>(3 * bi, 3 * bj).copy_from(&blk);
+            let mut dst = out.fixed_view_mut::<3, 3>(3 * bi, 3 * bj);
+            dst += blk;
         }
     }
-    out
 }
 
 /// Node positions and triads of `st` moved by `h` along global DOF `j` (0..12, node bases):
@@ -926,7 +942,8 @@ mod tests {
                     dense[(j, i)] = acc;
                 }
             }
-            let sparse = congruence(&b, &kl);
+            let mut sparse = Mat12::zeros();
+            congruence(&b, &kl, &mut sparse);
             for (x, y) in sparse.iter().zip(dense.iter()) {
                 assert_eq!(x.to_bits(), y.to_bits(), "case {case}: B^T K B");
             }
