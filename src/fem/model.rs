@@ -258,12 +258,14 @@ impl Model {
                 Matrix3::from_columns(&[t, b1, b2])
             })
             .collect();
+        // axis positions of the nodes (each shared by the two elements that meet there)
+        let axis: Vec<Vec3> = md_ref.iter().map(|&md| path.axis_at(md).position).collect();
         let sections = mesh
             .elements
             .iter()
             .enumerate()
             .map(|(e, el)| {
-                let l0 = (path.point_at(md_ref[e + 1]).position - path.point_at(md_ref[e]).position).norm();
+                let l0 = (axis[e + 1] - axis[e]).norm();
                 BeamSection {
                     l0,
                     ea: el.ea,
@@ -340,7 +342,7 @@ impl Model {
     /// Initial state: nodes on the hole axis (a cut top at its offset), triads = node bases.
     pub fn initial_state(&self) -> State {
         let nn = self.nodes();
-        let mut x: Vec<Vec3> = self.md_ref.iter().map(|&m| self.path.point_at(m).position).collect();
+        let mut x: Vec<Vec3> = self.md_ref.iter().map(|&m| self.path.axis_at(m).position).collect();
         if let TopCondition::Cut { offset_m } = self.top {
             x[nn - 1] += offset_m;
         }
