@@ -554,12 +554,46 @@ fn add_geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>
     }
     // to node bases: K = Qblk^T K_s Qblk
     let qs = [st.q_a, st.q_a, st.q_b, st.q_b];
-    for bi in 0..4 {
-        let qt = qs[bi].transpose();
-        for bj in 0..4 {
-            let blk = qt * kb[bi][bj] * qs[bj];
-            let mut dst = out.fixed_view_mut::<3, 3>(3 * bi, 3 * bj);
-            dst += blk;
+    for (bi, row) in kb.iter().enumerate() {
+        for pair in [0usize, 2] {
+            add_congruence_pair(qs[bi], qs[pair], &row[pair], &row[pair + 1], out, 3 * bi, 3 * pair);
+        }
+    }
+}
+
+/// `out[r0.., c0..] += Q_r^T K_0 Q_c` and `out[r0.., c0 + 3..] += Q_r^T K_1 Q_c`: two 3x3
+/// blocks with the same bases, computed side by side (two lanes; vectorizes), each entry
+/// summed in the order of nalgebra's `(Q_r^T * K) * Q_c` (so bit for bit that product).
+#[inline(always)]
+fn add_congruence_pair(
+    q_r: &Matrix3<f64>,
+    q_c: &Matrix3<f64>,
+    k0: &Matrix3<f64>,
+    k1: &Matrix3<f64>,
+    out: &mut Mat12,
+    r0: usize,
+    c0: usize,
+) {
+    // T = Q_r^T K (lanes: K_0, K_1); T[i][j] = sum_r Q_r[r][i] K[r][j]
+    let mut t = [[[0.0f64; 2]; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let (a0, a1, a2) = (q_r[(0, i)], q_r[(1, i)], q_r[(2, i)]);
+            t[i][j] = [
+                a0 * k0[(0, j)] + a1 * k0[(1, j)] + a2 * k0[(2, j)],
+                a0 * k1[(0, j)] + a1 * k1[(1, j)] + a2 * k1[(2, j)],
+            ];
+        }
+    }
+    for i in 0..3 {
+        for j in 0..3 {
+            let (b0, b1, b2) = (q_c[(0, j)], q_c[(1, j)], q_c[(2, j)]);
+            let r = [
+                t[i][0][0] * b0 + t[i][1][0] * b1 + t[i][2][0] * b2,
+                t[i][0][1] * b0 + t[i][1][1] * b1 + t[i][2][1] * b2,
+            ];
+            out[(r0 + i, c0 + j)] += r[0];
+            out[(r0 + i, c0 + 3 + j)] += r[1];
         }
     }
 }
@@ -946,6 +980,30 @@ mod tests {
             congruence(&b, &kl, &mut sparse);
             for (x, y) in sparse.iter().zip(dense.iter()) {
                 assert_eq!(x.to_bits(), y.to_bits(), "case {case}: B^T K B");
+            }
+        }
+    }
+
+    #[test]
+    fn paired_block_congruence_equals_nalgebra_products_bit_for_bit() {
+        // Oracle: nalgebra's `(Q_r^T * K) * Q_c` added to the output, as the first version of
+        // the geometric tangent's change to node bases did; tolerance: none.
+        let mut rng = Lcg(4242);
+        for _ in 0..200 {
+            let q_r = exp_so3(&rng.vec(3.0));
+            let q_c = exp_so3(&rng.vec(3.0));
+            let k0 = Matrix3::from_fn(|_, _| 1e6 * rng.next());
+            let k1 = Matrix3::from_fn(|_, _| 1e3 * rng.next());
+            let base = Mat12::from_fn(|_, _| rng.next());
+            let mut out = base;
+            add_congruence_pair(&q_r, &q_c, &k0, &k1, &mut out, 3, 6);
+            let mut reference = base;
+            let mut d0 = reference.fixed_view_mut::<3, 3>(3, 6);
+            d0 += q_r.transpose() * k0 * q_c;
+            let mut d1 = reference.fixed_view_mut::<3, 3>(3, 9);
+            d1 += q_r.transpose() * k1 * q_c;
+            for (x, y) in out.iter().zip(reference.iter()) {
+                assert_eq!(x.to_bits(), y.to_bits());
             }
         }
     }
