@@ -144,6 +144,8 @@ pub struct Model {
     pub bit_md_m: f64,
     /// Reference MD of each node, m.
     pub md_ref: Vec<f64>,
+    /// Hole-axis position at each node's reference MD (`path.axis_at(md_ref[i]).position`), m.
+    pub axis_ref: Vec<Vec3>,
     /// DOF basis per node.
     pub basis: Vec<Matrix3<f64>>,
     /// Element sections (with stress-free chord length).
@@ -259,13 +261,13 @@ impl Model {
             })
             .collect();
         // axis positions of the nodes (each shared by the two elements that meet there)
-        let axis: Vec<Vec3> = md_ref.iter().map(|&md| path.axis_at(md).position).collect();
+        let axis_ref: Vec<Vec3> = md_ref.iter().map(|&md| path.axis_at(md).position).collect();
         let sections = mesh
             .elements
             .iter()
             .enumerate()
             .map(|(e, el)| {
-                let l0 = (axis[e + 1] - axis[e]).norm();
+                let l0 = (axis_ref[e + 1] - axis_ref[e]).norm();
                 BeamSection {
                     l0,
                     ea: el.ea,
@@ -289,6 +291,7 @@ impl Model {
             mesh,
             bit_md_m,
             md_ref,
+            axis_ref,
             basis,
             sections,
             friction,
@@ -342,7 +345,7 @@ impl Model {
     /// Initial state: nodes on the hole axis (a cut top at its offset), triads = node bases.
     pub fn initial_state(&self) -> State {
         let nn = self.nodes();
-        let mut x: Vec<Vec3> = self.md_ref.iter().map(|&m| self.path.axis_at(m).position).collect();
+        let mut x = self.axis_ref.clone();
         if let TopCondition::Cut { offset_m } = self.top {
             x[nn - 1] += offset_m;
         }
