@@ -31,7 +31,7 @@ impl GeneralBand {
             constraint_scale: None,
         }
     }
-    /// Matrix of order `n`, half-bandwidth `b`, with unspecified (finite) entries: storage
+    /// Matrix of order `n`, half-bandwidth `b`, with unspecified entries: storage
     /// that is completely written before it is read (the LU factor).
     fn for_overwrite(n: usize, b: usize) -> Self {
         let w = 2 * b + 1;

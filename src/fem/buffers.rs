@@ -23,8 +23,8 @@ pub fn zeroed(len: usize) -> Vec<f64> {
     v
 }
 
-/// A vector of length `len` whose values are unspecified (finite leftovers of an earlier use,
-/// or zeros): for storage that is completely written before it is read.
+/// A vector of length `len` whose values are unspecified (leftovers of an earlier use, not
+/// necessarily finite, or zeros): for storage that is completely written before it is read.
 pub fn for_overwrite(len: usize) -> Vec<f64> {
     reused(len)
 }
