@@ -1,8 +1,12 @@
 //! Solve timings (issues 3 and 5): converged `solve` at the default mesh of
 //! - a BHA-only model (~100 m: bit, near-bit stabilizer, collars, string stabilizer, collars,
 //!   42 m of HWDP; its top node is the top of the model) at 3,000 m in the 3,000 m well, cold
-//!   and warm-started from the previous solution after a 5% WOB change (what the trajectory
-//!   predictor does at each step);
+//!   and warm-started from the previous solution after a 5% WOB change;
+//! - the trajectory predictor's own BHA model of wells/j-shape at its bit depth
+//!   (`fem::bha::bha_model` at the default cut, 84.8 m, the top node held on the wall:
+//!   `TopCondition::Cut`), cold and warm-started the predictor's way (the state solved with
+//!   the bit 1 m shallower, carried over by `warm::transport_state`), which is what the
+//!   predictor does for every solve of a step;
 //! - 1,000, 3,000 and 10,000 m strings (the cost against length) and an 8,000 m string (the
 //!   same BHA, 140 m HWDP, 5 in drill pipe to surface) in generated build-and-hold wells
 //!   (vertical to 600 m, 2.5 deg/30 m to 35 deg, or 60 deg for 8,000 m, hold to TD;
@@ -17,10 +21,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use drillpath::case::Case;
-use drillpath::fem::model::Model;
+use drillpath::fem::bha::{bha_model, default_cut_m};
+use drillpath::fem::model::{Model, TopCondition};
 use drillpath::fem::solve::{solve, solve_ip_from, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::softstring;
+use drillpath::warm::transport_state;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -208,6 +214,7 @@ fn bench_solve(c: &mut Criterion) {
             });
         }
     }
+    bench_bha_cut(&mut group);
     // soft-string pass over the 3,000 m string (issue 5 target: < 0.5 ms)
     let soft = generated_case(3000.0, 35.0, &(bha(140.0) + DRILL_PIPE));
     let r = softstring::from_case(&soft, soft.solver.element_length_m);
@@ -221,6 +228,62 @@ fn bench_solve(c: &mut Criterion) {
         b.iter(|| softstring::from_case(&soft, soft.solver.element_length_m).hook_load_n)
     });
     group.finish();
+}
+
+/// The predictor's BHA model (`bha_model` at `default_cut_m`) of wells/j-shape, cold and
+/// warm-started from the solution with the bit 1 m shallower (`transport_state`).
+fn bench_bha_cut(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
+    let case = example_case("j-shape");
+    let path = &case.well.path;
+    let hole = &case.well.hole;
+    let bit = case.operation.bit_md_m;
+    let cut = default_cut_m(
+        &case.string,
+        hole.diameter_at(bit),
+        path.point_at(bit).inc_rad,
+        case.mud.density_kg_m3,
+    );
+    let model_at = |md: f64| {
+        let mut m = bha_model(&case, path, hole, md, cut);
+        m.consistent_tangent = true;
+        m
+    };
+    let (before, model) = (model_at(bit - 1.0), model_at(bit));
+    assert!(matches!(model.top, TopCondition::Cut { .. }), "the BHA model is cut");
+    let ctl = controls(&case);
+    let sol = solve(&model, &ctl).expect("solves");
+    assert!(sol.converged, "cut BHA model converges");
+    println!(
+        "bha_cut: cut {cut:.1} m above the bit, {} DOF, {} Newton iterations, {} factorizations",
+        model.dofs(),
+        sol.stats.iterations,
+        sol.stats.factorizations
+    );
+    group.bench_function("bha_cut", |b| {
+        b.iter(|| {
+            let sol = solve(&model, &ctl).expect("solves");
+            assert!(sol.converged);
+            sol.stats.iterations
+        })
+    });
+    let prev = solve(&before, &ctl).expect("solves");
+    assert!(prev.converged, "cut BHA model 1 m shallower converges");
+    let start = transport_state(&before, &prev.state, &model);
+    let sol_w = solve_ip_from(&model, start.clone(), &ctl).expect("solves");
+    assert!(sol_w.converged, "warm cut BHA solve converges");
+    println!(
+        "bha_cut_warm: {} DOF, {} Newton iterations, {} factorizations",
+        model.dofs(),
+        sol_w.stats.iterations,
+        sol_w.stats.factorizations
+    );
+    group.bench_function("bha_cut_warm", |b| {
+        b.iter(|| {
+            let s = solve_ip_from(&model, start.clone(), &ctl).expect("solves");
+            assert!(s.converged);
+            s.stats.iterations
+        })
+    });
 }
 
 criterion_group!(benches, bench_solve);

@@ -58,8 +58,8 @@ fn carry(prev_model: &Model, prev: &State, j: usize, model: &Model, i: usize, la
     let qp = &prev_model.basis[j];
     let qn = &model.basis[i];
     let rel = qn * qp.transpose();
-    let p_prev = prev_model.path.point_at(prev_model.md_ref[j]).position;
-    let p_new = model.path.point_at(model.md_ref[i]).position;
+    let p_prev = prev_model.axis_ref[j];
+    let p_new = model.axis_ref[i];
     let mut d = prev.x[j] - p_prev;
     if lateral_scale != 1.0 {
         // scale the part across the hole axis (node basis columns 1 and 2)

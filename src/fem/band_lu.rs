@@ -27,7 +27,19 @@ impl GeneralBand {
             n,
             b,
             w,
-            data: vec![0.0; n * w],
+            data: super::buffers::zeroed(n * w),
+            constraint_scale: None,
+        }
+    }
+    /// Matrix of order `n`, half-bandwidth `b`, with unspecified entries: storage
+    /// that is completely written before it is read (the LU factor).
+    fn for_overwrite(n: usize, b: usize) -> Self {
+        let w = 2 * b + 1;
+        GeneralBand {
+            n,
+            b,
+            w,
+            data: super::buffers::for_overwrite(n * w),
             constraint_scale: None,
         }
     }
@@ -190,6 +202,12 @@ impl GeneralBand {
     }
 }
 
+impl Drop for GeneralBand {
+    fn drop(&mut self) {
+        super::buffers::give_back(std::mem::take(&mut self.data));
+    }
+}
+
 /// Half-bandwidth of the 6-DOF node chain, for which [`BandLu::factor`] has an unrolled kernel.
 const CHAIN_HALF_BANDWIDTH: usize = 11;
 
@@ -221,19 +239,20 @@ fn eliminate_fixed<const B: usize>(data: &mut [f64], k: usize, pivot: f64) {
 /// them gives the same factor bit for bit with `(11 - k)^2` instead of 121 updates (38% of
 /// the work on average).
 #[inline(always)]
-fn eliminate_chain<const B: usize, const L: usize>(data: &mut [f64], k: usize, pivot: f64) {
-    let w = 2 * B + 1;
-    let (head, tail) = data.split_at_mut((k + 1) * w);
-    let mut row_k = [0.0; L];
-    row_k.copy_from_slice(&head[k * w + B + 1..k * w + B + 1 + L]);
-    for d in 1..=L {
-        let row_i = &mut tail[(d - 1) * w..d * w];
-        let off = B - d;
+fn eliminate_chain<const L: usize>(data: &mut [f64], k: usize, pivot: f64) {
+    const B: usize = CHAIN_HALF_BANDWIDTH;
+    const W: usize = 2 * B + 1;
+    let (head, tail) = data.split_at_mut((k + 1) * W);
+    let row_k: [f64; L] = head[k * W + B + 1..k * W + B + 1 + L].try_into().expect("row length L");
+    // rows k + 1 ..= k + L as fixed-width arrays (constant offsets once unrolled)
+    let rows = &mut tail.as_chunks_mut::<W>().0[..L];
+    for (d, row_i) in rows.iter_mut().enumerate() {
+        // row i = k + 1 + d: column k sits at offset B - 1 - d
+        let off = B - 1 - d;
         let lik = row_i[off] / pivot;
         row_i[off] = lik;
-        let dst = &mut row_i[off + 1..off + 1 + L];
-        for (x, &u) in dst.iter_mut().zip(row_k.iter()) {
-            *x -= lik * u;
+        for (j, &u) in row_k.iter().enumerate() {
+            row_i[off + 1 + j] -= lik * u;
         }
     }
 }
@@ -266,7 +285,8 @@ impl BandLu {
     /// Allocate for order `n`, half-bandwidth `b`.
     pub fn new(n: usize, b: usize) -> Self {
         BandLu {
-            f: GeneralBand::zeros(n, b),
+            // every row is written (copied from the matrix) before the elimination reads it
+            f: GeneralBand::for_overwrite(n, b),
             ok: false,
             diag: vec![0.0; n],
             inv_pivot: vec![0.0; n],
@@ -301,12 +321,15 @@ impl BandLu {
         );
         let w = self.f.w;
         if self.f.b == CHAIN_HALF_BANDWIDTH {
-            // fixed-length row copy: inlined moves instead of a memmove call per row
+            // fixed-length row copy in pieces of at most 64 bytes: inlined moves instead of a
+            // memcpy call per row (a 184-byte copy is left to the library)
             const W: usize = 2 * CHAIN_HALF_BANDWIDTH + 1;
             return self.eliminate(|i, row| {
                 let dst: &mut [f64; W] = row.try_into().expect("row length");
                 let src: &[f64; W] = a.data[i * W..(i + 1) * W].try_into().expect("row length");
-                *dst = *src;
+                for (d, s) in dst.chunks_mut(8).zip(src.chunks(8)) {
+                    d.copy_from_slice(s);
+                }
                 finish_row(i, row);
             });
         }
@@ -355,12 +378,12 @@ impl BandLu {
                 const B: usize = CHAIN_HALF_BANDWIDTH;
                 if chain {
                     match k % CHAIN_NODE_DOFS {
-                        0 => eliminate_chain::<B, 11>(data, k, pivot),
-                        1 => eliminate_chain::<B, 10>(data, k, pivot),
-                        2 => eliminate_chain::<B, 9>(data, k, pivot),
-                        3 => eliminate_chain::<B, 8>(data, k, pivot),
-                        4 => eliminate_chain::<B, 7>(data, k, pivot),
-                        _ => eliminate_chain::<B, 6>(data, k, pivot),
+                        0 => eliminate_chain::<11>(data, k, pivot),
+                        1 => eliminate_chain::<10>(data, k, pivot),
+                        2 => eliminate_chain::<9>(data, k, pivot),
+                        3 => eliminate_chain::<8>(data, k, pivot),
+                        4 => eliminate_chain::<7>(data, k, pivot),
+                        _ => eliminate_chain::<6>(data, k, pivot),
                     }
                 } else {
                     eliminate_fixed::<B>(data, k, pivot);

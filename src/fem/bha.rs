@@ -73,12 +73,12 @@ pub fn resting_offset(model: &Model) -> Vec3 {
     for e in 0..nn - 1 {
         let t = model
             .path
-            .point_at(0.5 * (model.md_ref[e] + model.md_ref[e + 1]))
+            .axis_at(0.5 * (model.md_ref[e] + model.md_ref[e + 1]))
             .tangent;
         tension += model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0 * t.z;
     }
     let top = nn - 1;
-    let p = model.path.point_at(model.md_ref[top]);
+    let p = model.path.axis_at(model.md_ref[top]);
     let w = model.mesh.elements[nn - 2].buoyed_weight_n_per_m;
     let ez = Vec3::new(0.0, 0.0, 1.0);
     let load = p.dt_ds * tension + (ez - p.tangent * p.tangent.z) * w;

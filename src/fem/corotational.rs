@@ -138,65 +138,94 @@ pub fn strain_energy(st: &ElementState, s: &BeamSection) -> f64 {
         + 0.5 * s.gj / l0 * (tb1 - ta1).powi(2)
 }
 
-/// Internal force and tangent of the element in node-basis DOFs `[uA, wA, uB, wB]`.
 /// The matrix `B = d p_local / d p_global` (7 x 12, node-basis global DOFs) and the kinematics.
+///
+/// `B = [e1-row; T_s^-1(theta_A) P_A; T_s^-1(theta_B) P_B] M` with `P_A = [0 I 0 0] - G^T`,
+/// `P_B = [0 0 0 I] - G^T` (`G^T` the spin of the element frame, local components) and
+/// `M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B)`. Formed over the structural
+/// non-zeros only (`G^T` has 10 of 36, `P_A`/`P_B` zero columns 0, 6 and 11 or 5), each
+/// entry summed in the same order as the dense products (`b_matrix_dense` in the tests), so
+/// the result is bit for bit the dense one: a product with an exact zero adds nothing.
 fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
+    let mut b = SMatrix::<f64, 7, 12>::zeros();
+    let k = b_matrix_into(st, l0, &mut b);
+    (b, k)
+}
+
+/// [`b_matrix`] written into `b` (every entry set), the kinematics returned: no 7 x 12
+/// temporary moved around.
+fn b_matrix_into(st: &ElementState, l0: f64, b: &mut SMatrix<f64, 7, 12>) -> Kinematics {
     let k = kinematics(st, l0);
     let rr = k.rr;
     let ln = k.ln;
-    // Local-component DOFs: p_loc = M p_hat, M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B).
     let ma = rr.transpose() * st.q_a;
     let mb = rr.transpose() * st.q_b;
-    // G^T: spin of the element frame in local components, acting on local-component DOFs.
     let q2 = k.q_loc.y;
     let eta = k.q_loc.x / q2;
     let (e11, e12) = (k.qa_loc.x / q2, k.qa_loc.y / q2);
     let (e21, e22) = (k.qb_loc.x / q2, k.qb_loc.y / q2);
-    let mut gt = SMatrix::<f64, 3, 12>::zeros();
-    gt[(0, 2)] = eta / ln;
-    gt[(0, 3)] = e12 / 2.0;
-    gt[(0, 4)] = -e11 / 2.0;
-    gt[(0, 8)] = -eta / ln;
-    gt[(0, 9)] = e22 / 2.0;
-    gt[(0, 10)] = -e21 / 2.0;
-    gt[(1, 2)] = 1.0 / ln;
-    gt[(1, 8)] = -1.0 / ln;
-    gt[(2, 1)] = -1.0 / ln;
-    gt[(2, 7)] = 1.0 / ln;
-    // P_A = [0 I 0 0] - G^T, P_B = [0 0 0 I] - G^T, then T_s^-1.
-    let mut pa = -gt;
-    let mut pb = -gt;
-    for i in 0..3 {
-        pa[(i, 3 + i)] += 1.0;
-        pb[(i, 9 + i)] += 1.0;
-    }
-    let ta = k.ti_a * pa;
-    let tb = k.ti_b * pb;
-    // B in local-component DOFs (7 x 12), then to node bases by M.
-    let mut bl = SMatrix::<f64, 7, 12>::zeros();
-    // du = r1 . (duB - duA): in local components r1 = e1.
-    bl[(0, 0)] = -1.0;
-    bl[(0, 6)] = 1.0;
-    for j in 0..12 {
-        for i in 0..3 {
-            bl[(1 + i, j)] = ta[(i, j)];
-            bl[(4 + i, j)] = tb[(i, j)];
-        }
-    }
-    let mut b = SMatrix::<f64, 7, 12>::zeros();
-    for blk in 0..4 {
-        let m = if blk < 2 { &ma } else { &mb };
-        for i in 0..7 {
-            for c in 0..3 {
-                let mut acc = 0.0;
-                for r in 0..3 {
-                    acc += bl[(i, 3 * blk + r)] * m[(r, c)];
-                }
-                b[(i, 3 * blk + c)] = acc;
+    // the non-zeros of -G^T (entries of P_A and P_B off their identity blocks)
+    let g02 = -(eta / ln);
+    let g03 = -(e12 / 2.0);
+    let g04 = -(-e11 / 2.0);
+    let g08 = -(-eta / ln);
+    let g09 = -(e22 / 2.0);
+    let g0a = -(-e21 / 2.0);
+    let g12 = -(1.0 / ln);
+    let g18 = -(-1.0 / ln);
+    let g21 = -(-1.0 / ln);
+    let g27 = -(1.0 / ln);
+    // T P (3 x 12) for one end: `a3`/`a4`/`a5` are the P entries of the identity block
+    // columns 3..6 (A end) or 9..12 (B end); columns with a zero P column stay zero
+    let tp = |ti: &Matrix3<f64>, end_b: bool| -> [[f64; 12]; 3] {
+        let mut t = [[0.0; 12]; 3];
+        for (i, row) in t.iter_mut().enumerate() {
+            let (c0, c1, c2) = (ti[(i, 0)], ti[(i, 1)], ti[(i, 2)]);
+            row[1] = c2 * g21;
+            row[2] = c0 * g02 + c1 * g12;
+            row[7] = c2 * g27;
+            row[8] = c0 * g08 + c1 * g18;
+            if end_b {
+                row[3] = c0 * g03;
+                row[4] = c0 * g04;
+                row[9] = c0 * (g09 + 1.0);
+                row[10] = c0 * g0a + c1;
+                row[11] = c2;
+            } else {
+                row[3] = c0 * (g03 + 1.0);
+                row[4] = c0 * g04 + c1;
+                row[5] = c2;
+                row[9] = c0 * g09;
+                row[10] = c0 * g0a;
             }
         }
+        t
+    };
+    let ta = tp(&k.ti_a, false);
+    let tb = tp(&k.ti_b, true);
+    // du = r1 . (duB - duA): the first row of M for each end
+    for c in 0..3 {
+        b[(0, c)] = 0.0 + -ma[(0, c)];
+        b[(0, 3 + c)] = 0.0;
+        b[(0, 6 + c)] = 0.0 + mb[(0, c)];
+        b[(0, 9 + c)] = 0.0;
     }
-    (b, k)
+    // rows (T P) M, block by block over the rows of M that meet a non-zero of T P (the
+    // zero columns: 0, 6, 11 at the A end, 0, 5, 6 at the B end)
+    for i in 0..3 {
+        let (a, bb) = (&ta[i], &tb[i]);
+        for c in 0..3 {
+            b[(1 + i, c)] = 0.0 + a[1] * ma[(1, c)] + a[2] * ma[(2, c)];
+            b[(1 + i, 3 + c)] = 0.0 + a[3] * ma[(0, c)] + a[4] * ma[(1, c)] + a[5] * ma[(2, c)];
+            b[(1 + i, 6 + c)] = 0.0 + a[7] * mb[(1, c)] + a[8] * mb[(2, c)];
+            b[(1 + i, 9 + c)] = 0.0 + a[9] * mb[(0, c)] + a[10] * mb[(1, c)];
+            b[(4 + i, c)] = 0.0 + bb[1] * ma[(1, c)] + bb[2] * ma[(2, c)];
+            b[(4 + i, 3 + c)] = 0.0 + bb[3] * ma[(0, c)] + bb[4] * ma[(1, c)];
+            b[(4 + i, 6 + c)] = 0.0 + bb[7] * mb[(1, c)] + bb[8] * mb[(2, c)];
+            b[(4 + i, 9 + c)] = 0.0 + bb[9] * mb[(0, c)] + bb[10] * mb[(1, c)] + bb[11] * mb[(2, c)];
+        }
+    }
+    k
 }
 
 /// Internal force and tangent of the element in node-basis DOFs `[uA, wA, uB, wB]`.
@@ -249,22 +278,53 @@ pub fn element_forces(st: &ElementState, s: &BeamSection, with_geometric: bool) 
     response(st, s, with_geometric, false, None)
 }
 
-/// `B^T K B` for a symmetric 7x7 `K`: only the upper triangle of the (symmetric) result is
+/// Local DOFs coupled by the local tangent: the axial force and bending (elongation and the
+/// bending rotations) and the twist; [`super::beam::local_response`] couples no DOF of one group
+/// to one of the other (the axial strain does not depend on the twist).
+const AXIAL_BENDING: [usize; 5] = [0, 2, 3, 5, 6];
+const TWIST: [usize; 2] = [1, 4];
+
+/// `B^T K B` for a symmetric 7x7 `K`, written into `out`: only the upper triangle of the (symmetric) result is
 /// formed and mirrored (hand-written: about 2/3 of the multiplications of the plain product).
-fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>) -> Mat12 {
-    let c = kl * b;
-    let mut out = Mat12::zeros();
+/// `K B` runs over the non-zeros of `K` only ([`AXIAL_BENDING`], [`TWIST`]), summed in the
+/// dense product's order, so the result is bit for bit that of `(K * B)`.
+fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>, out: &mut Mat12) {
+    debug_assert!(AXIAL_BENDING
+        .iter()
+        .all(|&i| TWIST.iter().all(|&r| kl[(i, r)] == 0.0 && kl[(r, i)] == 0.0)));
+    let mut c = SMatrix::<f64, 7, 12>::zeros();
+    let [a0, a1, a2, a3, a4] = AXIAL_BENDING;
+    let [t0, t1] = TWIST;
     for j in 0..12 {
-        for i in 0..=j {
-            let mut acc = 0.0;
-            for r in 0..7 {
-                acc += b[(r, i)] * c[(r, j)];
-            }
-            out[(i, j)] = acc;
-            out[(j, i)] = acc;
+        let bj = b.column(j);
+        for i in AXIAL_BENDING {
+            c[(i, j)] = kl[(i, a0)] * bj[a0]
+                + kl[(i, a1)] * bj[a1]
+                + kl[(i, a2)] * bj[a2]
+                + kl[(i, a3)] * bj[a3]
+                + kl[(i, a4)] * bj[a4];
+        }
+        for i in TWIST {
+            c[(i, j)] = kl[(i, t0)] * bj[t0] + kl[(i, t1)] * bj[t1];
         }
     }
-    out
+    // B^T C column by column (each entry summed over r in order, as the triangular loop of
+    // the first version did; the full product vectorizes where the triangle did not), then
+    // the upper triangle mirrored
+    let bt = b.transpose();
+    for j in 0..12 {
+        let mut col = [0.0; 12];
+        for r in 0..7 {
+            let crj = c[(r, j)];
+            for (x, &v) in col.iter_mut().zip(bt.column(r).iter()) {
+                *x += v * crj;
+            }
+        }
+        for (i, &v) in col.iter().enumerate().take(j + 1) {
+            out[(i, j)] = v;
+            out[(j, i)] = v;
+        }
+    }
 }
 
 fn response(
@@ -274,7 +334,8 @@ fn response(
     consistent: bool,
     tangent_out: Option<&mut Mat12>,
 ) -> ElementForces {
-    let (b, k) = b_matrix(st, s.l0);
+    let mut b = SMatrix::<f64, 7, 12>::zeros();
+    let k = b_matrix_into(st, s.l0, &mut b);
     let loc = local_response(s, &k.p, with_geometric);
     let rr = k.rr;
     let ln = k.ln;
@@ -299,9 +360,9 @@ fn response(
         return forces;
     };
     let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
-    *tangent = congruence(&b, &kl);
+    congruence(&b, &kl, tangent);
     if consistent {
-        *tangent += geometric_tangent(st, &k, &fl);
+        add_geometric_tangent(st, &k, &fl, tangent);
         return forces;
     }
     // Geometric term of the elongation: N/l (I - r1 r1^T) on the translations (node bases).
@@ -362,7 +423,16 @@ fn d_tinv_t_m(theta: &Vec3, m: &Vec3) -> Matrix3<f64> {
 /// node bases are applied once at the end. The dense 3 x 12 form of the same derivation
 /// (`geometric_tangent_dense` in the tests) and central differences
 /// ([`geometric_tangent_by_differences`]) check it.
+#[cfg(test)]
 fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) -> Mat12 {
+    let mut out = Mat12::zeros();
+    add_geometric_tangent(st, k, fl, &mut out);
+    out
+}
+
+/// `out += (dB^T/dp_global) f_local` (see `geometric_tangent`, its test form, for the
+/// derivation), each entry added once (no 12x12 temporary).
+fn add_geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>, out: &mut Mat12) {
     type Blocks = [[Matrix3<f64>; 4]; 4];
     let rr = k.rr;
     let l = k.ln;
@@ -484,15 +554,48 @@ fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) ->
     }
     // to node bases: K = Qblk^T K_s Qblk
     let qs = [st.q_a, st.q_a, st.q_b, st.q_b];
-    let mut out = Mat12::zeros();
-    for bi in 0..4 {
-        let qt = qs[bi].transpose();
-        for bj in 0..4 {
-            let blk = qt * kb[bi][bj] * qs[bj];
-            out.fixed_view_mut::<3, 3>(3 * bi, 3 * bj).copy_from(&blk);
+    for (bi, row) in kb.iter().enumerate() {
+        for pair in [0usize, 2] {
+            add_congruence_pair(qs[bi], qs[pair], &row[pair], &row[pair + 1], out, 3 * bi, 3 * pair);
         }
     }
-    out
+}
+
+/// `out[r0.., c0..] += Q_r^T K_0 Q_c` and `out[r0.., c0 + 3..] += Q_r^T K_1 Q_c`: two 3x3
+/// blocks with the same bases, computed side by side (two lanes; vectorizes), each entry
+/// summed in the order of nalgebra's `(Q_r^T * K) * Q_c` (so bit for bit that product).
+#[inline(always)]
+fn add_congruence_pair(
+    q_r: &Matrix3<f64>,
+    q_c: &Matrix3<f64>,
+    k0: &Matrix3<f64>,
+    k1: &Matrix3<f64>,
+    out: &mut Mat12,
+    r0: usize,
+    c0: usize,
+) {
+    // T = Q_r^T K (lanes: K_0, K_1); T[i][j] = sum_r Q_r[r][i] K[r][j]
+    let mut t = [[[0.0f64; 2]; 3]; 3];
+    for i in 0..3 {
+        for j in 0..3 {
+            let (a0, a1, a2) = (q_r[(0, i)], q_r[(1, i)], q_r[(2, i)]);
+            t[i][j] = [
+                a0 * k0[(0, j)] + a1 * k0[(1, j)] + a2 * k0[(2, j)],
+                a0 * k1[(0, j)] + a1 * k1[(1, j)] + a2 * k1[(2, j)],
+            ];
+        }
+    }
+    for i in 0..3 {
+        for j in 0..3 {
+            let (b0, b1, b2) = (q_c[(0, j)], q_c[(1, j)], q_c[(2, j)]);
+            let r = [
+                t[i][0][0] * b0 + t[i][1][0] * b1 + t[i][2][0] * b2,
+                t[i][0][1] * b0 + t[i][1][1] * b1 + t[i][2][1] * b2,
+            ];
+            out[(r0 + i, c0 + j)] += r[0];
+            out[(r0 + i, c0 + 3 + j)] += r[1];
+        }
+    }
 }
 
 /// Node positions and triads of `st` moved by `h` along global DOF `j` (0..12, node bases):
@@ -749,6 +852,67 @@ mod tests {
             }
         }
     }
+    /// The dense form of [`b_matrix`] (its first version): the bit-for-bit oracle of the sparse
+    /// one.
+    fn b_matrix_dense(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
+        let k = kinematics(st, l0);
+        let rr = k.rr;
+        let ln = k.ln;
+        // Local-component DOFs: p_loc = M p_hat, M = diag(R_r^T Q_A, R_r^T Q_A, R_r^T Q_B, R_r^T Q_B).
+        let ma = rr.transpose() * st.q_a;
+        let mb = rr.transpose() * st.q_b;
+        // G^T: spin of the element frame in local components, acting on local-component DOFs.
+        let q2 = k.q_loc.y;
+        let eta = k.q_loc.x / q2;
+        let (e11, e12) = (k.qa_loc.x / q2, k.qa_loc.y / q2);
+        let (e21, e22) = (k.qb_loc.x / q2, k.qb_loc.y / q2);
+        let mut gt = SMatrix::<f64, 3, 12>::zeros();
+        gt[(0, 2)] = eta / ln;
+        gt[(0, 3)] = e12 / 2.0;
+        gt[(0, 4)] = -e11 / 2.0;
+        gt[(0, 8)] = -eta / ln;
+        gt[(0, 9)] = e22 / 2.0;
+        gt[(0, 10)] = -e21 / 2.0;
+        gt[(1, 2)] = 1.0 / ln;
+        gt[(1, 8)] = -1.0 / ln;
+        gt[(2, 1)] = -1.0 / ln;
+        gt[(2, 7)] = 1.0 / ln;
+        // P_A = [0 I 0 0] - G^T, P_B = [0 0 0 I] - G^T, then T_s^-1.
+        let mut pa = -gt;
+        let mut pb = -gt;
+        for i in 0..3 {
+            pa[(i, 3 + i)] += 1.0;
+            pb[(i, 9 + i)] += 1.0;
+        }
+        let ta = k.ti_a * pa;
+        let tb = k.ti_b * pb;
+        // B in local-component DOFs (7 x 12), then to node bases by M.
+        let mut bl = SMatrix::<f64, 7, 12>::zeros();
+        // du = r1 . (duB - duA): in local components r1 = e1.
+        bl[(0, 0)] = -1.0;
+        bl[(0, 6)] = 1.0;
+        for j in 0..12 {
+            for i in 0..3 {
+                bl[(1 + i, j)] = ta[(i, j)];
+                bl[(4 + i, j)] = tb[(i, j)];
+            }
+        }
+        let mut b = SMatrix::<f64, 7, 12>::zeros();
+        for blk in 0..4 {
+            let m = if blk < 2 { &ma } else { &mb };
+            for i in 0..7 {
+                for c in 0..3 {
+                    let mut acc = 0.0;
+                    for r in 0..3 {
+                        acc += bl[(i, 3 * blk + r)] * m[(r, c)];
+                    }
+                    b[(i, 3 * blk + c)] = acc;
+                }
+            }
+        }
+        (b, k)
+    }
+
     /// Deterministic pseudo-random numbers in [-1, 1) (64-bit LCG, top bits).
     struct Lcg(u64);
     impl Lcg {
@@ -761,6 +925,86 @@ mod tests {
         }
         fn vec(&mut self, scale: f64) -> Vec3 {
             Vec3::new(self.next(), self.next(), self.next()) * scale
+        }
+    }
+
+    #[test]
+    fn sparse_b_and_congruence_equal_the_dense_products_bit_for_bit() {
+        // Oracle: the dense products of the first version (`b_matrix_dense`, `K * B` by
+        // nalgebra); tolerance: none (every entry identical), on random states far from the
+        // node bases with bending, twist and stretch, with and without the geometric term.
+        let mut rng = Lcg(777);
+        for case in 0..300 {
+            let q_a = exp_so3(&rng.vec(3.0));
+            let q_b = exp_so3(&rng.vec(0.05)) * q_a;
+            let rigid = exp_so3(&rng.vec(2.5));
+            let l0 = 0.5 + rng.next().abs();
+            let x_a = rng.vec(10.0);
+            let x_b = x_a + rigid * (q_a.column(0) * (l0 * (1.0 + 1e-3 * rng.next())) + rng.vec(0.05 * l0));
+            let lam_a = rigid * exp_so3(&rng.vec(0.3)) * q_a;
+            let lam_b = rigid * exp_so3(&(rng.vec(0.3) + q_a.column(0) * 0.5 * rng.next())) * q_a;
+            let st = ElementState {
+                x_a: &x_a,
+                x_b: &x_b,
+                lam_a: &lam_a,
+                lam_b: &lam_b,
+                q_a: &q_a,
+                q_b: &q_b,
+            };
+            let (b, k) = b_matrix(&st, l0);
+            let (bd, _) = b_matrix_dense(&st, l0);
+            for (x, y) in b.iter().zip(bd.iter()) {
+                assert_eq!(x.to_bits(), y.to_bits(), "case {case}: B {b} vs dense {bd}");
+            }
+            let s = BeamSection {
+                l0,
+                ea: 3.6e9,
+                ei: 7.3e6,
+                gj: 5.6e6,
+            };
+            let loc = local_response(&s, &k.p, case % 3 != 0);
+            let kl = SMatrix::<f64, 7, 7>::from_fn(|i, j| loc.tangent[i][j]);
+            let c = kl * b;
+            let mut dense = Mat12::zeros();
+            for j in 0..12 {
+                for i in 0..=j {
+                    let mut acc = 0.0;
+                    for r in 0..7 {
+                        acc += b[(r, i)] * c[(r, j)];
+                    }
+                    dense[(i, j)] = acc;
+                    dense[(j, i)] = acc;
+                }
+            }
+            let mut sparse = Mat12::zeros();
+            congruence(&b, &kl, &mut sparse);
+            for (x, y) in sparse.iter().zip(dense.iter()) {
+                assert_eq!(x.to_bits(), y.to_bits(), "case {case}: B^T K B");
+            }
+        }
+    }
+
+    #[test]
+    fn paired_block_congruence_equals_nalgebra_products_bit_for_bit() {
+        // Oracle: nalgebra's `(Q_r^T * K) * Q_c` added to the output, as the first version of
+        // the geometric tangent's change to node bases did; tolerance: none.
+        let mut rng = Lcg(4242);
+        for _ in 0..200 {
+            let q_r = exp_so3(&rng.vec(3.0));
+            let q_c = exp_so3(&rng.vec(3.0));
+            let k0 = Matrix3::from_fn(|_, _| 1e6 * rng.next());
+            let k1 = Matrix3::from_fn(|_, _| 1e3 * rng.next());
+            let base = Mat12::from_fn(|_, _| rng.next());
+            let mut out = base;
+            add_congruence_pair(&q_r, &q_c, &k0, &k1, &mut out, 3, 6);
+            let mut reference = base;
+            let mut d0 = reference.fixed_view_mut::<3, 3>(3, 6);
+            d0 += q_r.transpose() * k0 * q_c;
+            let mut d1 = reference.fixed_view_mut::<3, 3>(3, 9);
+            d1 += q_r.transpose() * k1 * q_c;
+            for (x, y) in out.iter().zip(reference.iter()) {
+                assert_eq!(x.to_bits(), y.to_bits());
+            }
         }
     }
 

@@ -4,6 +4,7 @@ pub mod band;
 pub mod band_lu;
 pub mod beam;
 pub mod bha;
+pub mod buffers;
 pub mod corotational;
 pub mod mesh;
 pub mod model;

@@ -144,6 +144,8 @@ pub struct Model {
     pub bit_md_m: f64,
     /// Reference MD of each node, m.
     pub md_ref: Vec<f64>,
+    /// Hole-axis position at each node's reference MD (`path.axis_at(md_ref[i]).position`), m.
+    pub axis_ref: Vec<Vec3>,
     /// DOF basis per node.
     pub basis: Vec<Matrix3<f64>>,
     /// Element sections (with stress-free chord length).
@@ -258,12 +260,14 @@ impl Model {
                 Matrix3::from_columns(&[t, b1, b2])
             })
             .collect();
+        // axis positions of the nodes (each shared by the two elements that meet there)
+        let axis_ref: Vec<Vec3> = md_ref.iter().map(|&md| path.axis_at(md).position).collect();
         let sections = mesh
             .elements
             .iter()
             .enumerate()
             .map(|(e, el)| {
-                let l0 = (path.point_at(md_ref[e + 1]).position - path.point_at(md_ref[e]).position).norm();
+                let l0 = (axis_ref[e + 1] - axis_ref[e]).norm();
                 BeamSection {
                     l0,
                     ea: el.ea,
@@ -287,6 +291,7 @@ impl Model {
             mesh,
             bit_md_m,
             md_ref,
+            axis_ref,
             basis,
             sections,
             friction,
@@ -340,7 +345,7 @@ impl Model {
     /// Initial state: nodes on the hole axis (a cut top at its offset), triads = node bases.
     pub fn initial_state(&self) -> State {
         let nn = self.nodes();
-        let mut x: Vec<Vec3> = self.md_ref.iter().map(|&m| self.path.point_at(m).position).collect();
+        let mut x = self.axis_ref.clone();
         if let TopCondition::Cut { offset_m } = self.top {
             x[nn - 1] += offset_m;
         }
@@ -383,7 +388,34 @@ impl Model {
     /// Evaluate residual (and, if `k` is given, assemble the tangent into it) at `state`.
     /// Updates each node's nearest-axis MD in `state.md`.
     pub fn evaluate(&self, state: &mut State, k: Option<&mut dyn StiffnessSink>) -> Evaluation {
+        self.evaluate_with(state, k, None)
+    }
+
+    /// [`Model::evaluate`] without the tangent, taking the element responses from `elements`
+    /// (the [`Evaluation::elements`] of an evaluation at the same node positions and triads)
+    /// instead of computing them again: for a second evaluation of the same configuration with
+    /// other contact settings (the solver's final evaluation with exact multipliers). The
+    /// result is the same as `evaluate(state, None)` bit for bit.
+    ///
+    /// # Panics
+    /// If `elements` does not hold one response per element.
+    pub fn evaluate_reusing_elements(&self, state: &mut State, elements: Vec<ElementForces>) -> Evaluation {
+        assert_eq!(
+            elements.len(),
+            self.nodes().saturating_sub(1),
+            "Model::evaluate_reusing_elements: one response per element"
+        );
+        self.evaluate_with(state, None, Some(elements))
+    }
+
+    fn evaluate_with(
+        &self,
+        state: &mut State,
+        k: Option<&mut dyn StiffnessSink>,
+        reuse: Option<Vec<ElementForces>>,
+    ) -> Evaluation {
         let nn = self.nodes();
+        let mut reuse = reuse.map(|v| v.into_iter());
         let mut r = vec![0.0; self.dofs()];
         let mut kmat = k;
         if let Some(km) = kmat.as_deref_mut() {
@@ -406,7 +438,9 @@ impl Model {
                 q_a: &self.basis[a],
                 q_b: &self.basis[b],
             };
-            let resp = if kmat.is_some() {
+            let resp = if let Some(prev) = reuse.as_mut() {
+                prev.next().expect("one response per element")
+            } else if kmat.is_some() {
                 element_response_into(
                     &st,
                     &self.sections[e],

@@ -469,12 +469,21 @@ impl Linear {
                 Some(Linear::General(b, _)) => b,
                 _ => k,
             };
-            // rows within the half-bandwidth of a constrained DOF (their column is zeroed)
-            let (lo, hi) = constrained
-                .iter()
-                .fold((usize::MAX, 0), |(lo, hi), &c| (lo.min(c), hi.max(c)));
+            // rows within the half-bandwidth of a constrained DOF (their column is zeroed), as
+            // merged ranges (the constrained DOFs sit at the two ends of the chain: testing
+            // one span from the first to the last would visit every row)
+            let mut sorted = constrained.to_vec();
+            sorted.sort_unstable();
+            let mut near_rows: Vec<(usize, usize)> = Vec::new();
+            for c in sorted {
+                let (a, b) = (c.saturating_sub(hb), c + hb);
+                match near_rows.last_mut() {
+                    Some(last) if a <= last.1 + 1 => last.1 = last.1.max(b),
+                    _ => near_rows.push((a, b)),
+                }
+            }
             return f.factor_rows(k, |i, row| {
-                let near = i + hb >= lo && i <= hi + hb;
+                let near = near_rows.iter().any(|&(a, b)| a <= i && i <= b);
                 if near && constrained.contains(&i) {
                     row.fill(0.0);
                     row[hb] = constraint_scale;
@@ -1280,9 +1289,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     state.lcp_nodes = None;
     state.implicit_friction = false;
     state.exact_multipliers = true;
-    let ev_final = model.evaluate(&mut state, None);
+    // same positions and triads as the last evaluation: its element responses are reused
+    let ev_final = model.evaluate_reusing_elements(&mut state, ev.elements);
     state.exact_multipliers = false;
-    let _ = ev;
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state,
