@@ -122,7 +122,7 @@ rop = "12 m/h"
 friction = 0.25
 {strings}
 [solver]
-element_length = "1 m"
+element_length = "3 m"
 bha_element_length = "0.5 m"
 "#
     );
@@ -217,7 +217,7 @@ fn bench_solve(c: &mut Criterion) {
     bench_bha_cut(&mut group);
     // soft-string pass over the 3,000 m string (issue 5 target: < 0.5 ms)
     let soft = generated_case(3000.0, 35.0, &(bha(140.0) + DRILL_PIPE));
-    let r = softstring::from_case(&soft, soft.solver.element_length_m);
+    let r = softstring::from_case(&soft, softstring::segment_length_m(&soft.solver));
     println!(
         "softstring_3000m: hook load {:.1} kN, {} points",
         r.hook_load_n / 1e3,
@@ -225,7 +225,7 @@ fn bench_solve(c: &mut Criterion) {
     );
     group.sample_size(50);
     group.bench_function("softstring_3000m", |b| {
-        b.iter(|| softstring::from_case(&soft, soft.solver.element_length_m).hook_load_n)
+        b.iter(|| softstring::from_case(&soft, softstring::segment_length_m(&soft.solver)).hook_load_n)
     });
     group.finish();
 }
