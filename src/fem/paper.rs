@@ -100,9 +100,10 @@
 //! at least one example well (leaving one out: that well does not converge in 800 steps).
 //!
 //! # Agreement with the default scheme; full-gauge stabilizers
-//! The default scheme's interior-point Newton treats zero-clearance gaps (full-gauge
+//! The default scheme's interior-point Newton treated zero-clearance gaps (full-gauge
 //! stabilizers, `Kind::Pin` here) as penalty springs (`k_n = 10 EI/l^3`) without a multiplier
-//! update, so a pin carrying `R` sits `R / k_n` off the hole axis (5.8 um at seed-daqing's
+//! update (fixed since: it now updates them at equilibrium, and both schemes agree within
+//! 1.5e-5 on the six example wells), so a pin carrying `R` sat `R / k_n` off the hole axis (5.8 um at seed-daqing's
 //! near-bit stabilizer, 9 kN): beyond the gap tolerance (`tolerance x 1 mm` = 0.1 um), and
 //! enough to move the bit side forces by 0.25-0.5% (bit tilt by 7%). This scheme drives pins
 //! to the axis within the tolerance. With the default scheme's pin penalty raised 100-1000x,
@@ -114,7 +115,7 @@
 //! # Status (honest; docs/performance.md "Paper scheme vs default")
 //! Converges on all six example wells (175-260 steps, 1-12 s; the default needs 7-11
 //! iterations and 0.04-0.6 s) and on the tests' pendulum and curved 3D well, agreeing with the
-//! default scheme (pins stiffened as above) within 2e-5 on bit forces, WOB, hook load and
+//! default scheme within 2e-5 on bit forces, WOB, hook load and
 //! surface torque. Unconverged solves end flagged `converged == false`. Use `method =
 //! "newton"` (the default) for speed.
 

@@ -914,6 +914,31 @@ pub fn solve_from(
     })
 }
 
+/// Smallest clearance the gap tolerance is measured against, m: a gap's penetration counts
+/// relative to `max(clearance, this)`, and a pin's offset relative to this.
+const MIN_REFERENCE_CLEARANCE_M: f64 = 1e-3;
+
+/// Largest offset from the hole axis of the gaps not `managed` by the interior-point step
+/// (the pins: zero-clearance gaps), m.
+fn pin_offset_m(model: &Model, ev: &Evaluation, managed: &[bool]) -> f64 {
+    (0..model.nodes())
+        .filter(|&i| model.mesh.nodes[i].has_gap && !managed[i])
+        .filter_map(|i| ev.gaps[i].as_ref().map(|g| (g.penetration + ev.clearance[i]).max(0.0)))
+        .fold(0.0, f64::max)
+}
+
+/// Augmented-Lagrangian update of the pins (gaps not `managed`): each vector multiplier takes
+/// the pin's current wall force.
+fn update_pin_multipliers(model: &Model, state: &mut State, ev: &Evaluation, managed: &[bool]) {
+    for i in 0..model.nodes() {
+        if let (false, Some(g)) = (managed[i], ev.gaps[i].as_ref()) {
+            if model.mesh.nodes[i].has_gap {
+                state.lambda_vec[i] = -g.force_normal();
+            }
+        }
+    }
+}
+
 /// Newton iteration on the geometry whose every step solves the linearized contact problem of
 /// all (non-pin) gaps by a primal-dual interior-point method on the band system:
 /// `K du + N R = -r0`, `N^T du + s = -g`, `R, s >= 0`, `R s = 0`. Each interior-point
@@ -1013,7 +1038,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             pen = pen.max(gaps0[j] / eo);
             compl = compl.max((state.lambda[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
         }
-        let done = rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && compl < 1e-6;
+        // zero-clearance gaps (full-gauge stabilizers) are pins: penalty springs about their
+        // vector multiplier; their offset from the axis must fall below the tolerance of the
+        // smallest clearance the managed gaps are measured against
+        let pin_offset = pin_offset_m(model, &ev, &managed);
+        let pins_held = pin_offset <= ctl.gap_tolerance * MIN_REFERENCE_CLEARANCE_M;
+        let equilibrium = rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && compl < 1e-6;
+        let done = equilibrium && pins_held;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
             redo = true;
             continue;
@@ -1033,6 +1064,16 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         if stats.iterations >= ctl.max_iterations {
             break;
+        }
+        if equilibrium {
+            // in equilibrium but a pin sits off the axis by its penalty's give (force / k_n):
+            // augmented-Lagrangian update, the multiplier takes the pin's whole current force
+            // (as in `solve_from`), then Newton restores equilibrium about it
+            tracing::debug!(pin_offset, "pin multiplier update");
+            update_pin_multipliers(model, &mut state, &ev, &managed);
+            stats.iterations += 1;
+            likely_converged = false;
+            continue;
         }
         // circle stiffness of the current contact forces
         for (j, &i) in qidx.iter().enumerate() {
