@@ -930,11 +930,9 @@ fn pin_offset_m(model: &Model, ev: &Evaluation, managed: &[bool]) -> f64 {
 /// Augmented-Lagrangian update of the pins (gaps not `managed`): each vector multiplier takes
 /// the pin's current wall force.
 fn update_pin_multipliers(model: &Model, state: &mut State, ev: &Evaluation, managed: &[bool]) {
-    for i in 0..model.nodes() {
-        if let (false, Some(g)) = (managed[i], ev.gaps[i].as_ref()) {
-            if model.mesh.nodes[i].has_gap {
-                state.lambda_vec[i] = -g.force_normal();
-            }
+    for (i, &m) in managed.iter().enumerate() {
+        if let (false, true, Some(g)) = (m, model.mesh.nodes[i].has_gap, ev.gaps[i].as_ref()) {
+            state.lambda_vec[i] = -g.force_normal();
         }
     }
 }
