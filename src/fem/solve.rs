@@ -167,15 +167,67 @@ pub fn load_scale(model: &Model) -> f64 {
     w + model.loads.wob_n.abs() + model.loads.hook_load_n.unwrap_or(0.0).abs() + 1e3
 }
 
+/// Soft-string axial force of each element (tension positive), N: `-WOB` at the bit plus the
+/// buoyed weight's axial part integrated upward on the hole axis between the nodes' MDs in
+/// `state.md` (no friction).
+fn soft_string_tension(model: &Model, state: &State) -> Vec<f64> {
+    let mut tension = -model.loads.wob_n;
+    (0..model.nodes() - 1)
+        .map(|e| {
+            let tbar =
+                (model.path.axis_at(state.md[e]).tangent + model.path.axis_at(state.md[e + 1]).tangent).normalize();
+            let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
+            let mid = tension + 0.5 * w * tbar.z;
+            tension += w * tbar.z;
+            mid
+        })
+        .collect()
+}
+
+/// Stretched start: slide every node along the hole axis by the axial displacement of the
+/// soft-string axial force (`u = sum N l0 / EA` from the bit, which stays put), with its triad
+/// carried along the axis without twist (the parallel-transported frame at the new MD). A
+/// string kilometres long stretches by metres (16 m on a 10 km string): started unstretched,
+/// the Newton steps must slide it that far around the builds and across hole-size changes (a
+/// node crossing a casing shoe meets a wall that jumps by centimetres), and their
+/// bending-rotation and lateral caps make those steps short. The top node moves along its own
+/// DOF basis axis only (its lateral DOFs are held). Only the start changes, not the solution.
+/// Call it on a fresh [`Model::initial_state`] before [`soft_string_start`].
+pub fn stretch_start(model: &Model, state: &mut State) {
+    let nn = model.nodes();
+    let tension = soft_string_tension(model, state);
+    let mut u = 0.0;
+    for i in 1..nn {
+        let e = i - 1;
+        let s = &model.sections[e];
+        if s.ea > 0.0 {
+            u += tension[e] * s.l0 / s.ea;
+        }
+        let md = model.md_ref[i] - u;
+        let t0 = model.basis[i].column(0).into_owned();
+        if i == nn - 1 {
+            state.x[i] += t0 * (md - model.md_ref[i]);
+            state.md[i] = model.path.nearest_md(&state.x[i], md);
+            continue;
+        }
+        let (t, b1, b2) = model.path.bishop_at(md);
+        state.x[i] = model.path.axis_at(md).position;
+        state.md[i] = md;
+        state.lam[i] = nalgebra::Matrix3::from_columns(&[t, b1, b2]);
+        state.normal[i] = -model.path.frame_at(md).h;
+    }
+}
+
 /// Soft-string start: axial force by integrating weight from the bit, contact side from the
 /// lateral load of each element; nodes put on that side of the wall with the soft-string
-/// normal force as their first multiplier (physics.md 4.5).
+/// normal force as their first multiplier (physics.md 4.5). Axis points at the nodes' MDs in
+/// `state.md` (the reference MDs, or the stretched ones of [`stretch_start`]).
 pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     let nn = model.nodes();
     let mut tension = -model.loads.wob_n;
     let mut load = vec![Vec3::zeros(); nn];
     for e in 0..nn - 1 {
-        let (lo, up) = (model.md_ref[e], model.md_ref[e + 1]);
+        let (lo, up) = (state.md[e], state.md[e + 1]);
         let p_lo = model.path.point_at(lo);
         let p_up = model.path.point_at(up);
         let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
@@ -202,8 +254,8 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
             continue;
         }
         let n = li.normalize();
-        let eo = model.clearance(i, model.md_ref[i]);
-        state.x[i] = model.path.point_at(model.md_ref[i]).position + n * eo;
+        let eo = model.clearance(i, state.md[i]);
+        state.x[i] = model.path.axis_at(state.md[i]).position + n * eo;
         state.lambda[i] = li.norm();
         state.normal[i] = n;
     }
@@ -243,7 +295,7 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
     let mut phi = 0.0;
     for i in (0..nn - 1).rev() {
         phi -= twist_rate[i] * model.sections[i].l0;
-        let t = model.basis[i].column(0).into_owned();
+        let t = state.lam[i].column(0).into_owned();
         state.lam[i] = super::rotation::exp_so3(&(t * phi)) * state.lam[i];
     }
 }
@@ -263,7 +315,7 @@ pub const START_MAX_SLOPE: f64 = 0.005;
 /// friction and the interior point). Only the start changes, not the solution.
 pub fn smooth_start(model: &Model, state: &mut State) {
     let nn = model.nodes();
-    let axis: Vec<_> = (0..nn).map(|i| model.path.point_at(model.md_ref[i]).position).collect();
+    let axis: Vec<_> = (0..nn).map(|i| model.path.axis_at(state.md[i]).position).collect();
     let mut a: Vec<f64> = (0..nn).map(|i| (state.x[i] - axis[i]).norm()).collect();
     let dir: Vec<Vec3> = (0..nn)
         .map(|i| {
@@ -336,6 +388,24 @@ fn step_to_boundary(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64], tau: f64) -> f
         }
     }
     a
+}
+
+/// Part of node `i`'s translation (`k0` = 0) or rotation (`k0` = 3) increment in `du` (node
+/// basis) normal to the hole axis at the node's nearest axis point (its DOF basis axis for a
+/// node without a gap): the lateral motion (m) and the bending rotation (rad) that the step caps
+/// limit. Not the basis components 1-2 or 4-5: where the string has slid along a curved hole
+/// the hole tangent is off the basis tangent (by 1 deg after 12 m of stretch in a
+/// 2.5 deg/30 m build), so axial sliding would count as lateral motion and a twist increment
+/// of a rotating string (radians per step on a string kilometres long) as bending.
+fn increment_across(model: &Model, ev: &Evaluation, du: &[f64], i: usize, k0: usize) -> f64 {
+    let q = &model.basis[i];
+    let v = q * Vec3::new(du[model.dof(i, k0)], du[model.dof(i, k0 + 1)], du[model.dof(i, k0 + 2)]);
+    let t = if model.mesh.nodes[i].has_gap {
+        ev.axis[i].1
+    } else {
+        q.column(0).into_owned()
+    };
+    (v - t * t.dot(&v)).norm()
 }
 
 /// Merit of a state: squared residual over free DOFs plus the WOB equation, forces in N and
@@ -624,6 +694,7 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
     let mut consistent = model.clone();
     consistent.consistent_tangent = true;
     let mut state = model.initial_state();
+    stretch_start(model, &mut state);
     soft_string_start(model, &mut state, false);
     smooth_start(model, &mut state);
     wind_up_start(model, &mut state);
@@ -999,8 +1070,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let rn = residual_norm(&rt, scale).max(c.abs() / scale);
         let mut pen: f64 = 0.0;
         let mut compl: f64 = 0.0;
+        let mut pen_s = 0.0;
         for (j, &i) in qidx.iter().enumerate() {
             let eo = ev.clearance[i].max(1e-3);
+            if gaps0[j] / eo > pen {
+                pen_s = model.mesh.nodes[i].s_m;
+            }
             pen = pen.max(gaps0[j] / eo);
             compl = compl.max((state.lambda[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
         }
@@ -1011,8 +1086,17 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         stats.residual_history.push(rn);
         stats.max_penetration = pen.max(0.0);
+        let worst = rt
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+            .map(|(d, _)| d)
+            .unwrap_or(0);
         tracing::debug!(
             iteration = stats.iterations,
+            worst_s = model.mesh.nodes[nn - 1 - worst / 6].s_m,
+            worst_dof = worst % 6,
+            pen_s,
             residual = rn,
             penetration = pen,
             compl,
@@ -1238,7 +1322,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // geometric step with caps
         let (mut rot_ratio, mut rot_node): (f64, usize) = (0.0, 0);
         for i in 0..nn {
-            let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
+            let rot = increment_across(model, &ev, &du, i, 3);
             if rot / MAX_BENDING_ROTATION_STEP > rot_ratio {
                 (rot_ratio, rot_node) = (rot / MAX_BENDING_ROTATION_STEP, i);
             }
@@ -1248,7 +1332,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // around and through the wall
         let (mut lat_ratio, mut lat_node): (f64, usize) = (0.0, 0);
         for &i in &qidx {
-            let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
+            let lat = increment_across(model, &ev, &du, i, 0);
             let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3));
             if r > lat_ratio {
                 (lat_ratio, lat_node) = (r, i);
