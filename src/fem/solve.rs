@@ -365,6 +365,19 @@ pub const IP_STALL_STEPS: usize = 5;
 /// fails. Newton converges quadratically here (e.g. 8e-3, 8e-5, 3e-8 on a 3,000 m string).
 pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
 
+/// Gap nodes with a clearance below this (m) get the whole wall as constraints of the
+/// linearized contact problem (a square of supporting planes around the hole circle: the
+/// current wall, the opposite one and the two at 90 deg): the linearized gap bounds only the
+/// motion toward the current wall, and the lateral step cap (two clearances, but at least
+/// [`LATERAL_CAP_FLOOR_M`] of clearance) would let a stabilizer with a clearance of a
+/// millimetre move around or across its hole and out through the wall by more than a
+/// clearance in one step. Wider gaps stay within about a clearance of the wall under the cap.
+pub const FAR_WALL_CLEARANCE_M: f64 = LATERAL_CAP_FLOOR_M;
+
+/// Smallest clearance the lateral step cap counts with, m (a tighter gap would hold the whole
+/// step to a fraction of a millimetre).
+pub const LATERAL_CAP_FLOOR_M: f64 = 2e-3;
+
 /// Net force of the residual allowed at convergence, in units of the residual tolerance (both
 /// relative to the load scale): every entry below the tolerance is not enough when thousands
 /// of nodes' small imbalances add up in the global equilibrium check.
@@ -1042,14 +1055,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // equilibrium column of each contact force: [n + f v^ ; f R_c n x v^] (node basis),
         // friction proportional to the unknown normal force
         let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
-        for &i in &qidx {
-            let g = gap_geometry(&state, &ev, i);
-            let nrm = g.normal;
-            state.normal[i] = nrm;
+        // node-basis normal and equilibrium column of a wall contact at node i with outward
+        // normal `nrm` (global)
+        let wall = |i: usize, nrm: Vec3, tangent: Vec3| -> (Vec3, [f64; 6]) {
             let q = &model.basis[i];
-            normals.push(q.transpose() * nrm);
             let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-            let v = g.tangent * model.loads.axial_speed_m_s + g.tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
+            let v = tangent * model.loads.axial_speed_m_s + tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
             let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
                 let vh = v / v.norm();
                 (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
@@ -1058,9 +1069,39 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             };
             let et = q.transpose() * (nrm + fv);
             let em = q.transpose() * fm;
-            eq_cols.push([et.x, et.y, et.z, em.x, em.y, em.z]);
+            (q.transpose() * nrm, [et.x, et.y, et.z, em.x, em.y, em.z])
+        };
+        for &i in &qidx {
+            let g = gap_geometry(&state, &ev, i);
+            state.normal[i] = g.normal;
+            let (nl, col) = wall(i, g.normal, g.tangent);
+            normals.push(nl);
+            eq_cols.push(col);
             gaps0.push(g.gap);
             geometry.push(g);
+        }
+        // the rest of the wall of tight gaps (see `FAR_WALL_CLEARANCE_M`): the supporting planes
+        // of the hole circle at -n (at `radial + clearance` from the node) and at +-b, b = t x n
+        // (at `clearance`), with the current wall's plane a square around the circle
+        let far: Vec<usize> = (0..m)
+            .filter(|&j| ev.clearance[qidx[j]] < FAR_WALL_CLEARANCE_M)
+            .collect();
+        let mt = m + 3 * far.len();
+        let mut far_at = vec![usize::MAX; nn];
+        let mut cnode: Vec<usize> = qidx.clone();
+        for (k, &j) in far.iter().enumerate() {
+            let i = qidx[j];
+            let g = &geometry[j];
+            let b = g.tangent.cross(&g.normal);
+            let eo = ev.clearance[i];
+            for (nrm, gap) in [(-g.normal, -(g.radial + eo)), (b, -eo), (-b, -eo)] {
+                let (nl, col) = wall(i, nrm, g.tangent);
+                normals.push(nl);
+                eq_cols.push(col);
+                gaps0.push(gap);
+                cnode.push(i);
+            }
+            far_at[i] = m + 3 * k;
         }
         // outer residual with the current multipliers as the contact forces
         let mut rt = r0.clone();
@@ -1163,25 +1204,29 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // grows with the outer residual (far from the solution the old contact set is a poor
         // guess, and pairs pinned at the boundary would block the interior-point steps)
         let shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
-        let mut r_f: Vec<f64> = qidx
+        let mut r_f: Vec<f64> = (0..mt)
+            .map(|j| if j < m { state.lambda[qidx[j]].max(0.0) } else { 0.0 } + shift * scale / mt.max(1) as f64)
+            .collect();
+        let mut s_v: Vec<f64> = (0..mt)
+            .map(|j| {
+                (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(1e-3)) + shift * ev.clearance[cnode[j]].max(1e-3)
+            })
+            .collect();
+        let clr: Vec<f64> = cnode.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
+        let dofs6: Vec<[usize; 6]> = cnode
             .iter()
-            .map(|&i| state.lambda[i].max(0.0) + shift * scale / m.max(1) as f64)
+            .map(|&i| std::array::from_fn(|k| model.dof(i, k)))
             .collect();
-        let mut s_v: Vec<f64> = (0..m)
-            .map(|j| (-gaps0[j]).max(1e-6 * ev.clearance[qidx[j]].max(1e-3)) + shift * ev.clearance[qidx[j]].max(1e-3))
-            .collect();
-        let clr: Vec<f64> = qidx.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
-        let dofs6: Vec<[usize; 6]> = qidx.iter().map(|&i| std::array::from_fn(|k| model.dof(i, k))).collect();
         let radial = |j: usize, u: &[f64]| -> f64 { (0..3).map(|k| normals[j][k] * u[dofs6[j][k]]).sum() };
         let mut rd = vec![0.0; n];
-        let mut rp = vec![0.0; m];
+        let mut rp = vec![0.0; mt];
         let mut rhs = vec![0.0; n];
         let mut b_top = vec![0.0; n];
-        let mut ds = vec![0.0; m];
-        let mut dr = vec![0.0; m];
-        let mut ds_aff = vec![0.0; m];
-        let mut dr_aff = vec![0.0; m];
-        let mut rc = vec![0.0; m];
+        let mut ds = vec![0.0; mt];
+        let mut dr = vec![0.0; mt];
+        let mut ds_aff = vec![0.0; mt];
+        let mut dr_aff = vec![0.0; mt];
+        let mut rc = vec![0.0; mt];
         let mut work = Vec::new();
         let mut ip_iters = 0usize;
         let mut stalled = 0usize;
@@ -1191,7 +1236,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             if ip > 0 {
                 lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
             }
-            for j in 0..m {
+            for j in 0..mt {
                 for k in 0..6 {
                     rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
                 }
@@ -1200,12 +1245,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             for &d in &constrained {
                 rd[d] = 0.0;
             }
-            for j in 0..m {
+            for j in 0..mt {
                 rp[j] = radial(j, &du) + s_v[j] + gaps0[j];
             }
-            let mu = (0..m).map(|j| r_f[j] * s_v[j]).sum::<f64>() / m.max(1) as f64;
+            let mu = (0..mt).map(|j| r_f[j] * s_v[j]).sum::<f64>() / mt.max(1) as f64;
             let rd_n = rd.iter().fold(0.0f64, |a, v| a.max(v.abs())) / scale;
-            let rp_n = (0..m).map(|j| rp[j].abs() / clr[j]).fold(0.0, f64::max);
+            let rp_n = (0..mt).map(|j| rp[j].abs() / clr[j]).fold(0.0, f64::max);
             let cb = if bordered {
                 c + kb.iter().map(|&(d, v)| v * du[d]).sum::<f64>()
             } else {
@@ -1219,20 +1264,24 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             // row form: row i (DOF k of a contact node) gets D e_k g^T on the node's
             // translation columns
             let add_row = |i: usize, row: &mut [f64]| {
-                let j = contact_at[nn - 1 - i / 6];
-                if j == usize::MAX {
-                    return;
-                }
-                let k = i % 6;
-                let e = r_f[j] / s_v[j] * eq_cols[j][k];
-                // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
-                let off = HALF_BANDWIDTH - k;
-                for cc in 0..3 {
-                    row[off + cc] += e * normals[j][cc];
+                let node = nn - 1 - i / 6;
+                let first = far_at[node];
+                let extra = if first == usize::MAX { 0..0 } else { first..first + 3 };
+                for j in std::iter::once(contact_at[node]).chain(extra) {
+                    if j == usize::MAX {
+                        continue;
+                    }
+                    let k = i % 6;
+                    let e = r_f[j] / s_v[j] * eq_cols[j][k];
+                    // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
+                    let off = HALF_BANDWIDTH - k;
+                    for cc in 0..3 {
+                        row[off + cc] += e * normals[j][cc];
+                    }
                 }
             };
             let factored = lin.factor_modified(base.as_ref(), &constrained, constraint_scale, add_row, |sink| {
-                for j in 0..m {
+                for j in 0..mt {
                     let dj = r_f[j] / s_v[j];
                     let nv = normals[j];
                     // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
@@ -1255,7 +1304,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 for (x, v) in rhs.iter_mut().zip(&rd) {
                     *x = -v;
                 }
-                for j in 0..m {
+                for j in 0..mt {
                     let w = (rc[j] + r_f[j] * rp[j]) / s_v[j];
                     for k in 0..6 {
                         rhs[dofs6[j][k]] -= w * eq_cols[j][k];
@@ -1267,7 +1316,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             };
             // Mehrotra predictor: the affine-scaling direction (no centering), solved together
             // with the hook-load column K^-1 e_top (one pass over the factor for both)
-            for j in 0..m {
+            for j in 0..mt {
                 rc[j] = -r_f[j] * s_v[j];
             }
             build_rhs(&rc, &mut rhs);
@@ -1293,7 +1342,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 } else {
                     0.0
                 };
-                for j in 0..m {
+                for j in 0..mt {
                     ds[j] = -rp[j] - radial(j, rhs);
                     dr[j] = (rc[j] - r_f[j] * ds[j]) / s_v[j];
                 }
@@ -1301,10 +1350,10 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             };
             finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
             let a_aff = step_to_boundary(&r_f, &dr_aff, &s_v, &ds_aff, 1.0);
-            let mu_aff = (0..m)
+            let mu_aff = (0..mt)
                 .map(|j| (r_f[j] + a_aff * dr_aff[j]) * (s_v[j] + a_aff * ds_aff[j]))
                 .sum::<f64>()
-                / m.max(1) as f64;
+                / mt.max(1) as f64;
             // ... sets the centering sigma = (mu_aff / mu)^3; the corrector adds the
             // second-order term of the complementarity
             let sigma = if mu > 0.0 {
@@ -1312,7 +1361,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             } else {
                 0.0
             };
-            for j in 0..m {
+            for j in 0..mt {
                 rc[j] = -r_f[j] * s_v[j] + sigma * mu - dr_aff[j] * ds_aff[j];
             }
             build_rhs(&rc, &mut rhs);
@@ -1325,7 +1374,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 *x += alpha * d;
             }
             dh_total += alpha * ddh;
-            for j in 0..m {
+            for j in 0..mt {
                 r_f[j] += alpha * dr[j];
                 s_v[j] += alpha * ds[j];
             }
@@ -1349,7 +1398,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let (mut lat_ratio, mut lat_node): (f64, usize) = (0.0, 0);
         for &i in &qidx {
             let lat = increment_across(model, &ev, &du, i, 0);
-            let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3));
+            let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(LATERAL_CAP_FLOOR_M));
             if r > lat_ratio {
                 (lat_ratio, lat_node) = (r, i);
             }
@@ -1370,7 +1419,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
         for (j, &i) in qidx.iter().enumerate() {
-            state.lambda[i] = if r_f[j] > 1e-9 * scale { r_f[j] } else { 0.0 };
+            // a node that crossed to the far wall carries the far multiplier into the next
+            // linearization (whose normal then points at that wall)
+            let rj = match far_at[i] {
+                usize::MAX => r_f[j],
+                f => r_f[j] + r_f[f..f + 3].iter().sum::<f64>(),
+            };
+            state.lambda[i] = if rj > 1e-9 * scale { rj } else { 0.0 };
         }
         stats.iterations += 1;
     }
