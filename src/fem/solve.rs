@@ -366,13 +366,18 @@ pub const IP_STALL_STEPS: usize = 5;
 pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
 
 /// Gap nodes with a clearance below this (m) get the whole wall as constraints of the
-/// linearized contact problem (a square of supporting planes around the hole circle: the
-/// current wall, the opposite one and the two at 90 deg): the linearized gap bounds only the
-/// motion toward the current wall, and the lateral step cap (two clearances, but at least
-/// [`LATERAL_CAP_FLOOR_M`] of clearance) would let a stabilizer with a clearance of a
-/// millimetre move around or across its hole and out through the wall by more than a
-/// clearance in one step. Wider gaps stay within about a clearance of the wall under the cap.
+/// linearized contact problem ([`WALL_PLANES`] supporting planes of the hole circle, the
+/// current wall's among them): the linearized gap bounds only the motion toward the current
+/// wall, and the lateral step cap (two clearances, but at least [`LATERAL_CAP_FLOOR_M`] of
+/// clearance) would let a stabilizer with a clearance of a millimetre move around or across
+/// its hole and out through the wall by more than a clearance in one step. Wider gaps stay
+/// within about a clearance of the wall under the cap.
 pub const FAR_WALL_CLEARANCE_M: f64 = LATERAL_CAP_FLOOR_M;
+
+/// Supporting planes of the hole circle per tight gap (see [`FAR_WALL_CLEARANCE_M`]); the
+/// square leaves at most `1 / cos(pi / WALL_PLANES) - 1` of the clearance (41%) of penetration
+/// (8 planes, 8%, needed more Newton iterations on the example wells, not fewer).
+pub const WALL_PLANES: usize = 4;
 
 /// Smallest clearance the lateral step cap counts with, m (a tighter gap would hold the whole
 /// step to a fraction of a millimetre).
@@ -1081,12 +1086,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             geometry.push(g);
         }
         // the rest of the wall of tight gaps (see `FAR_WALL_CLEARANCE_M`): the supporting planes
-        // of the hole circle at -n (at `radial + clearance` from the node) and at +-b, b = t x n
-        // (at `clearance`), with the current wall's plane a square around the circle
+        // of the hole circle with outward normals e = n cos(a) + b sin(a), b = t x n, at the
+        // angles a = 2 pi k / WALL_PLANES from the current normal: e . (radial n + du) <= clearance
         let far: Vec<usize> = (0..m)
             .filter(|&j| ev.clearance[qidx[j]] < FAR_WALL_CLEARANCE_M)
             .collect();
-        let mt = m + 3 * far.len();
+        const EXTRA: usize = WALL_PLANES - 1;
+        let mt = m + EXTRA * far.len();
         let mut far_at = vec![usize::MAX; nn];
         let mut cnode: Vec<usize> = qidx.clone();
         for (k, &j) in far.iter().enumerate() {
@@ -1094,14 +1100,16 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             let g = &geometry[j];
             let b = g.tangent.cross(&g.normal);
             let eo = ev.clearance[i];
-            for (nrm, gap) in [(-g.normal, -(g.radial + eo)), (b, -eo), (-b, -eo)] {
+            for k in 1..WALL_PLANES {
+                let a = std::f64::consts::TAU * k as f64 / WALL_PLANES as f64;
+                let (nrm, gap) = (g.normal * a.cos() + b * a.sin(), g.radial * a.cos() - eo);
                 let (nl, col) = wall(i, nrm, g.tangent);
                 normals.push(nl);
                 eq_cols.push(col);
                 gaps0.push(gap);
                 cnode.push(i);
             }
-            far_at[i] = m + 3 * k;
+            far_at[i] = m + EXTRA * k;
         }
         // outer residual with the current multipliers as the contact forces
         let mut rt = r0.clone();
@@ -1266,7 +1274,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             let add_row = |i: usize, row: &mut [f64]| {
                 let node = nn - 1 - i / 6;
                 let first = far_at[node];
-                let extra = if first == usize::MAX { 0..0 } else { first..first + 3 };
+                let extra = if first == usize::MAX {
+                    0..0
+                } else {
+                    first..first + EXTRA
+                };
                 for j in std::iter::once(contact_at[node]).chain(extra) {
                     if j == usize::MAX {
                         continue;
@@ -1423,7 +1435,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             // linearization (whose normal then points at that wall)
             let rj = match far_at[i] {
                 usize::MAX => r_f[j],
-                f => r_f[j] + r_f[f..f + 3].iter().sum::<f64>(),
+                f => r_f[j] + r_f[f..f + EXTRA].iter().sum::<f64>(),
             };
             state.lambda[i] = if rj > 1e-9 * scale { rj } else { 0.0 };
         }
