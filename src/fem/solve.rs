@@ -359,6 +359,16 @@ pub const IP_START_SHIFT: f64 = 0.1;
 /// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
 pub const IP_STALL_STEPS: usize = 5;
 
+/// Restarts of an interior-point solve stalled near the solution (inner tolerance at most 1e-8),
+/// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
+/// boundary. Restarting far from the solution too was tried: it discards the warm start's
+/// contact set and made the outer iteration wander on the horizontal WOB case of
+/// tests/extremes.rs (thousands of factorizations).
+pub const IP_RESTARTS: usize = 2;
+
+/// Growth of the warm-start shift at each interior-point restart.
+pub const IP_RESTART_SHIFT_FACTOR: f64 = 100.0;
+
 /// Outer residual (relative to the load scale) below which a full Newton step of the
 /// interior-point Newton is expected to converge: the next evaluation is then made without
 /// the tangent first (the converged one needs none), and redone with it if the expectation
@@ -1211,15 +1221,22 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // warm start from the previous multipliers, pushed off the boundary by a shift that
         // grows with the outer residual (far from the solution the old contact set is a poor
         // guess, and pairs pinned at the boundary would block the interior-point steps)
-        let shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
-        let mut r_f: Vec<f64> = (0..mt)
-            .map(|j| if j < m { state.lambda[qidx[j]].max(0.0) } else { 0.0 } + shift * scale / mt.max(1) as f64)
-            .collect();
-        let mut s_v: Vec<f64> = (0..mt)
-            .map(|j| {
-                (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(1e-3)) + shift * ev.clearance[cnode[j]].max(1e-3)
-            })
-            .collect();
+        let mut shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
+        let start_r = |shift: f64| -> Vec<f64> {
+            (0..mt)
+                .map(|j| if j < m { state.lambda[qidx[j]].max(0.0) } else { 0.0 } + shift * scale / mt.max(1) as f64)
+                .collect()
+        };
+        let start_s = |shift: f64| -> Vec<f64> {
+            (0..mt)
+                .map(|j| {
+                    (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(1e-3)) + shift * ev.clearance[cnode[j]].max(1e-3)
+                })
+                .collect()
+        };
+        let mut r_f = start_r(shift);
+        let mut s_v = start_s(shift);
+        let mut restarts = 0usize;
         let clr: Vec<f64> = cnode.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
         let dofs6: Vec<[usize; 6]> = cnode
             .iter()
@@ -1394,6 +1411,20 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             // from the solution: take the step found so far
             if stalled >= IP_STALL_STEPS && eta > 1e-8 {
                 break;
+            }
+            // stalled near the solution (where the exact tolerance is asked): the warm start sat
+            // too close to the boundary for a pair that has to change (a contact switching while
+            // its force and gap are both near zero), and the remaining iterations would creep
+            // at steps of 1e-3; start again from a more central point
+            if stalled >= IP_STALL_STEPS && restarts < IP_RESTARTS {
+                restarts += 1;
+                shift = (shift * IP_RESTART_SHIFT_FACTOR).min(1e-1);
+                r_f = start_r(shift);
+                s_v = start_s(shift);
+                du.fill(0.0);
+                dh_total = 0.0;
+                stalled = 0;
+                tracing::debug!(restarts, shift, "interior point restarted");
             }
         }
         // geometric step with caps
