@@ -706,3 +706,70 @@ fn evaluation_reusing_element_responses_equals_a_fresh_one_bit_for_bit() {
         );
     }
 }
+
+#[test]
+fn stretched_start_and_solution_match_the_hanging_string_stretch() {
+    // Reference: a string hanging in a straight vertical hole with WOB W at the bit, which is
+    // held: the axial force of element e is N_e = -W + (buoyed weight below its centre), and
+    // the top rises by u = sum N_e l0_e / EA_e (linear elasticity, no contact). The stretched
+    // start (fem::solve::stretch_start) must put the top node there to 1e-9 (it integrates
+    // the same forces); the converged FEM solution to 1e-3 (the co-rotational axial strain).
+    let case = load_temp_case(
+        "md_m,inc_deg,azi_deg\n0,0,0\n2000,0,0\n",
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{ to_md = "2000 m", diameter = "8.5 in" }]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "drilling"
+wob = "50 kN"
+rpm = 60
+friction = 0.0
+[[string]]
+type = "collar"
+od = "6.5 in"
+id = "2.8125 in"
+length = "100 m"
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "29 kg/m"
+tool_joint_od = "6.625 in"
+[solver]
+element_length = "2 m"
+bha_element_length = "1 m"
+"#,
+    );
+    let model = Model::from_case(&case);
+    let top = model.nodes() - 1;
+    let mut below = -model.loads.wob_n;
+    let mut expected = 0.0;
+    for (e, s) in model.sections.iter().enumerate() {
+        let w = model.mesh.elements[e].buoyed_weight_n_per_m * s.l0;
+        expected += (below + 0.5 * w) * s.l0 / s.ea;
+        below += w;
+    }
+    assert!(
+        expected > 0.1,
+        "a 2 km string in tension stretches by decimetres: {expected} m"
+    );
+    let mut state = model.initial_state();
+    drillpath::fem::solve::stretch_start(&model, &mut state);
+    let z0 = model.path.point_at(model.md_ref[top]).position.z;
+    let start = z0 - state.x[top].z;
+    assert!(
+        (start - expected).abs() < 1e-9 * expected,
+        "start stretch {start} m vs {expected} m"
+    );
+    let sol = solve(&model, &SolveControls::default()).unwrap();
+    assert!(sol.converged);
+    let fem = z0 - sol.state.x[top].z;
+    println!("top rise: FEM {fem:.6} m, start {start:.6} m, closed form {expected:.6} m");
+    assert!(
+        (fem - expected).abs() < 1e-3 * expected,
+        "FEM stretch {fem} m vs {expected} m"
+    );
+}

@@ -129,6 +129,12 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
         // closed gap sitting on the axis: isotropic lateral spring
         stiffness = ptt * dr_dx.norm();
     }
+    if g.clearance <= ZERO_CLEARANCE_M && r <= tiny {
+        // pin without force (on the axis, no multiplier): n dR^T + R dn = k_n (I - t t^T) for
+        // every p != 0, so the same lateral spring here (not zero: a pin that a Newton step
+        // could move freely)
+        stiffness = ptt * g.k_n;
+    }
     let mut force = -n * r;
     let mut moment = Vec3::zeros();
     let mut moment_stiffness = Matrix3::zeros();

@@ -167,15 +167,67 @@ pub fn load_scale(model: &Model) -> f64 {
     w + model.loads.wob_n.abs() + model.loads.hook_load_n.unwrap_or(0.0).abs() + 1e3
 }
 
+/// Soft-string axial force of each element (tension positive), N: `-WOB` at the bit plus the
+/// buoyed weight's axial part integrated upward on the hole axis between the nodes' MDs in
+/// `state.md` (no friction).
+fn soft_string_tension(model: &Model, state: &State) -> Vec<f64> {
+    let mut tension = -model.loads.wob_n;
+    (0..model.nodes() - 1)
+        .map(|e| {
+            let tbar =
+                (model.path.axis_at(state.md[e]).tangent + model.path.axis_at(state.md[e + 1]).tangent).normalize();
+            let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
+            let mid = tension + 0.5 * w * tbar.z;
+            tension += w * tbar.z;
+            mid
+        })
+        .collect()
+}
+
+/// Stretched start: slide every node along the hole axis by the axial displacement of the
+/// soft-string axial force (`u = sum N l0 / EA` from the bit, which stays put), with its triad
+/// carried along the axis without twist (the parallel-transported frame at the new MD). A
+/// string kilometres long stretches by metres (16 m on a 10 km string): started unstretched,
+/// the Newton steps must slide it that far around the builds and across hole-size changes (a
+/// node crossing a casing shoe meets a wall that jumps by centimetres), and their
+/// bending-rotation and lateral caps make those steps short. The top node moves along its own
+/// DOF basis axis only (its lateral DOFs are held). Only the start changes, not the solution.
+/// Call it on a fresh [`Model::initial_state`] before [`soft_string_start`].
+pub fn stretch_start(model: &Model, state: &mut State) {
+    let nn = model.nodes();
+    let tension = soft_string_tension(model, state);
+    let mut u = 0.0;
+    for i in 1..nn {
+        let e = i - 1;
+        let s = &model.sections[e];
+        if s.ea > 0.0 {
+            u += tension[e] * s.l0 / s.ea;
+        }
+        let md = model.md_ref[i] - u;
+        let t0 = model.basis[i].column(0).into_owned();
+        if i == nn - 1 {
+            state.x[i] += t0 * (md - model.md_ref[i]);
+            state.md[i] = model.path.nearest_md(&state.x[i], md);
+            continue;
+        }
+        let (t, b1, b2) = model.path.bishop_at(md);
+        state.x[i] = model.path.axis_at(md).position;
+        state.md[i] = md;
+        state.lam[i] = nalgebra::Matrix3::from_columns(&[t, b1, b2]);
+        state.normal[i] = -model.path.frame_at(md).h;
+    }
+}
+
 /// Soft-string start: axial force by integrating weight from the bit, contact side from the
 /// lateral load of each element; nodes put on that side of the wall with the soft-string
-/// normal force as their first multiplier (physics.md 4.5).
+/// normal force as their first multiplier (physics.md 4.5). Axis points at the nodes' MDs in
+/// `state.md` (the reference MDs, or the stretched ones of [`stretch_start`]).
 pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     let nn = model.nodes();
     let mut tension = -model.loads.wob_n;
     let mut load = vec![Vec3::zeros(); nn];
     for e in 0..nn - 1 {
-        let (lo, up) = (model.md_ref[e], model.md_ref[e + 1]);
+        let (lo, up) = (state.md[e], state.md[e + 1]);
         let p_lo = model.path.point_at(lo);
         let p_up = model.path.point_at(up);
         let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
@@ -202,8 +254,8 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
             continue;
         }
         let n = li.normalize();
-        let eo = model.clearance(i, model.md_ref[i]);
-        state.x[i] = model.path.point_at(model.md_ref[i]).position + n * eo;
+        let eo = model.clearance(i, state.md[i]);
+        state.x[i] = model.path.axis_at(state.md[i]).position + n * eo;
         state.lambda[i] = li.norm();
         state.normal[i] = n;
     }
@@ -243,7 +295,7 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
     let mut phi = 0.0;
     for i in (0..nn - 1).rev() {
         phi -= twist_rate[i] * model.sections[i].l0;
-        let t = model.basis[i].column(0).into_owned();
+        let t = state.lam[i].column(0).into_owned();
         state.lam[i] = super::rotation::exp_so3(&(t * phi)) * state.lam[i];
     }
 }
@@ -263,7 +315,7 @@ pub const START_MAX_SLOPE: f64 = 0.005;
 /// friction and the interior point). Only the start changes, not the solution.
 pub fn smooth_start(model: &Model, state: &mut State) {
     let nn = model.nodes();
-    let axis: Vec<_> = (0..nn).map(|i| model.path.point_at(model.md_ref[i]).position).collect();
+    let axis: Vec<_> = (0..nn).map(|i| model.path.axis_at(state.md[i]).position).collect();
     let mut a: Vec<f64> = (0..nn).map(|i| (state.x[i] - axis[i]).norm()).collect();
     let dir: Vec<Vec3> = (0..nn)
         .map(|i| {
@@ -307,11 +359,44 @@ pub const IP_START_SHIFT: f64 = 0.1;
 /// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
 pub const IP_STALL_STEPS: usize = 5;
 
+/// Restarts of an interior-point solve stalled near the solution (inner tolerance at most 1e-8),
+/// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
+/// boundary. Restarting far from the solution too was tried: it discards the warm start's
+/// contact set and made the outer iteration wander on the horizontal WOB case of
+/// tests/extremes.rs (thousands of factorizations).
+pub const IP_RESTARTS: usize = 2;
+
+/// Growth of the warm-start shift at each interior-point restart.
+pub const IP_RESTART_SHIFT_FACTOR: f64 = 100.0;
+
 /// Outer residual (relative to the load scale) below which a full Newton step of the
 /// interior-point Newton is expected to converge: the next evaluation is then made without
 /// the tangent first (the converged one needs none), and redone with it if the expectation
 /// fails. Newton converges quadratically here (e.g. 8e-3, 8e-5, 3e-8 on a 3,000 m string).
 pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
+
+/// Gap nodes with a clearance below this (m) get the whole wall as constraints of the
+/// linearized contact problem ([`WALL_PLANES`] supporting planes of the hole circle, the
+/// current wall's among them): the linearized gap bounds only the motion toward the current
+/// wall, and the lateral step cap (two clearances, but at least [`LATERAL_CAP_FLOOR_M`] of
+/// clearance) would let a stabilizer with a clearance of a millimetre move around or across
+/// its hole and out through the wall by more than a clearance in one step. Wider gaps stay
+/// within about a clearance of the wall under the cap.
+pub const FAR_WALL_CLEARANCE_M: f64 = LATERAL_CAP_FLOOR_M;
+
+/// Supporting planes of the hole circle per tight gap (see [`FAR_WALL_CLEARANCE_M`]); the
+/// square leaves at most `1 / cos(pi / WALL_PLANES) - 1` of the clearance (41%) of penetration
+/// (8 planes, 8%, needed more Newton iterations on the example wells, not fewer).
+pub const WALL_PLANES: usize = 4;
+
+/// Smallest clearance the lateral step cap counts with, m (a tighter gap would hold the whole
+/// step to a fraction of a millimetre).
+pub const LATERAL_CAP_FLOOR_M: f64 = 2e-3;
+
+/// Net force of the residual allowed at convergence, in units of the residual tolerance (both
+/// relative to the load scale): every entry below the tolerance is not enough when thousands
+/// of nodes' small imbalances add up in the global equilibrium check.
+pub const NET_FORCE_TOLERANCE: f64 = 1.0;
 
 /// Interior-point iterations allowed per Newton step.
 pub const MAX_IP_ITERATIONS: usize = 60;
@@ -336,6 +421,24 @@ fn step_to_boundary(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64], tau: f64) -> f
         }
     }
     a
+}
+
+/// Part of node `i`'s translation (`k0` = 0) or rotation (`k0` = 3) increment in `du` (node
+/// basis) normal to the hole axis at the node's nearest axis point (its DOF basis axis for a
+/// node without a gap): the lateral motion (m) and the bending rotation (rad) that the step caps
+/// limit. Not the basis components 1-2 or 4-5: where the string has slid along a curved hole
+/// the hole tangent is off the basis tangent (by 1 deg after 12 m of stretch in a
+/// 2.5 deg/30 m build), so axial sliding would count as lateral motion and a twist increment
+/// of a rotating string (radians per step on a string kilometres long) as bending.
+fn increment_across(model: &Model, ev: &Evaluation, du: &[f64], i: usize, k0: usize) -> f64 {
+    let q = &model.basis[i];
+    let v = q * Vec3::new(du[model.dof(i, k0)], du[model.dof(i, k0 + 1)], du[model.dof(i, k0 + 2)]);
+    let t = if model.mesh.nodes[i].has_gap {
+        ev.axis[i].1
+    } else {
+        q.column(0).into_owned()
+    };
+    (v - t * t.dot(&v)).norm()
 }
 
 /// Merit of a state: squared residual over free DOFs plus the WOB equation, forces in N and
@@ -633,6 +736,7 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
     let mut consistent = model.clone();
     consistent.consistent_tangent = true;
     let mut state = model.initial_state();
+    stretch_start(model, &mut state);
     soft_string_start(model, &mut state, false);
     smooth_start(model, &mut state);
     wind_up_start(model, &mut state);
@@ -643,7 +747,11 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
         return Ok(sol);
     }
     tracing::info!("interior-point contact Newton did not converge; trying the active-set strategies");
-    // 2. fallbacks: active-set strategies, then load continuation
+    // 2. fallbacks: active-set strategies, then load continuation, each with a shorter budget
+    let ctl = &SolveControls {
+        max_iterations: ctl.max_iterations.min(FALLBACK_MAX_ITERATIONS),
+        ..*ctl
+    };
     let mut total = sol.stats.iterations;
     let mut last = None;
     for (k, strategy) in STRATEGIES.iter().enumerate() {
@@ -674,6 +782,14 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
     sol.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(sol)
 }
+
+/// Iteration limit of each fallback attempt of [`solve`] (active-set strategy, continuation
+/// step) after the interior-point Newton failed. None of them has rescued a case since the
+/// interior-point Newton became the default (the test suite, the example wells, the benchmark
+/// wells and the failing extremes: inclination 120 and 180 deg, DLS 30 deg/30 m drilling,
+/// WOB 1-3 x helical with friction), while with the full limit they made a failing solve take
+/// a minute; the shorter budget keeps them as a last resort and fails in seconds.
+pub const FALLBACK_MAX_ITERATIONS: usize = 100;
 
 /// Load steps of the continuation fallback (fractions of WOB, bit torque and friction).
 pub const CONTINUATION_STEPS: [f64; 6] = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
@@ -998,14 +1114,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // equilibrium column of each contact force: [n + f v^ ; f R_c n x v^] (node basis),
         // friction proportional to the unknown normal force
         let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
-        for &i in &qidx {
-            let g = gap_geometry(&state, &ev, i);
-            let nrm = g.normal;
-            state.normal[i] = nrm;
+        // node-basis normal and equilibrium column of a wall contact at node i with outward
+        // normal `nrm` (global)
+        let wall = |i: usize, nrm: Vec3, tangent: Vec3| -> (Vec3, [f64; 6]) {
             let q = &model.basis[i];
-            normals.push(q.transpose() * nrm);
             let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-            let v = g.tangent * model.loads.axial_speed_m_s + g.tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
+            let v = tangent * model.loads.axial_speed_m_s + tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
             let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
                 let vh = v / v.norm();
                 (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
@@ -1014,9 +1128,42 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             };
             let et = q.transpose() * (nrm + fv);
             let em = q.transpose() * fm;
-            eq_cols.push([et.x, et.y, et.z, em.x, em.y, em.z]);
+            (q.transpose() * nrm, [et.x, et.y, et.z, em.x, em.y, em.z])
+        };
+        for &i in &qidx {
+            let g = gap_geometry(&state, &ev, i);
+            state.normal[i] = g.normal;
+            let (nl, col) = wall(i, g.normal, g.tangent);
+            normals.push(nl);
+            eq_cols.push(col);
             gaps0.push(g.gap);
             geometry.push(g);
+        }
+        // the rest of the wall of tight gaps (see `FAR_WALL_CLEARANCE_M`): the supporting planes
+        // of the hole circle with outward normals e = n cos(a) + b sin(a), b = t x n, at the
+        // angles a = 2 pi k / WALL_PLANES from the current normal: e . (radial n + du) <= clearance
+        let far: Vec<usize> = (0..m)
+            .filter(|&j| ev.clearance[qidx[j]] < FAR_WALL_CLEARANCE_M)
+            .collect();
+        const EXTRA: usize = WALL_PLANES - 1;
+        let mt = m + EXTRA * far.len();
+        let mut far_at = vec![usize::MAX; nn];
+        let mut cnode: Vec<usize> = qidx.clone();
+        for (k, &j) in far.iter().enumerate() {
+            let i = qidx[j];
+            let g = &geometry[j];
+            let b = g.tangent.cross(&g.normal);
+            let eo = ev.clearance[i];
+            for k in 1..WALL_PLANES {
+                let a = std::f64::consts::TAU * k as f64 / WALL_PLANES as f64;
+                let (nrm, gap) = (g.normal * a.cos() + b * a.sin(), g.radial * a.cos() - eo);
+                let (nl, col) = wall(i, nrm, g.tangent);
+                normals.push(nl);
+                eq_cols.push(col);
+                gaps0.push(gap);
+                cnode.push(i);
+            }
+            far_at[i] = m + EXTRA * k;
         }
         // outer residual with the current multipliers as the contact forces
         let mut rt = r0.clone();
@@ -1031,17 +1178,31 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let rn = residual_norm(&rt, scale).max(c.abs() / scale);
         let mut pen: f64 = 0.0;
         let mut compl: f64 = 0.0;
+        let mut pen_s = 0.0;
         for (j, &i) in qidx.iter().enumerate() {
             let eo = ev.clearance[i].max(1e-3);
+            if gaps0[j] / eo > pen {
+                pen_s = model.mesh.nodes[i].s_m;
+            }
             pen = pen.max(gaps0[j] / eo);
             compl = compl.max((state.lambda[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
         }
+        // net force of the residual (the global equilibrium error of physics.md 6.7): the entries
+        // are each below the tolerance, but thousands of them may add up
+        let net = (0..nn)
+            .map(|i| model.basis[i] * Vec3::new(rt[model.dof(i, 0)], rt[model.dof(i, 1)], rt[model.dof(i, 2)]))
+            .sum::<Vec3>()
+            .norm()
+            / scale;
         // zero-clearance gaps (full-gauge stabilizers) are pins: penalty springs about their
         // vector multiplier; their offset from the axis must fall below the tolerance of the
         // smallest clearance the managed gaps are measured against
         let pin_offset = pin_offset_m(model, &ev, &managed);
         let pins_held = pin_offset <= ctl.gap_tolerance * MIN_REFERENCE_CLEARANCE_M;
-        let equilibrium = rn < ctl.residual_tolerance && pen <= ctl.gap_tolerance && compl < 1e-6;
+        let equilibrium = rn < ctl.residual_tolerance
+            && net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
+            && pen <= ctl.gap_tolerance
+            && compl < 1e-6;
         let done = equilibrium && pins_held;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
             redo = true;
@@ -1049,9 +1210,19 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         stats.residual_history.push(rn);
         stats.max_penetration = pen.max(0.0);
+        let worst = rt
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+            .map(|(d, _)| d)
+            .unwrap_or(0);
         tracing::debug!(
             iteration = stats.iterations,
+            worst_s = model.mesh.nodes[nn - 1 - worst / 6].s_m,
+            worst_dof = worst % 6,
+            pen_s,
             residual = rn,
+            net,
             penetration = pen,
             compl,
             "ip newton"
@@ -1110,26 +1281,37 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // warm start from the previous multipliers, pushed off the boundary by a shift that
         // grows with the outer residual (far from the solution the old contact set is a poor
         // guess, and pairs pinned at the boundary would block the interior-point steps)
-        let shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
-        let mut r_f: Vec<f64> = qidx
+        let mut shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
+        let start_r = |shift: f64| -> Vec<f64> {
+            (0..mt)
+                .map(|j| if j < m { state.lambda[qidx[j]].max(0.0) } else { 0.0 } + shift * scale / mt.max(1) as f64)
+                .collect()
+        };
+        let start_s = |shift: f64| -> Vec<f64> {
+            (0..mt)
+                .map(|j| {
+                    (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(1e-3)) + shift * ev.clearance[cnode[j]].max(1e-3)
+                })
+                .collect()
+        };
+        let mut r_f = start_r(shift);
+        let mut s_v = start_s(shift);
+        let mut restarts = 0usize;
+        let clr: Vec<f64> = cnode.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
+        let dofs6: Vec<[usize; 6]> = cnode
             .iter()
-            .map(|&i| state.lambda[i].max(0.0) + shift * scale / m.max(1) as f64)
+            .map(|&i| std::array::from_fn(|k| model.dof(i, k)))
             .collect();
-        let mut s_v: Vec<f64> = (0..m)
-            .map(|j| (-gaps0[j]).max(1e-6 * ev.clearance[qidx[j]].max(1e-3)) + shift * ev.clearance[qidx[j]].max(1e-3))
-            .collect();
-        let clr: Vec<f64> = qidx.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
-        let dofs6: Vec<[usize; 6]> = qidx.iter().map(|&i| std::array::from_fn(|k| model.dof(i, k))).collect();
         let radial = |j: usize, u: &[f64]| -> f64 { (0..3).map(|k| normals[j][k] * u[dofs6[j][k]]).sum() };
         let mut rd = vec![0.0; n];
-        let mut rp = vec![0.0; m];
+        let mut rp = vec![0.0; mt];
         let mut rhs = vec![0.0; n];
         let mut b_top = vec![0.0; n];
-        let mut ds = vec![0.0; m];
-        let mut dr = vec![0.0; m];
-        let mut ds_aff = vec![0.0; m];
-        let mut dr_aff = vec![0.0; m];
-        let mut rc = vec![0.0; m];
+        let mut ds = vec![0.0; mt];
+        let mut dr = vec![0.0; mt];
+        let mut ds_aff = vec![0.0; mt];
+        let mut dr_aff = vec![0.0; mt];
+        let mut rc = vec![0.0; mt];
         let mut work = Vec::new();
         let mut ip_iters = 0usize;
         let mut stalled = 0usize;
@@ -1139,7 +1321,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             if ip > 0 {
                 lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
             }
-            for j in 0..m {
+            for j in 0..mt {
                 for k in 0..6 {
                     rd[dofs6[j][k]] += r_f[j] * eq_cols[j][k];
                 }
@@ -1148,12 +1330,12 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             for &d in &constrained {
                 rd[d] = 0.0;
             }
-            for j in 0..m {
+            for j in 0..mt {
                 rp[j] = radial(j, &du) + s_v[j] + gaps0[j];
             }
-            let mu = (0..m).map(|j| r_f[j] * s_v[j]).sum::<f64>() / m.max(1) as f64;
+            let mu = (0..mt).map(|j| r_f[j] * s_v[j]).sum::<f64>() / mt.max(1) as f64;
             let rd_n = rd.iter().fold(0.0f64, |a, v| a.max(v.abs())) / scale;
-            let rp_n = (0..m).map(|j| rp[j].abs() / clr[j]).fold(0.0, f64::max);
+            let rp_n = (0..mt).map(|j| rp[j].abs() / clr[j]).fold(0.0, f64::max);
             let cb = if bordered {
                 c + kb.iter().map(|&(d, v)| v * du[d]).sum::<f64>()
             } else {
@@ -1167,20 +1349,28 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             // row form: row i (DOF k of a contact node) gets D e_k g^T on the node's
             // translation columns
             let add_row = |i: usize, row: &mut [f64]| {
-                let j = contact_at[nn - 1 - i / 6];
-                if j == usize::MAX {
-                    return;
-                }
-                let k = i % 6;
-                let e = r_f[j] / s_v[j] * eq_cols[j][k];
-                // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
-                let off = HALF_BANDWIDTH - k;
-                for cc in 0..3 {
-                    row[off + cc] += e * normals[j][cc];
+                let node = nn - 1 - i / 6;
+                let first = far_at[node];
+                let extra = if first == usize::MAX {
+                    0..0
+                } else {
+                    first..first + EXTRA
+                };
+                for j in std::iter::once(contact_at[node]).chain(extra) {
+                    if j == usize::MAX {
+                        continue;
+                    }
+                    let k = i % 6;
+                    let e = r_f[j] / s_v[j] * eq_cols[j][k];
+                    // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
+                    let off = HALF_BANDWIDTH - k;
+                    for cc in 0..3 {
+                        row[off + cc] += e * normals[j][cc];
+                    }
                 }
             };
             let factored = lin.factor_modified(base.as_ref(), &constrained, constraint_scale, add_row, |sink| {
-                for j in 0..m {
+                for j in 0..mt {
                     let dj = r_f[j] / s_v[j];
                     let nv = normals[j];
                     // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
@@ -1203,7 +1393,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 for (x, v) in rhs.iter_mut().zip(&rd) {
                     *x = -v;
                 }
-                for j in 0..m {
+                for j in 0..mt {
                     let w = (rc[j] + r_f[j] * rp[j]) / s_v[j];
                     for k in 0..6 {
                         rhs[dofs6[j][k]] -= w * eq_cols[j][k];
@@ -1215,7 +1405,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             };
             // Mehrotra predictor: the affine-scaling direction (no centering), solved together
             // with the hook-load column K^-1 e_top (one pass over the factor for both)
-            for j in 0..m {
+            for j in 0..mt {
                 rc[j] = -r_f[j] * s_v[j];
             }
             build_rhs(&rc, &mut rhs);
@@ -1241,7 +1431,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 } else {
                     0.0
                 };
-                for j in 0..m {
+                for j in 0..mt {
                     ds[j] = -rp[j] - radial(j, rhs);
                     dr[j] = (rc[j] - r_f[j] * ds[j]) / s_v[j];
                 }
@@ -1249,10 +1439,10 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             };
             finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
             let a_aff = step_to_boundary(&r_f, &dr_aff, &s_v, &ds_aff, 1.0);
-            let mu_aff = (0..m)
+            let mu_aff = (0..mt)
                 .map(|j| (r_f[j] + a_aff * dr_aff[j]) * (s_v[j] + a_aff * ds_aff[j]))
                 .sum::<f64>()
-                / m.max(1) as f64;
+                / mt.max(1) as f64;
             // ... sets the centering sigma = (mu_aff / mu)^3; the corrector adds the
             // second-order term of the complementarity
             let sigma = if mu > 0.0 {
@@ -1260,7 +1450,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             } else {
                 0.0
             };
-            for j in 0..m {
+            for j in 0..mt {
                 rc[j] = -r_f[j] * s_v[j] + sigma * mu - dr_aff[j] * ds_aff[j];
             }
             build_rhs(&rc, &mut rhs);
@@ -1273,7 +1463,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 *x += alpha * d;
             }
             dh_total += alpha * ddh;
-            for j in 0..m {
+            for j in 0..mt {
                 r_f[j] += alpha * dr[j];
                 s_v[j] += alpha * ds[j];
             }
@@ -1282,11 +1472,25 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             if stalled >= IP_STALL_STEPS && eta > 1e-8 {
                 break;
             }
+            // stalled near the solution (where the exact tolerance is asked): the warm start sat
+            // too close to the boundary for a pair that has to change (a contact switching while
+            // its force and gap are both near zero), and the remaining iterations would creep
+            // at steps of 1e-3; start again from a more central point
+            if stalled >= IP_STALL_STEPS && restarts < IP_RESTARTS {
+                restarts += 1;
+                shift = (shift * IP_RESTART_SHIFT_FACTOR).min(1e-1);
+                r_f = start_r(shift);
+                s_v = start_s(shift);
+                du.fill(0.0);
+                dh_total = 0.0;
+                stalled = 0;
+                tracing::debug!(restarts, shift, "interior point restarted");
+            }
         }
         // geometric step with caps
         let (mut rot_ratio, mut rot_node): (f64, usize) = (0.0, 0);
         for i in 0..nn {
-            let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
+            let rot = increment_across(model, &ev, &du, i, 3);
             if rot / MAX_BENDING_ROTATION_STEP > rot_ratio {
                 (rot_ratio, rot_node) = (rot / MAX_BENDING_ROTATION_STEP, i);
             }
@@ -1296,8 +1500,8 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // around and through the wall
         let (mut lat_ratio, mut lat_node): (f64, usize) = (0.0, 0);
         for &i in &qidx {
-            let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
-            let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(2e-3));
+            let lat = increment_across(model, &ev, &du, i, 0);
+            let r = lat / (MAX_LATERAL_STEP_CLEARANCES * ev.clearance[i].max(LATERAL_CAP_FLOOR_M));
             if r > lat_ratio {
                 (lat_ratio, lat_node) = (r, i);
             }
@@ -1318,7 +1522,13 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
         for (j, &i) in qidx.iter().enumerate() {
-            state.lambda[i] = if r_f[j] > 1e-9 * scale { r_f[j] } else { 0.0 };
+            // a node that crossed to the far wall carries the far multiplier into the next
+            // linearization (whose normal then points at that wall)
+            let rj = match far_at[i] {
+                usize::MAX => r_f[j],
+                f => r_f[j] + r_f[f..f + EXTRA].iter().sum::<f64>(),
+            };
+            state.lambda[i] = if rj > 1e-9 * scale { rj } else { 0.0 };
         }
         stats.iterations += 1;
     }
