@@ -4,7 +4,7 @@
 //! Each node of the new model takes its state from a point of the previous model (a
 //! [`Source`]: a node, or a point between two adjacent nodes). What is carried is what the
 //! node holds *relative to the hole*: its lateral and axial offset from its axis point and its
-//! triad, both in its node basis (the hole frame at its reference MD), its contact multiplier
+//! triad, both in its node basis (the hole frame at its reference MD), its contact multipliers (scalar, and the vector one of a pin)
 //! and normal, and the offset of its nearest axis point from its reference MD; the hook load is
 //! kept. Between two source nodes the local values are interpolated linearly (the triad then
 //! re-orthonormalized: adjacent nodes' triads differ by small rotations).
@@ -52,6 +52,8 @@ struct Carried {
     md: f64,
     lambda: f64,
     normal: Vec3,
+    /// Vector multiplier of a pin (zero-clearance gap), N.
+    lambda_vec: Vec3,
 }
 
 fn carry(prev_model: &Model, prev: &State, j: usize, model: &Model, i: usize, lateral_scale: f64) -> Carried {
@@ -73,6 +75,7 @@ fn carry(prev_model: &Model, prev: &State, j: usize, model: &Model, i: usize, la
         md: model.md_ref[i] + (prev.md[j] - prev_model.md_ref[j]),
         lambda: prev.lambda[j],
         normal: rel * prev.normal[j],
+        lambda_vec: rel * prev.lambda_vec[j],
     }
 }
 
@@ -113,6 +116,7 @@ pub fn transport_mapped(
                 md: a.md * (1.0 - w) + b.md * w,
                 lambda: a.lambda * (1.0 - w) + b.lambda * w,
                 normal: if n.norm() > 1e-12 { n.normalize() } else { a.normal },
+                lambda_vec: a.lambda_vec * (1.0 - w) + b.lambda_vec * w,
             }
         } else {
             a
@@ -122,6 +126,7 @@ pub fn transport_mapped(
         st.md[i] = c.md;
         st.lambda[i] = c.lambda;
         st.normal[i] = c.normal;
+        st.lambda_vec[i] = c.lambda_vec;
     }
     st.hook_load_n = prev.hook_load_n;
     st
@@ -129,7 +134,7 @@ pub fn transport_mapped(
 
 /// Carry a solved state to the model with the bit moved and the same mesh (the predictor's
 /// step): node `i` takes node `i`'s state relative to its node basis (position, triad,
-/// contact force and normal); the hook load is kept.
+/// contact force and normal, pin multiplier); the hook load is kept.
 pub fn transport_state(prev_model: &Model, prev: &State, model: &Model) -> State {
     let n = prev_model.nodes();
     transport_mapped(prev_model, prev, model, |i| (i < n).then_some(Source::node(i)))
