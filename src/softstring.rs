@@ -35,7 +35,7 @@
 
 use crate::case::{Case, Mode};
 use crate::geometry::{HoleSize, Vec3, WellPath};
-use crate::string::{Component, ComponentKind, DrillString};
+use crate::string::{Component, DrillString};
 
 /// Inputs of a soft-string pass, SI units.
 #[derive(Debug, Clone, Copy)]
@@ -236,15 +236,6 @@ fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
     }
 }
 
-/// Bit diameter of a string, m: the contact OD of its bit component, if it starts with one.
-fn bit_diameter_m(string: &DrillString) -> Option<f64> {
-    string
-        .components
-        .first()
-        .filter(|c| c.kind == ComponentKind::Bit)
-        .map(|c| c.contact_od_m)
-}
-
 /// Longest soft-string segment, m: the soft string costs microseconds per 1,000 m, and its
 /// torque converges more slowly with the segment length than the stiff pipe mesh does (forge-16a
 /// surface torque: 0.9% between 1 m and 3 m segments; docs/performance.md "Pipe mesh").
@@ -270,7 +261,10 @@ pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
 ///   `bit_torque` if given (motor reactive torque), else 0; off bottom: 0.
 pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
     let op = &case.operation;
-    let d_b = bit_diameter_m(&case.string).unwrap_or_else(|| case.well.hole.diameter_at(op.bit_md_m));
+    let d_b = case
+        .string
+        .bit_diameter_m()
+        .unwrap_or_else(|| case.well.hole.diameter_at(op.bit_md_m));
     let bit_torque = |wob: f64| match op.mode {
         Mode::Drilling => op.bit_torque_nm.unwrap_or(case.bit_rock.bit_friction * wob * d_b / 3.0),
         Mode::Sliding => op.bit_torque_nm.unwrap_or(0.0),
@@ -325,6 +319,7 @@ mod tests {
     use super::*;
     use crate::geometry::{Station, Survey};
     use crate::string::material::steel;
+    use crate::string::ComponentKind;
 
     fn pipe(len: f64, w_air: f64, tj: Option<f64>) -> Component {
         Component {

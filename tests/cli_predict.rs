@@ -219,6 +219,17 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
     let (n, stdout) = intervals(&wide, &["--from", "200"]);
     assert_eq!(n, 4, "{stdout}");
     assert!(!stdout.contains("from: the hole below"), "{stdout}");
+    // a string without a bit component (a 6.5 in collar at the bottom) is measured against the
+    // hole at the bottom of the survey (8.5 in), not against its lowest component: same 3
+    // intervals
+    let bitless = wide.replace(
+        "[[string]]\ntype = \"bit\"\nod = \"8.5 in\"\nlength = \"0.3 m\"\n[[string]]\ntype = \"stabilizer\"\nod = \"8.5 in\"\nbody_od = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"1.5 m\"\n",
+        "",
+    );
+    assert!(!bitless.contains("type = \"bit\""));
+    let (n, stdout) = intervals(&bitless, &[]);
+    assert_eq!(n, 3, "{stdout}");
+    assert!(stdout.contains("from: the hole below 210.0 m"), "{stdout}");
 }
 
 /// Design comparison: two BHAs (the case and a copy whose near-bit stabilizer is replaced by a

@@ -30,9 +30,13 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let mut case = load_for_prediction(&a.case)?;
     let choice = prediction_choice(&mut case, &a.model.fidelity, &a.model.accuracy)?;
     let survey = &case.well.path;
-    let bit_od_m = case.string.components.first().map_or(0.0, |c| c.contact_od_m);
-    // by default, only the hole this bit drilled: below the earlier (wider) hole sections
-    let previous_hole = case.well.hole.previous_hole_bottom_md(bit_od_m);
+    // by default, only the hole this bit drilled: below the earlier (wider) hole sections (a
+    // string without a bit: the hole at the bottom of the survey gives the bit size)
+    let bit_diameter_m = case
+        .string
+        .bit_diameter_m()
+        .unwrap_or_else(|| case.well.hole.diameter_at(survey.md_end()));
+    let previous_hole = case.well.hole.previous_hole_bottom_md(bit_diameter_m);
     let from = match &a.from {
         Some(t) => parse_length_option("--from", t)?,
         None => survey

@@ -25,6 +25,13 @@ impl DrillString {
             .find(|c| x_m < c.top_m())
             .unwrap_or_else(|| self.components.last().expect("a string has components"))
     }
+    /// Bit diameter, m: the contact OD of the bit component, if the string starts with one.
+    pub fn bit_diameter_m(&self) -> Option<f64> {
+        self.components
+            .first()
+            .filter(|c| c.kind == ComponentKind::Bit)
+            .map(|c| c.contact_od_m)
+    }
     /// Length of the bottom-hole assembly: from the bit to the top of the highest component
     /// that is not pipe or HWDP, m.
     pub fn bha_length_m(&self) -> f64 {
