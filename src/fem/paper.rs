@@ -565,7 +565,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             let mut friction_gap: f64 = 0.0;
             for i in 0..nn {
                 let Some(g) = &ev.gaps[i] else { continue };
-                let eo = ev.clearance[i].max(1e-3);
+                let eo = ev.clearance[i].max(super::solve::MIN_REFERENCE_CLEARANCE_M);
                 let tol = ctl.gap_tolerance * eo;
                 if model.friction[i] > 0.0 {
                     friction_gap = friction_gap.max(model.friction[i] * (g.normal_force.max(0.0) - r_lag[i]).abs());
@@ -672,7 +672,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             // eq. 15: P2 = P1 + alpha (dP1/dS1) dS2 for every closed gap
             for i in 0..nn {
                 let Some(g) = &ev.gaps[i] else { continue };
-                let eo = ev.clearance[i].max(1e-3);
+                let eo = ev.clearance[i].max(super::solve::MIN_REFERENCE_CLEARANCE_M);
                 let tol = ctl.gap_tolerance * eo;
                 match kind[i] {
                     Kind::None => {}

@@ -871,7 +871,7 @@ pub fn solve_from(
         let mut pen: f64 = 0.0;
         for (i, g) in ev.gaps.iter().enumerate() {
             if let Some(g) = g {
-                let eo = ev.clearance[i].max(1e-3);
+                let eo = ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M);
                 let closed = state.closed.as_ref().is_some_and(|cl| cl[i]);
                 let free = state.free_law.as_ref().is_some_and(|f| f[i]);
                 if (closed && !free) || g.penetration > 0.0 {
@@ -915,7 +915,7 @@ pub fn solve_from(
                         changes += 1;
                         continue;
                     }
-                    let eo = ev.clearance[i].max(1e-3);
+                    let eo = ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M);
                     if closed[i] && g.normal_force < -RELEASE_FORCE_FRACTION * scale {
                         tracing::trace!(s = model.mesh.nodes[i].s_m, force = g.normal_force, "open");
                         closed[i] = false;
@@ -1032,22 +1032,20 @@ pub fn solve_from(
 
 /// Smallest clearance the gap tolerance is measured against, m: a gap's penetration counts
 /// relative to `max(clearance, this)`, and a pin's offset relative to this.
-const MIN_REFERENCE_CLEARANCE_M: f64 = 1e-3;
+pub(crate) const MIN_REFERENCE_CLEARANCE_M: f64 = 1e-3;
 
-/// Largest offset from the hole axis of the gaps not `managed` by the interior-point step
-/// (the pins: zero-clearance gaps), m.
-fn pin_offset_m(model: &Model, ev: &Evaluation, managed: &[bool]) -> f64 {
-    (0..model.nodes())
-        .filter(|&i| model.mesh.nodes[i].has_gap && !managed[i])
-        .filter_map(|i| ev.gaps[i].as_ref().map(|g| (g.penetration + ev.clearance[i]).max(0.0)))
+/// Largest offset from the hole axis of the `pins` (zero-clearance gap nodes), m.
+fn pin_offset_m(ev: &Evaluation, pins: &[usize]) -> f64 {
+    pins.iter()
+        .filter_map(|&i| ev.gaps[i].as_ref().map(|g| (g.penetration + ev.clearance[i]).max(0.0)))
         .fold(0.0, f64::max)
 }
 
-/// Augmented-Lagrangian update of the pins (gaps not `managed`): each vector multiplier takes
-/// the pin's current wall force.
-fn update_pin_multipliers(model: &Model, state: &mut State, ev: &Evaluation, managed: &[bool]) {
-    for (i, &m) in managed.iter().enumerate() {
-        if let (false, true, Some(g)) = (m, model.mesh.nodes[i].has_gap, ev.gaps[i].as_ref()) {
+/// Augmented-Lagrangian update of the `pins`: each vector multiplier takes the pin's current
+/// wall force.
+fn update_pin_multipliers(state: &mut State, ev: &Evaluation, pins: &[usize]) {
+    for &i in pins {
+        if let Some(g) = ev.gaps[i].as_ref() {
             state.lambda_vec[i] = -g.force_normal();
         }
     }
@@ -1081,6 +1079,10 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         })
         .collect();
     let qidx: Vec<usize> = (0..nn).filter(|&i| managed[i]).collect();
+    // the zero-clearance gaps: pins, held by their vector multipliers outside the interior point
+    let pins: Vec<usize> = (0..nn)
+        .filter(|&i| model.mesh.nodes[i].has_gap && !managed[i])
+        .collect();
     // contact index of each node (usize::MAX: none)
     let mut contact_at = vec![usize::MAX; nn];
     for (j, &i) in qidx.iter().enumerate() {
@@ -1180,7 +1182,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let mut compl: f64 = 0.0;
         let mut pen_s = 0.0;
         for (j, &i) in qidx.iter().enumerate() {
-            let eo = ev.clearance[i].max(1e-3);
+            let eo = ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M);
             if gaps0[j] / eo > pen {
                 pen_s = model.mesh.nodes[i].s_m;
             }
@@ -1197,7 +1199,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // zero-clearance gaps (full-gauge stabilizers) are pins: penalty springs about their
         // vector multiplier; their offset from the axis must fall below the tolerance of the
         // smallest clearance the managed gaps are measured against
-        let pin_offset = pin_offset_m(model, &ev, &managed);
+        let pin_offset = pin_offset_m(&ev, &pins);
         let pins_held = pin_offset <= ctl.gap_tolerance * MIN_REFERENCE_CLEARANCE_M;
         let equilibrium = rn < ctl.residual_tolerance
             && net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
@@ -1239,7 +1241,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             // augmented-Lagrangian update, the multiplier takes the pin's whole current force
             // (as in `solve_from`), then Newton restores equilibrium about it
             tracing::debug!(pin_offset, "pin multiplier update");
-            update_pin_multipliers(model, &mut state, &ev, &managed);
+            update_pin_multipliers(&mut state, &ev, &pins);
             stats.iterations += 1;
             likely_converged = false;
             continue;
@@ -1290,14 +1292,18 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let start_s = |shift: f64| -> Vec<f64> {
             (0..mt)
                 .map(|j| {
-                    (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(1e-3)) + shift * ev.clearance[cnode[j]].max(1e-3)
+                    (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(MIN_REFERENCE_CLEARANCE_M))
+                        + shift * ev.clearance[cnode[j]].max(MIN_REFERENCE_CLEARANCE_M)
                 })
                 .collect()
         };
         let mut r_f = start_r(shift);
         let mut s_v = start_s(shift);
         let mut restarts = 0usize;
-        let clr: Vec<f64> = cnode.iter().map(|&i| ev.clearance[i].max(1e-3)).collect();
+        let clr: Vec<f64> = cnode
+            .iter()
+            .map(|&i| ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M))
+            .collect();
         let dofs6: Vec<[usize; 6]> = cnode
             .iter()
             .map(|&i| std::array::from_fn(|k| model.dof(i, k)))
