@@ -1212,23 +1212,26 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         stats.residual_history.push(rn);
         stats.max_penetration = pen.max(0.0);
-        let worst = rt
-            .iter()
-            .enumerate()
-            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-            .map(|(d, _)| d)
-            .unwrap_or(0);
-        tracing::debug!(
-            iteration = stats.iterations,
-            worst_s = model.mesh.nodes[nn - 1 - worst / 6].s_m,
-            worst_dof = worst % 6,
-            pen_s,
-            residual = rn,
-            net,
-            penetration = pen,
-            compl,
-            "ip newton"
-        );
+        if tracing::enabled!(tracing::Level::DEBUG) {
+            // the largest residual entry: a scan over every DOF, made only for the log
+            let worst = rt
+                .iter()
+                .enumerate()
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                .map(|(d, _)| d)
+                .unwrap_or(0);
+            tracing::debug!(
+                iteration = stats.iterations,
+                worst_s = model.mesh.nodes[nn - 1 - worst / 6].s_m,
+                worst_dof = worst % 6,
+                pen_s,
+                residual = rn,
+                net,
+                penetration = pen,
+                compl,
+                "ip newton"
+            );
+        }
         if done {
             converged = true;
             break;
