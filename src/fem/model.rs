@@ -197,6 +197,12 @@ pub struct State {
     /// Managed gaps leave their friction to the solver (proportional to the unknown normal
     /// force) instead of applying it from the multiplier.
     pub implicit_friction: bool,
+    /// Zero-clearance gaps (pins) are exact constraints: the node is held on the hole axis (its
+    /// lateral DOFs are held by the solver) and its wall force is the reaction that balances
+    /// the lateral residual of everything else, friction included ([`Model::pin_reaction`]);
+    /// the vector multiplier is set to it at each evaluation. `false`: penalty springs about
+    /// the multiplier.
+    pub exact_pins: bool,
 }
 
 /// Everything evaluated at a state.
@@ -362,6 +368,7 @@ impl Model {
             lcp_nodes: None,
             exact_multipliers: false,
             implicit_friction: false,
+            exact_pins: false,
         }
     }
 
@@ -480,6 +487,30 @@ impl Model {
                 }
                 km.clear_dofs(self.dof(a, 0)..self.dof(a, 0) + 6);
                 debug_assert!(dofs.windows(2).all(|p| p[1] == p[0] + 1));
+                if self.consistent_tangent && self.needs_unsymmetric() {
+                    // load stiffness of the end moments that follow the chord r1 (gravity's
+                    // consistent moments and the mud torque): dr1/dx_B = -dr1/dx_A = (I - r1 r1^T)/L;
+                    // unsymmetric, so only in the unsymmetric (LU) tangent: a symmetric band
+                    // store keeps one triangle
+                    let chord = state.x[b] - state.x[a];
+                    let dr1 = (Matrix3::identity() - e1 * e1.transpose()) / chord.norm();
+                    let c = self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0;
+                    let qx = q.cross_matrix() * (l * l / 12.0);
+                    // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt)
+                    let dm = [-qx - Matrix3::identity() * c, qx - Matrix3::identity() * c];
+                    let bases = [qa, qb];
+                    for (end, dme) in dm.iter().enumerate() {
+                        for (col, sign) in [(0usize, -1.0), (6usize, 1.0)] {
+                            // residual = internal - external: minus the load's derivative
+                            let blk = bases[end].transpose() * dme * dr1 * bases[col / 6] * (-sign);
+                            for rr in 0..3 {
+                                for cc in 0..3 {
+                                    tangent[(6 * end + 3 + rr, col + cc)] += blk[(rr, cc)];
+                                }
+                            }
+                        }
+                    }
+                }
                 km.add_element(dofs[0], &tangent);
             }
             elements.push(resp);
@@ -497,6 +528,7 @@ impl Model {
         let mut gaps = vec![None; nn];
         let mut clearance = vec![0.0; nn];
         let mut axis = vec![(Vec3::zeros(), Vec3::zeros()); nn];
+        let mut pins = Vec::new();
         for i in 0..nn {
             if !self.mesh.nodes[i].has_gap {
                 continue;
@@ -507,33 +539,12 @@ impl Model {
             axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
             clearance[i] = eo;
-            let g = evaluate(&GapInput {
-                offset: state.x[i] - p.position,
-                t: p.tangent,
-                clearance: eo,
-                contact_radius: self.mesh.nodes[i].contact_od_m / 2.0,
-                lambda: state.lambda[i],
-                k_n: if state.exact_multipliers && eo > crate::contact::gap::ZERO_CLEARANCE_M {
-                    0.0
-                } else {
-                    self.k_n[i]
-                },
-                friction: self.friction[i],
-                axial_speed: self.loads.axial_speed_m_s,
-                omega: self.loads.omega_rad_s,
-                fallback_normal: state.normal[i],
-                status: match (&state.closed, &state.free_law, &state.lcp_nodes) {
-                    (_, _, Some(q)) if q[i] => Some(false),
-                    (_, Some(f), _) if f[i] => None,
-                    (Some(c), _, _) => Some(c[i]),
-                    (None, _, _) => None,
-                },
-                lambda_vec: state.lambda_vec[i],
-                friction_load: match &state.lcp_nodes {
-                    Some(q) if q[i] => Some(state.lambda[i]),
-                    _ => None,
-                },
-            });
+            if state.exact_pins && eo <= crate::contact::gap::ZERO_CLEARANCE_M {
+                // applied below, once the lateral residual of everything else is known
+                pins.push(i);
+                continue;
+            }
+            let g = evaluate(&self.gap_input(state, i, state.x[i] - p.position, p.tangent, eo));
             // implicit friction: the solver adds the friction force itself (proportional to the
             // unknown normal force); only its geometric stiffness comes from here
             let force_here = !(state.implicit_friction && state.lcp_nodes.as_ref().is_some_and(|q| q[i]));
@@ -566,6 +577,23 @@ impl Model {
             }
             gaps[i] = Some(g);
         }
+        for i in pins {
+            let q = &self.basis[i];
+            // lateral residual of everything but the pin (basis DOFs 1 and 2), global
+            let e_lat = q.column(1) * r[self.dof(i, 1)] + q.column(2) * r[self.dof(i, 2)];
+            let (p, t) = axis[i];
+            let offset = state.x[i] - p;
+            state.lambda_vec[i] = self.pin_reaction(i, &t, &(-e_lat));
+            let g = evaluate(&self.gap_input(state, i, offset, t, clearance[i]));
+            let f = q.transpose() * g.force;
+            let m = q.transpose() * g.moment;
+            for k in 0..3 {
+                r[self.dof(i, k)] -= f[k];
+                r[self.dof(i, 3 + k)] -= m[k];
+            }
+            state.normal[i] = g.normal;
+            gaps[i] = Some(g);
+        }
         Evaluation {
             residual: r,
             elements,
@@ -573,6 +601,57 @@ impl Model {
             clearance,
             axis,
         }
+    }
+
+    /// Gap input of node `i` at `state` with lateral `offset` (m) from the axis point of tangent
+    /// `t` and clearance `eo` (m).
+    fn gap_input(&self, state: &State, i: usize, offset: Vec3, t: Vec3, eo: f64) -> GapInput {
+        GapInput {
+            offset,
+            t,
+            clearance: eo,
+            contact_radius: self.mesh.nodes[i].contact_od_m / 2.0,
+            lambda: state.lambda[i],
+            k_n: if state.exact_multipliers && eo > crate::contact::gap::ZERO_CLEARANCE_M {
+                0.0
+            } else {
+                self.k_n[i]
+            },
+            friction: self.friction[i],
+            axial_speed: self.loads.axial_speed_m_s,
+            omega: self.loads.omega_rad_s,
+            fallback_normal: state.normal[i],
+            status: match (&state.closed, &state.free_law, &state.lcp_nodes) {
+                (_, _, Some(q)) if q[i] => Some(false),
+                (_, Some(f), _) if f[i] => None,
+                (Some(c), _, _) => Some(c[i]),
+                (None, _, _) => None,
+            },
+            lambda_vec: state.lambda_vec[i],
+            friction_load: match &state.lcp_nodes {
+                Some(q) if q[i] => Some(state.lambda[i]),
+                _ => None,
+            },
+        }
+    }
+
+    /// Wall force vector `p` (N, perpendicular to `t`; the pin's normal force `|p|` along
+    /// `p / |p|`) of an exact pin at node `i` whose wall force must balance the lateral force
+    /// `a` (N): the force on the string is `-p` plus friction `-f |p| v^`, whose lateral part
+    /// for the sliding velocity `v = v_a t + Omega R_c t x n` is `-f' t x p` with
+    /// `f' = f Omega R_c / |v|`; so `p + f' t x p = a_perp`, solved as
+    /// `p = (a_perp - f' t x a_perp) / (1 + f'^2)`.
+    pub fn pin_reaction(&self, i: usize, t: &Vec3, a: &Vec3) -> Vec3 {
+        let a = a - t * t.dot(a);
+        let rc = self.mesh.nodes[i].contact_od_m / 2.0;
+        let spin = self.loads.omega_rad_s * rc;
+        let speed = (self.loads.axial_speed_m_s.powi(2) + spin * spin).sqrt();
+        let fp = if self.friction[i] > 0.0 && speed > 1e-12 {
+            self.friction[i] * spin / speed
+        } else {
+            0.0
+        };
+        (a - t.cross(&a) * fp) / (1.0 + fp * fp)
     }
 
     /// Apply the increment `du` (DOF order, node bases) to `state`, scaled by `alpha`.

@@ -1041,14 +1041,182 @@ fn pin_offset_m(ev: &Evaluation, pins: &[usize]) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Augmented-Lagrangian update of the `pins`: each vector multiplier takes the pin's current
-/// wall force.
-fn update_pin_multipliers(state: &mut State, ev: &Evaluation, pins: &[usize]) {
+/// The model's held DOFs plus the lateral DOFs (basis 1 and 2) of the exact `pins`.
+pub(crate) fn constrained_with_pins(model: &Model, pins: &[usize]) -> Vec<usize> {
+    let mut constrained = model.constrained_dofs();
     for &i in pins {
-        if let Some(g) = ev.gaps[i].as_ref() {
-            state.lambda_vec[i] = -g.force_normal();
+        for k in 1..3 {
+            if !constrained.contains(&model.dof(i, k)) {
+                constrained.push(model.dof(i, k));
+            }
         }
     }
+    constrained
+}
+
+/// Linearization of the exact pins' friction (`State::exact_pins`): a pin's wall force `p`
+/// is the reaction to the lateral residual `a = -(I - t t^T)(Q1 r1 + Q2 r2)` of everything
+/// else (`p = M a`, [`Model::pin_reaction`]), and its friction force and moment depend on `p`
+/// (`F = -p - (f/|v|)(v_a |p| t + Omega R_c t x p)`,
+/// `M = -(f R_c/|v|)(v_a p x t + Omega R_c |p| t)`), so the pin node's rows of the residual get
+/// `Q^T (dG/dp) M (Q1 K1 + Q2 K2)`, `K1, K2` the tangent's rows of the lateral DOFs. Only
+/// with friction and motion (the unsymmetric tangent); the lateral rows themselves are held.
+pub(crate) fn add_pin_coupling(model: &Model, lin: &mut Linear, ev: &Evaluation, state: &State, pins: &[usize]) {
+    let Linear::General(k, _) = lin else {
+        return;
+    };
+    let n = model.dofs();
+    let (va, omega) = (model.loads.axial_speed_m_s, model.loads.omega_rad_s);
+    for &i in pins {
+        let f = model.friction[i];
+        let rc = model.mesh.nodes[i].contact_od_m / 2.0;
+        let spin = omega * rc;
+        let speed = (va * va + spin * spin).sqrt();
+        let p = state.lambda_vec[i];
+        let pn = p.norm();
+        if f <= 0.0 || speed <= 1e-12 || pn <= 1e-12 {
+            continue;
+        }
+        let q = &model.basis[i];
+        let t = ev.axis[i].1;
+        let id = nalgebra::Matrix3::identity();
+        let tx = t.cross_matrix();
+        let fp = f * spin / speed;
+        let mf = (id - t * t.transpose() - tx * fp) / (1.0 + fp * fp);
+        let ph = p / pn;
+        let dgf = -id - (t * ph.transpose() * va + tx * spin) * (f / speed);
+        let dgm = -(t * ph.transpose() * spin - tx * va) * (f * rc / speed);
+        let lat = nalgebra::Matrix3x2::from_columns(&[q.column(1).into_owned(), q.column(2).into_owned()]);
+        let bf = q.transpose() * dgf * mf * lat;
+        let bm = q.transpose() * dgm * mf * lat;
+        let base = model.dof(i, 0);
+        let rows = [(0, bf.row(0)), (3, bm.row(0)), (4, bm.row(1)), (5, bm.row(2))];
+        for c in base.saturating_sub(6)..(base + 12).min(n) {
+            let (k1, k2) = (k.get(base + 1, c), k.get(base + 2, c));
+            for (r, b) in rows {
+                k.add(base + r, c, b[0] * k1 + b[1] * k2);
+            }
+        }
+    }
+}
+
+/// Put the `pins` (zero-clearance gap nodes) on the hole axis: each loses its lateral offset
+/// from its nearest axis point (their lateral DOFs are held, so this only removes what sliding
+/// along a curved axis leaves, and a start's offset).
+fn hold_pins_on_axis(model: &Model, state: &mut State, pins: &[usize]) {
+    for &i in pins {
+        let md = model.path.nearest_md(&state.x[i], state.md[i]);
+        let p = model.path.axis_at(md);
+        let d = state.x[i] - p.position;
+        state.x[i] -= d - p.tangent * p.tangent.dot(&d);
+    }
+}
+
+/// Node-basis normal and equilibrium column of a wall contact at node `i` with outward normal
+/// `nrm` and hole tangent `tangent` (global): the force and moment on the node per newton of
+/// normal force, `[n + f v^ ; f R_c n x v^]` (friction opposing the sliding velocity `v^` of the
+/// contact point, proportional to the normal force).
+fn wall_column(model: &Model, i: usize, nrm: Vec3, tangent: Vec3) -> (Vec3, [f64; 6]) {
+    let q = &model.basis[i];
+    let rc = model.mesh.nodes[i].contact_od_m / 2.0;
+    let v = tangent * model.loads.axial_speed_m_s + tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
+    let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
+        let vh = v / v.norm();
+        (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
+    } else {
+        (Vec3::zeros(), Vec3::zeros())
+    };
+    let et = q.transpose() * (nrm + fv);
+    let em = q.transpose() * fm;
+    (q.transpose() * nrm, [et.x, et.y, et.z, em.x, em.y, em.z])
+}
+
+/// The linearized contacts of the interior-point Newton's managed gaps at one evaluation.
+pub(crate) struct ContactColumns {
+    /// Node-basis outward normal per contact.
+    pub(crate) normals: Vec<Vec3>,
+    /// Equilibrium column per contact (see [`wall_column`]).
+    pub(crate) eq_cols: Vec<[f64; 6]>,
+    /// Radial distance minus clearance per contact, m.
+    pub(crate) gaps0: Vec<f64>,
+    /// Gap geometry per contact.
+    pub(crate) geometry: Vec<GapGeometry>,
+}
+
+/// Contact normals, equilibrium columns and gaps of the managed gap nodes `qidx` at the
+/// evaluation `ev` of `state` (whose contact normals it updates).
+pub(crate) fn contact_columns(model: &Model, state: &mut State, ev: &Evaluation, qidx: &[usize]) -> ContactColumns {
+    let m = qidx.len();
+    let mut cc = ContactColumns {
+        normals: Vec::with_capacity(m),
+        eq_cols: Vec::with_capacity(m),
+        gaps0: Vec::with_capacity(m),
+        geometry: Vec::with_capacity(m),
+    };
+    for &i in qidx {
+        let g = gap_geometry(state, ev, i);
+        state.normal[i] = g.normal;
+        let (nl, col) = wall_column(model, i, g.normal, g.tangent);
+        cc.normals.push(nl);
+        cc.eq_cols.push(col);
+        cc.gaps0.push(g.gap);
+        cc.geometry.push(g);
+    }
+    cc
+}
+
+/// Residual `r0` (constrained entries zeroed) plus the contact forces of the multipliers
+/// `lambda` (N, per node) along the equilibrium columns of the managed gaps `qidx`.
+pub(crate) fn contact_residual(
+    model: &Model,
+    r0: &[f64],
+    qidx: &[usize],
+    eq_cols: &[[f64; 6]],
+    lambda: &[f64],
+    constrained: &[usize],
+) -> Vec<f64> {
+    let mut rt = r0.to_vec();
+    for (j, &i) in qidx.iter().enumerate() {
+        for k in 0..6 {
+            rt[model.dof(i, k)] += lambda[i] * eq_cols[j][k];
+        }
+    }
+    for &d in constrained {
+        rt[d] = 0.0;
+    }
+    rt
+}
+
+/// Add the circle stiffness of the managed gaps' contact forces `lambda` (N, per node): the
+/// rotation of the normal `n` with the lateral motion, `(R / s)(I - t t^T - n n^T)`.
+pub(crate) fn add_circle_stiffness(
+    model: &Model,
+    sink: &mut dyn StiffnessSink,
+    qidx: &[usize],
+    geometry: &[GapGeometry],
+    lambda: &[f64],
+) {
+    for (j, &i) in qidx.iter().enumerate() {
+        let (g, lam) = (&geometry[j], lambda[i]);
+        if lam > 0.0 && g.radial > 1e-9 {
+            let (t, nrm) = (g.tangent, g.normal);
+            let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / g.radial);
+            let q = &model.basis[i];
+            let kl = q.transpose() * kc * q;
+            let dofs: [usize; 3] = std::array::from_fn(|k| model.dof(i, k));
+            sink.add_block(&dofs, kl.transpose().as_slice(), 3);
+        }
+    }
+}
+
+/// Gap nodes whose contact the interior point manages (`true`): every gap but the
+/// zero-clearance ones (pins, held by vector multipliers).
+pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
+    (0..model.nodes())
+        .map(|i| {
+            model.mesh.nodes[i].has_gap && model.clearance(i, model.md_ref[i]) > crate::contact::gap::ZERO_CLEARANCE_M
+        })
+        .collect()
 }
 
 /// Newton iteration on the geometry whose every step solves the linearized contact problem of
@@ -1059,25 +1227,25 @@ fn update_pin_multipliers(state: &mut State, ev: &Evaluation, pins: &[usize]) {
 /// direction sets the centering, the corrector adds the second-order complementarity term).
 /// The iteration is warm-started from the previous step's multipliers, shifted off the
 /// boundary in proportion to the outer residual ([`IP_START_SHIFT`]), and stopped at a
-/// tolerance tied to the outer residual (inexact Newton; exact near convergence). Friction is taken from the previous step's
-/// normal forces (lagged), the rotation of the contact normal enters as the circle stiffness
-/// `(R/s)(I - t t^T - n n^T)`.
+/// tolerance tied to the outer residual (inexact Newton; exact near convergence). Friction is
+/// proportional to the unknown normal force (the equilibrium columns); the rotation of the
+/// contact normal enters as the circle stiffness `(R/s)(I - t t^T - n n^T)` and the rotation of
+/// the friction direction as the gaps' geometric stiffness at the previous multipliers. The
+/// zero-clearance gaps (pins) are exact constraints: held on the hole axis by their lateral
+/// DOFs, their force the reaction (`State::exact_pins`) with its friction linearized
+/// ([`add_pin_coupling`]); no augmented-Lagrangian phase. The linearization is checked against
+/// central differences in `solve_tangent_tests.rs`.
 pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
     let n = model.dofs();
     let nn = model.nodes();
     let mut lin = Linear::for_model(model);
-    let constrained = model.constrained_dofs();
     let top_ax = model.dof(nn - 1, 0);
     let bordered = model.loads.hook_load_n.is_none();
     let scale = load_scale(model);
     let mut stats = SolveStats::default();
     let mut converged = false;
-    let managed: Vec<bool> = (0..nn)
-        .map(|i| {
-            model.mesh.nodes[i].has_gap && model.clearance(i, model.md_ref[i]) > crate::contact::gap::ZERO_CLEARANCE_M
-        })
-        .collect();
+    let managed = managed_gaps(model);
     let qidx: Vec<usize> = (0..nn).filter(|&i| managed[i]).collect();
     // the zero-clearance gaps: pins, held by their vector multipliers outside the interior point
     let pins: Vec<usize> = (0..nn)
@@ -1089,10 +1257,14 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         contact_at[i] = j;
     }
     let m = qidx.len();
+    // the pins are exact constraints: held on the hole axis by their lateral DOFs, their wall
+    // force the reaction (`Model::pin_reaction`, set by each evaluation)
+    let constrained = constrained_with_pins(model, &pins);
     state.closed = Some(vec![false; nn]);
     state.free_law = None;
     state.lcp_nodes = Some(managed.clone());
     state.implicit_friction = true;
+    state.exact_pins = true;
     let mut ev;
     // the previous Newton step was full and its outer residual small: this evaluation is
     // likely the converged one, so it is first made without the tangent (then redone with it
@@ -1103,44 +1275,20 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // linearize with the managed gaps carrying only their lagged friction
         let skip_tangent = likely_converged && !redo;
         redo = false;
+        hold_pins_on_axis(model, &mut state, &pins);
         ev = if skip_tangent {
             model.evaluate(&mut state, None)
         } else {
             model.evaluate(&mut state, Some(lin.sink()))
         };
         let (c, r0) = free_residual(model, &ev, &constrained);
-        // contact geometry of the managed gaps (node-basis normals, gaps)
-        let mut normals = Vec::with_capacity(m);
-        let mut gaps0 = Vec::with_capacity(m);
-        let mut geometry = Vec::with_capacity(m);
-        // equilibrium column of each contact force: [n + f v^ ; f R_c n x v^] (node basis),
-        // friction proportional to the unknown normal force
-        let mut eq_cols: Vec<[f64; 6]> = Vec::with_capacity(m);
-        // node-basis normal and equilibrium column of a wall contact at node i with outward
-        // normal `nrm` (global)
-        let wall = |i: usize, nrm: Vec3, tangent: Vec3| -> (Vec3, [f64; 6]) {
-            let q = &model.basis[i];
-            let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-            let v = tangent * model.loads.axial_speed_m_s + tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
-            let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
-                let vh = v / v.norm();
-                (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
-            } else {
-                (Vec3::zeros(), Vec3::zeros())
-            };
-            let et = q.transpose() * (nrm + fv);
-            let em = q.transpose() * fm;
-            (q.transpose() * nrm, [et.x, et.y, et.z, em.x, em.y, em.z])
-        };
-        for &i in &qidx {
-            let g = gap_geometry(&state, &ev, i);
-            state.normal[i] = g.normal;
-            let (nl, col) = wall(i, g.normal, g.tangent);
-            normals.push(nl);
-            eq_cols.push(col);
-            gaps0.push(g.gap);
-            geometry.push(g);
-        }
+        // contact geometry of the managed gaps (node-basis normals, equilibrium columns, gaps)
+        let ContactColumns {
+            mut normals,
+            mut eq_cols,
+            mut gaps0,
+            geometry,
+        } = contact_columns(model, &mut state, &ev, &qidx);
         // the rest of the wall of tight gaps (see `FAR_WALL_CLEARANCE_M`): the supporting planes
         // of the hole circle with outward normals e = n cos(a) + b sin(a), b = t x n, at the
         // angles a = 2 pi k / WALL_PLANES from the current normal: e . (radial n + du) <= clearance
@@ -1159,7 +1307,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             for k in 1..WALL_PLANES {
                 let a = std::f64::consts::TAU * k as f64 / WALL_PLANES as f64;
                 let (nrm, gap) = (g.normal * a.cos() + b * a.sin(), g.radial * a.cos() - eo);
-                let (nl, col) = wall(i, nrm, g.tangent);
+                let (nl, col) = wall_column(model, i, nrm, g.tangent);
                 normals.push(nl);
                 eq_cols.push(col);
                 gaps0.push(gap);
@@ -1168,15 +1316,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             far_at[i] = m + EXTRA * k;
         }
         // outer residual with the current multipliers as the contact forces
-        let mut rt = r0.clone();
-        for (j, &i) in qidx.iter().enumerate() {
-            for k in 0..6 {
-                rt[model.dof(i, k)] += state.lambda[i] * eq_cols[j][k];
-            }
-        }
-        for &d in &constrained {
-            rt[d] = 0.0;
-        }
+        let rt = contact_residual(model, &r0, &qidx, &eq_cols, &state.lambda, &constrained);
         let rn = residual_norm(&rt, scale).max(c.abs() / scale);
         let mut pen: f64 = 0.0;
         let mut compl: f64 = 0.0;
@@ -1239,28 +1379,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         if stats.iterations >= ctl.max_iterations {
             break;
         }
-        if equilibrium {
-            // in equilibrium but a pin sits off the axis by its penalty's give (force / k_n):
-            // augmented-Lagrangian update, the multiplier takes the pin's whole current force
-            // (as in `solve_from`), then Newton restores equilibrium about it
-            tracing::debug!(pin_offset, "pin multiplier update");
-            update_pin_multipliers(&mut state, &ev, &pins);
-            stats.iterations += 1;
-            likely_converged = false;
-            continue;
-        }
         // circle stiffness of the current contact forces
-        for (j, &i) in qidx.iter().enumerate() {
-            let (g, lam) = (&geometry[j], state.lambda[i]);
-            if lam > 0.0 && g.radial > 1e-9 {
-                let (t, nrm) = (g.tangent, g.normal);
-                let kc = (nalgebra::Matrix3::identity() - t * t.transpose() - nrm * nrm.transpose()) * (lam / g.radial);
-                let q = &model.basis[i];
-                let kl = q.transpose() * kc * q;
-                let dofs: [usize; 3] = std::array::from_fn(|k| model.dof(i, k));
-                lin.sink().add_block(&dofs, kl.transpose().as_slice(), 3);
-            }
-        }
+        add_circle_stiffness(model, lin.sink(), &qidx, &geometry, &state.lambda);
+        add_pin_coupling(model, &mut lin, &ev, &state, &pins);
         let kb = bit_row(model, &lin, &constrained);
         // the base matrix K (before interior-point terms) is kept to rebuild each iteration
         let base = lin.keep_base();
@@ -1546,6 +1667,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     state.closed = Some(closed);
     state.lcp_nodes = None;
     state.implicit_friction = false;
+    state.exact_pins = false;
     state.exact_multipliers = true;
     // same positions and triads as the last evaluation: its element responses are reused
     let ev_final = model.evaluate_reusing_elements(&mut state, ev.elements);
@@ -1558,3 +1680,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         stats,
     })
 }
+
+#[cfg(test)]
+#[path = "solve_tangent_tests.rs"]
+mod tangent_tests;
