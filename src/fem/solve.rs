@@ -1041,6 +1041,16 @@ fn pin_offset_m(ev: &Evaluation, pins: &[usize]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// Outer residual (relative to the load scale) below which the interior-point Newton holds the
+/// pins (zero-clearance gaps) exactly; above it they are penalty springs. Exact from the start,
+/// a pin's force is the reaction to whatever lateral residual its neighbours carry, and its
+/// friction (proportional to that force) made long rotating strings wander: the 10,000 m bench
+/// string took 7-49 Newton iterations depending on its casing shoe depth (800-1,500 m),
+/// against 10-12 with penalty pins and an augmented-Lagrangian phase, and 9-10 with this
+/// switch. Lower thresholds cost the cold BHA solve an iteration (the switch moves the pins
+/// the penalty's give, ~15 um, onto the axis); 0.3 brought the wandering back (17 iterations).
+pub const PIN_EXACT_RESIDUAL: f64 = 0.1;
+
 /// The model's held DOFs plus the lateral DOFs (basis 1 and 2) of the exact `pins`.
 pub(crate) fn constrained_with_pins(model: &Model, pins: &[usize]) -> Vec<usize> {
     let mut constrained = model.constrained_dofs();
@@ -1257,14 +1267,23 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         contact_at[i] = j;
     }
     let m = qidx.len();
-    // the pins are exact constraints: held on the hole axis by their lateral DOFs, their wall
-    // force the reaction (`Model::pin_reaction`, set by each evaluation)
-    let constrained = constrained_with_pins(model, &pins);
+    // the pins become exact constraints once the outer residual is below
+    // `PIN_EXACT_RESIDUAL` (held on the hole axis by their lateral DOFs, their wall force the
+    // reaction, `Model::pin_reaction`, set by each evaluation); before that they are penalty
+    // springs about their vector multipliers. A warm start that carries the pins' forces
+    // starts exact.
+    let pin_constrained = constrained_with_pins(model, &pins);
+    let mut exact_pins = pins.is_empty() || pins.iter().any(|&i| state.lambda_vec[i] != Vec3::zeros());
+    let mut constrained = if exact_pins {
+        pin_constrained.clone()
+    } else {
+        model.constrained_dofs()
+    };
     state.closed = Some(vec![false; nn]);
     state.free_law = None;
     state.lcp_nodes = Some(managed.clone());
     state.implicit_friction = true;
-    state.exact_pins = true;
+    state.exact_pins = exact_pins;
     let mut ev;
     // the previous Newton step was full and its outer residual small: this evaluation is
     // likely the converged one, so it is first made without the tangent (then redone with it
@@ -1275,7 +1294,14 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // linearize with the managed gaps carrying only their lagged friction
         let skip_tangent = likely_converged && !redo;
         redo = false;
-        hold_pins_on_axis(model, &mut state, &pins);
+        if !exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL) {
+            exact_pins = true;
+            state.exact_pins = true;
+            constrained.clone_from(&pin_constrained);
+        }
+        if exact_pins {
+            hold_pins_on_axis(model, &mut state, &pins);
+        }
         ev = if skip_tangent {
             model.evaluate(&mut state, None)
         } else {
@@ -1345,7 +1371,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             && net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
             && pen <= ctl.gap_tolerance
             && compl < 1e-6;
-        let done = equilibrium && pins_held;
+        let done = equilibrium && pins_held && exact_pins;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
             redo = true;
             continue;
@@ -1379,9 +1405,18 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         if stats.iterations >= ctl.max_iterations {
             break;
         }
+        if equilibrium && !exact_pins {
+            // in equilibrium about penalty pins (a step went straight from above
+            // `PIN_EXACT_RESIDUAL` to the tolerance): the next evaluation holds them exactly
+            stats.iterations += 1;
+            likely_converged = false;
+            continue;
+        }
         // circle stiffness of the current contact forces
         add_circle_stiffness(model, lin.sink(), &qidx, &geometry, &state.lambda);
-        add_pin_coupling(model, &mut lin, &ev, &state, &pins);
+        if exact_pins {
+            add_pin_coupling(model, &mut lin, &ev, &state, &pins);
+        }
         let kb = bit_row(model, &lin, &constrained);
         // the base matrix K (before interior-point terms) is kept to rebuild each iteration
         let base = lin.keep_base();

@@ -113,10 +113,11 @@ fn contact_tangent_matches_central_differences() {
 
 #[test]
 fn loaded_full_gauge_stabilizer_converges_without_a_pin_phase() {
-    // The full-gauge near-bit stabilizer (17 kN) is an exact constraint: the cold solve of the
-    // j-shape BHA converges in at most 6 Newton iterations (9 with the penalty pin and its
-    // augmented-Lagrangian phase), the residual falling at every iteration (no jump from a
-    // multiplier update), the stabilizer on the hole axis (1e-9 m), and its wall force equal to
+    // The full-gauge near-bit stabilizer (17 kN) becomes an exact constraint once the residual
+    // is below `PIN_EXACT_RESIDUAL`: the cold solve of the j-shape BHA converges in at most 6
+    // Newton iterations (9 with the penalty pin and its augmented-Lagrangian phase), the
+    // residual falling at every iteration but the switch's (one rise, where the pin moves the
+    // penalty's give onto the axis), the stabilizer on the hole axis (1e-9 m), and its wall force equal to
     // that of the penalty pin of the active-set solver `solve_from` (reference, converged to
     // its offset tolerance of 1e-7 m, i.e. ~90 N at k_n = 10 EI/l^3) within 0.1%, the bit
     // forces within 0.1% of the build force.
@@ -130,7 +131,8 @@ fn loaded_full_gauge_stabilizer_converges_without_a_pin_phase() {
         "{} iterations: {hist:?}",
         sol.stats.iterations
     );
-    assert!(hist.windows(2).all(|w| w[1] < w[0]), "residual history {hist:?}");
+    let rises = hist.windows(2).filter(|w| w[1] >= w[0]).count();
+    assert!(rises <= 1, "residual history {hist:?}");
     let pin = pins_of(&model)[0];
     let g = sol.eval.gaps[pin].as_ref().unwrap();
     assert!(g.penetration.abs() < 1e-9, "pin offset {} m", g.penetration);
