@@ -21,7 +21,8 @@
 //! tolerance move the inclination after 100 m by less than 0.005 deg between the presets' values
 //! (j-shape, seed-daqing, horizontal at fixed steps of 0.5 m and more). With the arc march
 //! ([`crate::predict::march::StepScheme::Arc`]) the inclination after 100 m lies within 0.02 deg
-//! of the step limit at 1 m on four of the six examples and within 0.08 deg at 2 m. The
+//! of the limit of equal-step marches at 1 m on four of the six examples and within 0.08 deg at
+//! 2 m (the first step's own, slowly converging effect is an open point). The
 //! exceptions: a start with a large bit side force (forge-16a from 7,300 ft: 0.16 deg at 1 m,
 //! 0.27 at 2 m, set in the first step) and the s-shape pendulum (an oscillation of 0.12-0.17 deg
 //! about a trend that moves by 0.07 deg per halving of the step between 1 and 0.25 m).
