@@ -162,10 +162,18 @@ fn main() {
 }
 
 /// Prediction of 100 m from the case's bit depth with the `bha` model (the predictor's model)
-/// at each preset; error after 100 m against the `precise` prediction.
+/// at each preset: inclination and azimuth after 100 m, and their error against the `precise`
+/// prediction.
 fn prediction_table() -> String {
-    let mut t = String::from("well,accuracy,step_m,seconds_per_100m,inc_err_deg,azi_err_deg\n");
-    for well in ["seed-daqing", "j-shape", "horizontal"] {
+    let mut t = String::from("well,accuracy,step_m,seconds_per_100m,inc_end_deg,azi_end_deg,inc_err_deg,azi_err_deg\n");
+    for well in [
+        "seed-daqing",
+        "j-shape",
+        "horizontal",
+        "s-shape",
+        "volve-f10",
+        "forge-16a",
+    ] {
         let base = load_case(
             &Path::new("wells").join(well).join("case.toml"),
             &CaseOverrides::default(),
@@ -186,6 +194,13 @@ fn prediction_table() -> String {
         }
         let reference = results[2].2;
         for (preset, sec, end) in &results {
+            let (inc, azi) = match end {
+                Some(e) => (
+                    format!("{:.4}", e.inc_rad.to_degrees()),
+                    format!("{:.4}", e.azi_rad.to_degrees()),
+                ),
+                None => ("failed".into(), "failed".into()),
+            };
             let (ei, ea) = match (end, reference) {
                 (Some(e), Some(r)) => (
                     format!("{:.5}", (e.inc_rad - r.inc_rad).to_degrees()),
@@ -199,7 +214,7 @@ fn prediction_table() -> String {
             };
             writeln!(
                 t,
-                "{well},{},{},{sec:.4},{ei},{ea}",
+                "{well},{},{},{sec:.4},{inc},{azi},{ei},{ea}",
                 preset.name(),
                 preset.knobs().step_m
             )

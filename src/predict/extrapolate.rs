@@ -1,19 +1,23 @@
 //! Richardson extrapolation of a prediction in the step length.
 //!
-//! The march ([`super::march`]) converges with the square of the step (measured on the j-shape
-//! example over 100 m: the end inclination moves by 2.55, 0.71 and 0.16 deg between steps of
-//! 2, 1, 0.5 and 0.25 m, ratios 3.6 and 4.4). With the same prediction at steps `h` and `h/2`,
-//! the leading error term cancels in
+//! Where the march's error goes with the square of the step, combining the same prediction at
+//! steps `h` and `h/2` cancels the leading term:
 //!
 //! ```text
 //! t = normalize((4 t_{h/2} - t_h) / 3)      (hole tangent at each station of the coarse march)
 //! ```
 //!
-//! and `|t_{h/2} - t_h| / 3` estimates the error left in the fine march. On the j-shape example
-//! the extrapolation of 1 m and 0.5 m steps lands within 0.03 deg of the 0.5/0.25 m one, against
-//! 0.9 deg for the plain 1 m march, for 2.75x its cost. The extrapolated hole is the minimum-
-//! curvature path through the extrapolated stations (positions follow from the tangents, as for
-//! a survey); the bit forces are those of the fine march.
+//! and `|t_{h/2} - t_h| / 3` estimates the error left in the fine march. The
+//! [`StepScheme::Chord`](super::march::StepScheme::Chord) march is in that regime (j-shape
+//! example over 100 m: the end inclination moves by 2.55, 0.71 and 0.16 deg between steps of 2,
+//! 1, 0.5 and 0.25 m, ratios 3.6 and 4.4; the extrapolation of 1 m and 0.5 m lands within
+//! 0.03 deg of the 0.5/0.25 m one). The default
+//! [`StepScheme::Arc`](super::march::StepScheme::Arc) march is already within about 0.02 deg
+//! of the step limit at 1 m on the examples (docs/performance.md), where its remaining error is
+//! not dominated by the step^2 term: there the extrapolation gains little and its estimate is
+//! mainly a check that the step is fine enough. The extrapolated hole is the minimum-curvature
+//! path through the extrapolated stations (positions follow from the tangents, as for a
+//! survey); the bit forces are those of the fine march.
 
 use super::march::{PredictError, Prediction, StepRecord};
 use super::track::bit_at;
