@@ -1241,9 +1241,10 @@ pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
 /// proportional to the unknown normal force (the equilibrium columns); the rotation of the
 /// contact normal enters as the circle stiffness `(R/s)(I - t t^T - n n^T)` and the rotation of
 /// the friction direction as the gaps' geometric stiffness at the previous multipliers. The
-/// zero-clearance gaps (pins) are exact constraints: held on the hole axis by their lateral
+/// zero-clearance gaps (pins) are penalty springs until the outer residual falls below
+/// [`PIN_EXACT_RESIDUAL`], then exact constraints: held on the hole axis by their lateral
 /// DOFs, their force the reaction (`State::exact_pins`) with its friction linearized
-/// ([`add_pin_coupling`]); no augmented-Lagrangian phase. The linearization is checked against
+/// (`add_pin_coupling`); no augmented-Lagrangian phase. The linearization is checked against
 /// central differences in `solve_tangent_tests.rs`.
 pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
