@@ -457,6 +457,15 @@ fn merit(r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
     }
 }
 
+/// Index of the entry of `r` largest in magnitude (0 for an empty `r`).
+fn largest_entry(r: &[f64]) -> usize {
+    r.iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map(|(d, _)| d)
+        .unwrap_or(0)
+}
+
 /// Largest residual entry relative to the load scale.
 pub(crate) fn residual_norm(r: &[f64], scale: f64) -> f64 {
     r.iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
@@ -880,21 +889,19 @@ pub fn solve_from(
             }
         }
         stats.max_penetration = pen;
-        let worst = r
-            .iter()
-            .enumerate()
-            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-            .map(|(d, _)| d)
-            .unwrap_or(0);
-        tracing::debug!(
-            worst_node = model.nodes() - 1 - worst / 6,
-            worst_dof = worst % 6,
-            iteration = stats.iterations,
-            residual = rn,
-            penetration = pen,
-            hook_load = state.hook_load_n,
-            "newton"
-        );
+        if tracing::enabled!(tracing::Level::DEBUG) {
+            // the largest residual entry: a scan over every DOF, made only for the log
+            let worst = largest_entry(&r);
+            tracing::debug!(
+                worst_node = model.nodes() - 1 - worst / 6,
+                worst_dof = worst % 6,
+                iteration = stats.iterations,
+                residual = rn,
+                penetration = pen,
+                hook_load = state.hook_load_n,
+                "newton"
+            );
+        }
         if stats.iterations >= ctl.max_iterations {
             break;
         }
@@ -1381,12 +1388,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         stats.max_penetration = pen.max(0.0);
         if tracing::enabled!(tracing::Level::DEBUG) {
             // the largest residual entry: a scan over every DOF, made only for the log
-            let worst = rt
-                .iter()
-                .enumerate()
-                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
-                .map(|(d, _)| d)
-                .unwrap_or(0);
+            let worst = largest_entry(&rt);
             tracing::debug!(
                 iteration = stats.iterations,
                 worst_s = model.mesh.nodes[nn - 1 - worst / 6].s_m,
