@@ -1281,8 +1281,8 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     // springs about their vector multipliers. A warm start that carries the pins' forces
     // starts exact.
     let pin_constrained = constrained_with_pins(model, &pins);
-    let mut exact_pins = pins.is_empty() || pins.iter().any(|&i| state.lambda_vec[i] != Vec3::zeros());
-    let mut constrained = if exact_pins {
+    state.exact_pins = pins.is_empty() || pins.iter().any(|&i| state.lambda_vec[i] != Vec3::zeros());
+    let mut constrained = if state.exact_pins {
         pin_constrained.clone()
     } else {
         model.constrained_dofs()
@@ -1291,7 +1291,6 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     state.free_law = None;
     state.lcp_nodes = Some(managed.clone());
     state.implicit_friction = true;
-    state.exact_pins = exact_pins;
     let mut ev;
     // the previous Newton step was full and its outer residual small: this evaluation is
     // likely the converged one, so it is first made without the tangent (then redone with it
@@ -1302,12 +1301,11 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // linearize with the managed gaps carrying only their lagged friction
         let skip_tangent = likely_converged && !redo;
         redo = false;
-        if !exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL) {
-            exact_pins = true;
+        if !state.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL) {
             state.exact_pins = true;
             constrained.clone_from(&pin_constrained);
         }
-        if exact_pins {
+        if state.exact_pins {
             hold_pins_on_axis(model, &mut state, &pins);
         }
         ev = if skip_tangent {
@@ -1379,7 +1377,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             && net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
             && pen <= ctl.gap_tolerance
             && compl < 1e-6;
-        let done = equilibrium && pins_held && exact_pins;
+        let done = equilibrium && pins_held && state.exact_pins;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
             redo = true;
             continue;
@@ -1408,7 +1406,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         if stats.iterations >= ctl.max_iterations {
             break;
         }
-        if equilibrium && !exact_pins {
+        if equilibrium && !state.exact_pins {
             // in equilibrium about penalty pins (a step went straight from above
             // `PIN_EXACT_RESIDUAL` to the tolerance): the next evaluation holds them exactly
             stats.iterations += 1;
@@ -1417,7 +1415,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         }
         // circle stiffness of the current contact forces
         add_circle_stiffness(model, lin.sink(), &qidx, &geometry, &state.lambda);
-        if exact_pins {
+        if state.exact_pins {
             add_pin_coupling(model, &mut lin, &ev, &state, &pins);
         }
         let kb = bit_row(model, &lin, &constrained);
