@@ -501,9 +501,10 @@ fn transport_between_depths_keeps_the_state() {
             let d = q.transpose() * x;
             (d[1], d[2])
         };
-        let p = m.path.point_at(md).position;
+        // each model's positions are in its own frame (origin at its bit, `Model::origin_m`)
+        let (p, p2) = (m.path.point_at(md).position, m2.path.point_at(md).position);
         let (a1, a2) = lat(st.x[j] - p, &m.basis[j]);
-        let (b1, b2) = lat(moved.x[i] - p, &m2.basis[i]);
+        let (b1, b2) = lat(moved.x[i] - p2, &m2.basis[i]);
         assert!((a1 - b1).abs() < 1e-9 && (a2 - b2).abs() < 1e-9, "node {i} at {md} m");
         checked += 1;
     }

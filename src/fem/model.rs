@@ -134,8 +134,16 @@ pub fn loads_from_case(case: &Case) -> Loads {
 /// Static description of the discretized problem.
 #[derive(Debug, Clone)]
 pub struct Model {
-    /// Hole axis.
+    /// Hole axis, in the model frame (see [`Model::origin_m`]).
     pub path: WellPath,
+    /// Well-frame position (north, east, TVD) of the model frame's origin, m: the hole axis
+    /// at the bit. Positions in [`Model::path`], [`Model::axis_ref`] and [`State::x`] are
+    /// relative to it, so that they stay small where the stiffness is (the bottom-hole
+    /// assembly): with well-frame coordinates, a bit 10 km from the first station or a
+    /// map-grid `[well] origin` rounds positions to ~1e-12 to 1e-9 m, and the axial forces of
+    /// short stiff elements computed from them carry noise above the residual tolerance.
+    /// Outputs add it back ([`super::results`]).
+    pub origin_m: Vec3,
     /// Hole diameter along the well.
     pub hole: HoleSize,
     /// Mesh.
@@ -249,7 +257,8 @@ impl Model {
         model
     }
 
-    /// Build from parts; `friction_at(md)` gives the wall friction coefficient.
+    /// Build from parts; `friction_at(md)` gives the wall friction coefficient. `path` is in
+    /// the well frame; the model keeps it moved to its own frame ([`Model::origin_m`]).
     pub fn new(
         path: WellPath,
         hole: HoleSize,
@@ -258,6 +267,8 @@ impl Model {
         loads: Loads,
         friction_at: impl Fn(f64) -> f64,
     ) -> Model {
+        let origin_m = path.axis_at(bit_md_m).position;
+        let path = path.translated(-origin_m);
         let md_ref: Vec<f64> = mesh.nodes.iter().map(|n| bit_md_m - n.s_m).collect();
         let basis: Vec<Matrix3<f64>> = md_ref
             .iter()
@@ -293,6 +304,7 @@ impl Model {
         let friction = md_ref.iter().map(|&m| friction_at(m)).collect();
         Model {
             path,
+            origin_m,
             hole,
             mesh,
             bit_md_m,

@@ -149,7 +149,8 @@ pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveRe
         let (od, id) = (el.od_m, el.id_m);
         let area = std::f64::consts::PI / 4.0 * (od * od - id * id);
         let inertia = std::f64::consts::PI / 64.0 * (od.powi(4) - id.powi(4));
-        let pressure = mud_density_kg_m3 * G * p.position.z.max(0.0);
+        // hydrostatic pressure at the well-frame TVD (the model frame's origin is at the bit)
+        let pressure = mud_density_kg_m3 * G * (p.position.z + model.origin_m.z).max(0.0);
         let f_true = axial - pressure * area;
         let sa = f_true / area;
         let sb = bend * od / (2.0 * inertia);
@@ -157,7 +158,7 @@ pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveRe
         let vm = ((sa.abs() + sb).powi(2) + 3.0 * tau * tau).sqrt();
         nodes.push(NodeResult {
             md_m: md,
-            position: st.x[i],
+            position: st.x[i] + model.origin_m,
             disp_high_m: dh,
             disp_right_m: dr,
             clearance_m: ev.clearance[i],

@@ -331,6 +331,18 @@ impl WellPath {
         s
     }
 
+    /// The same path moved by `shift_m` (every position plus `shift_m`, m): the solver works
+    /// in a frame whose origin lies at the bit, where absolute coordinates (a bit kilometres
+    /// from the first station, or a map-grid `origin`) would put a rounding floor under the
+    /// residual.
+    pub fn translated(&self, shift_m: Vec3) -> WellPath {
+        let mut moved = self.clone();
+        for p in &mut moved.pos {
+            *p += shift_m;
+        }
+        moved
+    }
+
     /// A new path with `station` appended (for drilling ahead); errors as [`WellPath::new`].
     pub fn extended(&self, station: Station) -> Result<WellPath, GeometryProblem> {
         let mut st = self.stations.clone();
