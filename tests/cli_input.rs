@@ -225,6 +225,41 @@ fn fixture_case_and_survey_are_valid() {
     assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
 }
 
+#[test]
+fn string_above_the_first_survey_station_is_a_stated_assumption() {
+    // A survey that starts at a tie-in (here 300 m) while the string reaches the surface: the
+    // hole above is extrapolated straight along the first station (WellPath::point_at), which
+    // changes the hook load. The solve still runs, but says so: one warning on stderr naming
+    // the file and the MDs, and the same text under `notes` in the JSON summary. The complete
+    // survey gives no note.
+    let fx = Fixture::new();
+    let full = fx.run(&["solve", "case.toml", "--json"]);
+    assert_eq!(full.code, Some(0), "{}", full.describe());
+    assert!(full.stderr.trim().is_empty(), "{}", full.describe());
+    let json: serde_json::Value = serde_json::from_str(&full.stdout).unwrap();
+    assert_eq!(json["notes"], serde_json::json!([]), "{}", full.describe());
+
+    fx.edit_survey("azi [deg]\n0,0,0\n", "azi [deg]\n");
+    for fidelity in ["whole", "soft"] {
+        let r = fx.run(&["solve", "case.toml", "--json", "--fidelity", fidelity]);
+        assert_eq!(r.code, Some(0), "{}", r.describe());
+        let warning: Vec<&str> = r.stderr.lines().filter(|l| l.contains("WARN")).collect();
+        assert_eq!(warning.len(), 1, "{}", r.describe());
+        for must in [
+            "case.toml",
+            "survey starts at 300.0 m MD",
+            "up to 0.0 m MD",
+            "straight line",
+        ] {
+            assert!(warning[0].contains(must), "`{must}` missing\n{}", r.describe());
+        }
+        let json: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+        let notes = json["notes"].as_array().expect("a notes array");
+        assert_eq!(notes.len(), 1, "{}", r.describe());
+        assert!(notes[0].as_str().unwrap().contains("survey starts at 300.0 m MD"));
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Survey CSV errors: file, line of the original file (comments counted) and column.
 

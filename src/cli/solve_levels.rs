@@ -23,7 +23,7 @@ pub fn configure(a: &SolveArgs, case: &mut Case) -> Result<Choice, InputError> {
     super::model_choice(a.fidelity.as_deref(), a.accuracy.as_deref(), case, Purpose::Solve)
 }
 
-/// Add the `fidelity` and `buckling` keys to the whole-string `summary` and the buckling
+/// Add the `fidelity`, `buckling` and `notes` keys to the whole-string `summary` and the buckling
 /// columns to its `string.csv` text; returns that text and the buckling marks at the nodes.
 pub fn annotate_whole(
     case: &Case,
@@ -44,6 +44,7 @@ pub fn annotate_whole(
         "seconds": seconds,
     });
     summary["buckling"] = buckling_json(&marks, "stiff FEM").map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
+    summary["notes"] = serde_json::json!(case.string_above_survey_note().into_iter().collect::<Vec<_>>());
     let csv = append_buckling_columns(&csv, &marks).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     Ok((csv, marks))
 }

@@ -106,7 +106,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
     let default_step_m = solver.accuracy.map(|p| p.knobs().step_m).unwrap_or(DEFAULT_STEP_M);
     let bit_rock = read_bit_rock(&br_sec, default_step_m)?;
 
-    Ok(Case {
+    let case = Case {
         name,
         description,
         path: path.to_path_buf(),
@@ -121,7 +121,11 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         string,
         bit_rock,
         solver,
-    })
+    };
+    if let Some(note) = case.string_above_survey_note() {
+        tracing::warn!("{}: {note}", path.display());
+    }
+    Ok(case)
 }
 
 fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {

@@ -300,6 +300,7 @@ pub fn levels_summary(case: &Case, lr: &LevelResult, marks: &[Mark]) -> Result<V
         "solver": solver,
         "fidelity": fidelity_json(lr, case)?,
         "buckling": buckling_json(marks, model)?,
+        "notes": case.string_above_survey_note().into_iter().collect::<Vec<_>>(),
     }))
 }
 
