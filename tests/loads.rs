@@ -11,13 +11,8 @@ use drillpath::loads::{set_row_operation, ChartOperation, MODES};
 
 const G: f64 = 9.80665;
 
-/// Write `survey` and `case_toml` into a fresh directory and read the case as users do.
-fn temp_case(survey: &str, case_toml: &str) -> Case {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
-    std::fs::write(dir.path().join("case.toml"), case_toml).unwrap();
-    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
-}
+mod common;
+use common::load_temp_case as temp_case;
 
 /// Survey rows every 10 m from (md, inc, azi) knots with inclination and azimuth linear in MD
 /// between knots (constant build/turn rate).

@@ -4,7 +4,6 @@
 //! tolerance.
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
-use drillpath::analytical::section::Tube;
 use drillpath::case::{Case, Method};
 use drillpath::contact::gap::ZERO_CLEARANCE_M;
 use drillpath::fem::model::Model;
@@ -12,18 +11,8 @@ use drillpath::fem::results::{extract, SolveResults};
 use drillpath::fem::solve::{solve, Solution, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 
-/// 6.5 in x 2-13/16 in steel collar, 8.5 in hole, 1.2 sg mud (physics.md 6.2).
-const OD: f64 = 6.5 * 0.0254;
-const ID: f64 = 2.8125 * 0.0254;
-const HOLE: f64 = 8.5 * 0.0254;
-
-/// Write `survey` and `case_toml` into a fresh directory and read the case as users do.
-fn load_temp_case(survey: &str, case_toml: &str) -> Case {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
-    std::fs::write(dir.path().join("case.toml"), case_toml).unwrap();
-    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
-}
+mod common;
+use common::{collar_properties, load_temp_case, slick_collar_case};
 
 /// Solve `case` with `method`, gap tolerance `gap_tol` and an iteration limit.
 fn run(case: &Case, method: Method, gap_tol: f64, max_iterations: usize) -> (Solution, SolveResults) {
@@ -81,30 +70,7 @@ fn model_with_stiff_pins(case: &Case, factor: f64) -> Model {
 
 /// Slick 6.5 in collar, 80 m, straight hole of inclination `inc` (deg), zero friction, sliding.
 fn pendulum_case(inc: f64, wob_kn: f64) -> Case {
-    let survey = format!("md_m,inc_deg,azi_deg\n0,{inc},45\n80,{inc},45\n");
-    let case = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "80 m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-wob = "{wob_kn} kN"
-rop = "0 m/h"
-friction = 0.0
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-[solver]
-element_length = "0.25 m"
-bha_element_length = "0.25 m"
-method = "paper"
-"#
-    );
-    load_temp_case(&survey, &case)
+    slick_collar_case(inc, 45.0, 80.0, wob_kn, 0.25, "method = \"paper\"")
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -118,10 +84,7 @@ fn paper_scheme_matches_lubinski_and_the_default_scheme_on_the_pendulum() {
     // scheme on the same model, both run with a tight gap tolerance (1e-6 of the clearance) so
     // that the comparison measures the schemes and not the tolerance band: 1e-4 relative
     // (measured <= 1e-5). Equilibrium of the whole string (physics.md 6.7): 1e-6.
-    let tube = Tube::new(OD, ID).unwrap();
-    let ei = 207e9 * tube.second_moment();
-    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
-    let r = (HOLE - OD) / 2.0;
+    let (ei, w_b, r) = collar_properties();
     for &(inc, wob) in &[(3.0_f64, 0.0), (10.0, 100.0), (30.0, 0.0), (60.0, 100.0)] {
         let case = pendulum_case(inc, wob);
         assert_eq!(case.solver.method, Method::Paper);
@@ -160,10 +123,7 @@ fn paper_scheme_matches_lubinski_and_the_default_scheme_on_the_pendulum() {
 fn paper_scheme_at_the_default_tolerance_stays_within_half_a_percent() {
     // Reference: Lubinski pendulum (as above), default gap tolerance 1e-4: the tolerance band
     // lets the two schemes differ by up to ~0.1% here; the reference is met within 0.5%.
-    let tube = Tube::new(OD, ID).unwrap();
-    let ei = 207e9 * tube.second_moment();
-    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
-    let r = (HOLE - OD) / 2.0;
+    let (ei, w_b, r) = collar_properties();
     let case = pendulum_case(30.0, 100.0);
     let (sp, p) = run(&case, Method::Paper, case.solver.tolerance, case.solver.max_iterations);
     assert!(sp.converged);

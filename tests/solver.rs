@@ -4,24 +4,13 @@
 //! `drillpath::analytical` (written and tested separately from the FEM, physics.md 6).
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
-use drillpath::analytical::section::Tube;
 use drillpath::fem::model::Model;
 use drillpath::fem::results::{extract, SolveResults};
 use drillpath::fem::solve::{solve, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 
-/// 6.5 in x 2-13/16 in steel collar, 8.5 in hole, 1.2 sg mud (physics.md 6.2).
-const OD: f64 = 6.5 * 0.0254;
-const ID: f64 = 2.8125 * 0.0254;
-const HOLE: f64 = 8.5 * 0.0254;
-
-/// Write `survey` and `case_toml` into a fresh directory and read the case as users do.
-fn load_temp_case(survey: &str, case_toml: &str) -> drillpath::case::Case {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
-    std::fs::write(dir.path().join("case.toml"), case_toml).unwrap();
-    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
-}
+mod common;
+use common::{collar_properties, load_temp_case, slick_collar_case};
 
 struct Run {
     res: SolveResults,
@@ -31,30 +20,7 @@ struct Run {
 /// Solve a slick collar string in a straight hole of inclination `inc_deg`, azimuth `azi_deg`,
 /// `length_m` long, with `wob_kn` and BHA element length `el_m`.
 fn slick_collar(inc_deg: f64, azi_deg: f64, length_m: f64, wob_kn: f64, el_m: f64, geometric: bool) -> Run {
-    let survey = format!("md_m,inc_deg,azi_deg\n0,{inc_deg},{azi_deg}\n{length_m},{inc_deg},{azi_deg}\n");
-    let case = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-wob = "{wob_kn} kN"
-rop = "0 m/h"
-friction = 0.0
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-[solver]
-element_length = "{el_m} m"
-bha_element_length = "{el_m} m"
-max_iterations = 1000
-"#
-    );
-    let case = load_temp_case(&survey, &case);
+    let case = slick_collar_case(inc_deg, azi_deg, length_m, wob_kn, el_m, "max_iterations = 1000");
     let mut model = Model::from_case(&case);
     model.geometric_stiffness = geometric;
     let sol = solve(
@@ -72,13 +38,6 @@ max_iterations = 1000
     );
     let res = extract(&model, &sol, case.mud.density_kg_m3);
     Run { res, model }
-}
-
-fn collar_properties() -> (f64, f64, f64) {
-    let tube = Tube::new(OD, ID).unwrap();
-    let ei = 207e9 * tube.second_moment();
-    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
-    (ei, w_b, (HOLE - OD) / 2.0)
 }
 
 #[test]
