@@ -414,7 +414,7 @@ fn print_case(r: &CaseRun, units: UnitSystem, out: &mut impl Write) -> std::io::
     if p.ripple_deg >= RIPPLE_WARN_DEG {
         writeln!(
             out,
-            "  warning: the predicted hole ripples around its trend by {} deg at the end (over the last {} m): the end inclination and azimuth move by up to that much with the ripple's phase; a longer step damps it (docs/performance.md, \"Step convergence\")",
+            "  warning: the predicted hole ripples around its trend by {} deg at the end (over the last {}): the end inclination and azimuth move by up to that much with the ripple's phase; a longer step damps it (docs/performance.md, \"Step convergence\")",
             fixed(p.ripple_deg, 2),
             du.fmt(RIPPLE_WINDOW_M, 0)
         )?;

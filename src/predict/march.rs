@@ -37,9 +37,24 @@ pub const RIPPLE_GROWTH: f64 = 1.5;
 /// Length over which the growth of the ripple is judged, m.
 pub const RIPPLE_GROWTH_LENGTH_M: f64 = 10.0;
 
-/// Step suggested when the march resolves a growing ripple, m: steps from this length damp the
-/// ripple on the example wells (docs/performance.md, "Step convergence").
-pub const RIPPLE_SAFE_STEP_M: f64 = 0.5;
+/// Steps per ripple wavelength below which the march damps a ripple: the step suggested when
+/// a growing ripple stops a prediction is at least its wavelength over this. Measured
+/// (docs/performance.md, "Step convergence"): the 2.3 m ripple of the horizontal example grows
+/// at 0.45 m steps (5.1 per wavelength) and decays at 0.5 m (4.6); with its near-bit
+/// stabilizer 0.9 m higher, the 3.3 m ripple grows at 0.5 m (6.6) and decays at 0.75 m (4.4).
+pub const RIPPLE_STEPS_PER_WAVELENGTH: f64 = 4.0;
+
+/// Step suggested against a ripple of wavelength `wavelength_m` (None: not measured) met at
+/// step `step_m`, m: a quarter of the wavelength rounded up to 0.1 m
+/// ([`RIPPLE_STEPS_PER_WAVELENGTH`]), at least 1.5 x the step; twice the step and at least
+/// 0.5 m without a wavelength.
+pub fn ripple_safe_step_m(wavelength_m: Option<f64>, step_m: f64) -> f64 {
+    let up = |x: f64| (x * 10.0 - 1e-9).ceil() / 10.0;
+    match wavelength_m {
+        Some(w) => up(w / RIPPLE_STEPS_PER_WAVELENGTH).max(up(1.5 * step_m)),
+        None => up(2.0 * step_m).max(0.5),
+    }
+}
 
 /// Shortest string model (bit to cut or to the top of the hole), m.
 pub const MIN_MODEL_LENGTH_M: f64 = 10.0;
@@ -161,8 +176,9 @@ pub enum PredictError {
         source: crate::fem::solve::SolveError,
     },
     /// The implicit step found no hole direction consistent with the law, also at the
-    /// shortest step the march tried.
-    #[error("no drilling direction consistent with the bit-rock law was found for the step ending at {md_m:.2} m MD (deviation left {residual_rad:.1e} rad), also after halving the step to {step_m:.2} m{hint}")]
+    /// shortest step the march tried (a failing step is halved while it stays at least
+    /// [`MIN_STEP_M`]).
+    #[error("no drilling direction consistent with the bit-rock law was found for the {step_m:.2} m step ending at {md_m:.2} m MD (deviation left {residual_rad:.1e} rad; a failing step is halved as long as it stays at least {MIN_STEP_M} m){hint}")]
     NoDirection {
         /// End MD of the step, m.
         md_m: f64,
@@ -176,7 +192,7 @@ pub enum PredictError {
     /// The predicted hole ripples around its trend by more than [`RIPPLE_FAIL_DEG`], and the
     /// ripple grows: the step resolves a directional instability of the bottom-hole assembly
     /// with the bit-rock law (docs/performance.md, "Step convergence").
-    #[error("the predicted hole ripples around its trend by {ripple_deg:.2} deg at {md_m:.2} m MD{wavelength}, grown from {earlier_deg:.2} deg over the last {RIPPLE_GROWTH_LENGTH_M} m: at a {step_m} m step the march resolves a directional instability of this bottom-hole assembly with this bit-rock law and the trend is lost; use a step of at least {suggested_m} m, which damps the ripple")]
+    #[error("the predicted hole ripples around its trend by {ripple_deg:.2} deg at {md_m:.2} m MD{wavelength}, grown from {earlier_deg:.2} deg over the last {RIPPLE_GROWTH_LENGTH_M} m: at a {step_m} m step the march resolves a directional instability of this bottom-hole assembly with this bit-rock law and the trend is lost; use a step of at least {suggested_m} m (a quarter of the ripple's wavelength or more damps it)")]
     Ripple {
         /// Bit MD where the ripple was found, m.
         md_m: f64,
@@ -662,7 +678,7 @@ pub fn predict_from(
             "; the predicted hole ripples around its trend by {:.2} deg{} here: a longer step (at least {} m) damps such a ripple",
             r.0.to_degrees(),
             wavelength_text(r.1),
-            RIPPLE_SAFE_STEP_M.max(2.0 * step)
+            ripple_safe_step_m(r.1, step)
         )
     };
     while s < to_md_m - 1e-9 {
@@ -766,7 +782,7 @@ pub fn predict_from(
                         earlier_deg: e.to_degrees(),
                         wavelength: wavelength_text(r.1),
                         step_m: step,
-                        suggested_m: RIPPLE_SAFE_STEP_M.max(2.0 * step),
+                        suggested_m: ripple_safe_step_m(r.1, step),
                     });
                 }
             }
@@ -866,5 +882,17 @@ mod tests {
         );
         // shorter than the window: not measured
         assert!(ripple(100.0, &chords(RIPPLE_WINDOW_M - 0.5, kappa, 0.01, 2.4)).is_none());
+    }
+
+    /// Reference: the rule of [`ripple_safe_step_m`] by hand (quarter wavelength rounded up to
+    /// 0.1 m, at least 1.5 x the step; without a wavelength 2 x the step, at least 0.5 m).
+    #[test]
+    fn safe_step_is_a_quarter_wavelength_rounded_up() {
+        assert_eq!(ripple_safe_step_m(Some(2.3), 0.25), 0.6);
+        assert_eq!(ripple_safe_step_m(Some(3.3), 0.5), 0.9);
+        assert_eq!(ripple_safe_step_m(Some(2.0), 0.4), 0.6);
+        assert_eq!(ripple_safe_step_m(Some(1.2), 0.2), 0.3);
+        assert_eq!(ripple_safe_step_m(None, 0.2), 0.5);
+        assert_eq!(ripple_safe_step_m(None, 0.4), 0.8);
     }
 }
