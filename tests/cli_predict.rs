@@ -99,6 +99,13 @@ fn predict_bad_options_are_named() {
         &["--ahead", "10 m", "--step", "0.05 m", "--out", "out"],
     );
     assert_error(dir.path(), &o, &["--step"]);
+    // the fine march of --extrapolate would run below the shortest step: refused, not raised
+    let o = run(
+        dir.path(),
+        "predict",
+        &["--ahead", "10 m", "--step", "0.3 m", "--extrapolate", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["--extrapolate", "0.4 m"]);
     let o = run(dir.path(), "predict", &["--ahead", "10 kN", "--out", "out"]);
     assert_error(dir.path(), &o, &["--ahead"]);
     // neither --to nor --ahead: the argument parser refuses with its usage text

@@ -389,3 +389,93 @@ fn step_extrapolation_beats_the_plain_march() {
     );
     assert_eq!(extrapolated.steps.len(), 31, "one record per coarse step and the start");
 }
+
+/// The horizontal example (wells/horizontal: motor BHA with a near-bit stabilizer 2.1 m above
+/// the bit, lateral at 92.5 deg) at steps below 0.5 m: the march resolves a growing ripple of
+/// the hole direction (wavelength about 2.3 m, docs/performance.md "Step convergence") and must
+/// stop early with the ripple error naming the remedy (a step of at least a quarter of the
+/// wavelength, 0.6 m), not run on into a wrong trend or into "no drilling direction". The
+/// remedy must work: at the suggested 0.6 m step the prediction completes without a ripple
+/// warning and its end inclination agrees with the default 1 m march within 0.1 deg
+/// (reference: the step study's horizontal row, 90.968 at 0.5 m, 90.911 at 1 m, step limit
+/// 90.91 on the smooth branch; 0.1 deg is the accuracy target of the 1 m default there).
+#[test]
+fn short_steps_on_the_horizontal_example_stop_at_the_ripple_and_name_the_remedy() {
+    use drillpath::predict::march::{PredictError, RIPPLE_FAIL_DEG, RIPPLE_WARN_DEG};
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/horizontal/case.toml");
+    let case = load_case(&path, &CaseOverrides::default()).unwrap();
+    let from = case.operation.bit_md_m;
+    let to = from + 100.0;
+    let mut s = MarchSettings::from_case(&case);
+    s.step_m = 0.25;
+    match predict(&case, from, to, &s, &mut |_| {}) {
+        Err(e @ PredictError::Ripple { .. }) => {
+            let PredictError::Ripple {
+                md_m,
+                ripple_deg,
+                earlier_deg,
+                suggested_m,
+                ..
+            } = &e
+            else {
+                unreachable!()
+            };
+            println!("0.25 m: {e}");
+            assert!(*md_m < from + 60.0, "found late: {md_m}");
+            assert!(*ripple_deg >= RIPPLE_FAIL_DEG && ripple_deg > earlier_deg);
+            // a quarter of the 2.2-2.4 m wavelength, rounded up to 0.1 m
+            assert!((0.5..=0.7).contains(suggested_m), "{e}");
+            assert!(e.to_string().contains(&format!("at least {suggested_m} m")), "{e}");
+        }
+        other => panic!(
+            "0.25 m: expected the ripple error, got {:?}",
+            other.map(|p| p.steps.len())
+        ),
+    }
+    let end_inc = |step: f64| {
+        let mut s = MarchSettings::from_case(&case);
+        s.step_m = step;
+        let p = predict(&case, from, to, &s, &mut |_| {}).unwrap();
+        assert!(p.ripple_deg < RIPPLE_WARN_DEG, "{step} m: ripple {}", p.ripple_deg);
+        p.steps.last().unwrap().inc_rad.to_degrees()
+    };
+    let (half, one) = (end_inc(0.6), end_inc(1.0));
+    println!("end inclination: 0.6 m {half:.3} deg, 1 m {one:.3} deg");
+    assert!((half - one).abs() < 0.1, "0.6 m {half} vs 1 m {one}");
+    assert!((one - 90.911).abs() < 0.01, "1 m march moved: {one}");
+}
+
+/// A step shorter than the shortest accepted (0.2 m) is refused with its own error, never
+/// silently lengthened; so is a step extrapolation whose fine march would fall below it, and a
+/// case file asking for one.
+#[test]
+fn steps_below_the_minimum_are_refused() {
+    use drillpath::predict::extrapolate::predict_extrapolated;
+    use drillpath::predict::march::{PredictError, MIN_STEP_M};
+    let case = case_with(&straight(20.0, 0.0), FULCRUM, 80.0, "");
+    let mut s = MarchSettings::from_case(&case);
+    s.step_m = 0.1;
+    let e = predict(&case, 300.0, 310.0, &s, &mut |_| {}).unwrap_err();
+    assert!(matches!(e, PredictError::StepTooShort { .. }), "{e}");
+    assert!(
+        e.to_string().contains("0.1 m") && e.to_string().contains(&format!("{MIN_STEP_M} m")),
+        "{e}"
+    );
+    s.step_m = 0.3;
+    let e = predict_extrapolated(&case, 300.0, 310.0, &s, &mut |_| {}).unwrap_err();
+    assert!(matches!(e, PredictError::StepTooShort { .. }), "{e}");
+    s.step_m = MIN_STEP_M;
+    assert!(predict(&case, 300.0, 301.0, &s, &mut |_| {}).is_ok());
+    // the case file
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("survey.csv"), straight(20.0, 0.0)).unwrap();
+    let text = format!(
+        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"2000 m\", diameter = \"8.5 in\" }}]\n[mud]\ndensity = \"1.2 sg\"\n[operation]\nmode = \"drilling\"\nwob = \"80 kN\"\n{FULCRUM}\n[[string]]\ntype = \"pipe\"\nod = \"5 in\"\nid = \"4.276 in\"\n[bit_rock]\nstep = \"0.1 m\"\n"
+    );
+    std::fs::write(dir.path().join("case.toml"), text).unwrap();
+    let e = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap_err();
+    assert!(
+        e.to_string().contains("step") && e.to_string().contains("shortest"),
+        "{e}"
+    );
+}

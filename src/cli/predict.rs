@@ -9,7 +9,7 @@ use crate::fidelity::{Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::extrapolate::predict_extrapolated;
 use crate::predict::law::LawParams;
-use crate::predict::march::{predict, MarchSettings, Prediction, MIN_STEP_M};
+use crate::predict::march::{predict, MarchSettings, Prediction, MIN_STEP_M, RIPPLE_WARN_DEG, RIPPLE_WINDOW_M};
 use crate::predict::track::{interval_rates, tracking_errors, trajectory_rows};
 use crate::report::display_units::{fixed, signed, UnitSystem};
 use crate::report::predict_output::{law_json, rates_json, tracking_json, trajectory_csv};
@@ -135,7 +135,14 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
     let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M)?;
     let settings = settings_for(&case, step, cut, &choice)?;
     let du = a.view.units.depth();
-    let step_m = settings.step_m.max(MIN_STEP_M);
+    let step_m = settings.step_m;
+    if a.extrapolate && step_m < 2.0 * MIN_STEP_M - 1e-9 {
+        bail!(
+            "option `--extrapolate`: it also marches at half the step, {} m, shorter than the shortest step accepted, {MIN_STEP_M} m; give --step {} m or longer",
+            step_m / 2.0,
+            2.0 * MIN_STEP_M
+        );
+    }
     let n = step_count(from, to, step_m);
     // with --extrapolate: the march at the step (n steps), then at half of it (2n steps)
     let total = if a.extrapolate { 3 * n } else { n };
@@ -175,7 +182,8 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
             "case_file": path.display().to_string(),
             "from_md_m": fin(pred.from_md_m)?,
             "to_md_m": fin(pred.to_md_m)?,
-            "step_m": fin(settings.step_m.max(MIN_STEP_M))?,
+            "step_m": fin(settings.step_m)?,
+            "ripple_deg": fin(pred.ripple_deg)?,
             "end": {
                 "md_m": fin(end.md_m)?,
                 "inc_deg": fin(end.inc_rad.to_degrees())?,
@@ -401,6 +409,14 @@ fn print_case(r: &CaseRun, units: UnitSystem, out: &mut impl Write) -> std::io::
             du.fmt(v("fine_step_m"), 2),
             fixed(v("est_inc_err_deg"), 3),
             fixed(v("est_azi_err_deg"), 3)
+        )?;
+    }
+    if p.ripple_deg >= RIPPLE_WARN_DEG {
+        writeln!(
+            out,
+            "  warning: the predicted hole ripples around its trend by {} deg at the end (over the last {}): the end inclination and azimuth move by up to that much with the ripple's phase; a longer step damps it (docs/performance.md, \"Step convergence\")",
+            fixed(p.ripple_deg, 2),
+            du.fmt(RIPPLE_WINDOW_M, 0)
         )?;
     }
     let model = if r.summary["model"]["fidelity"] == "whole" {

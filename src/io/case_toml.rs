@@ -616,6 +616,15 @@ fn read_bit_rock(s: &Section, default_step_m: f64) -> InputResult<BitRock> {
     let dip = s.quantity("dip", D::Angle, "deg")?.unwrap_or(0.0);
     let dipdir = s.quantity("dip_direction", D::Angle, "deg")?.unwrap_or(0.0);
     let step = s.positive("step", D::Length, "m", false)?.unwrap_or(default_step_m);
+    if step < crate::predict::march::MIN_STEP_M - 1e-9 {
+        return Err(s.error(
+            "step",
+            format!(
+                "{step} m is shorter than the shortest prediction step accepted, {} m",
+                crate::predict::march::MIN_STEP_M
+            ),
+        ));
+    }
     let bit_friction = s.number("bit_friction")?.unwrap_or(0.25);
     let mut formations = Vec::new();
     if let Some(fs) = s.tables("formations")? {

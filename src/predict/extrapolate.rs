@@ -107,6 +107,7 @@ pub fn richardson(
             iterations: coarse.iterations + fine.iterations,
             seconds: coarse.seconds + fine.seconds,
             start_warm: coarse.start_warm.clone(),
+            ripple_deg: coarse.ripple_deg.max(fine.ripple_deg),
         },
         est,
     ))
@@ -123,7 +124,11 @@ pub fn predict_extrapolated(
     on_step: &mut dyn FnMut(f64),
 ) -> Result<(Prediction, StepError), PredictError> {
     let start = super::march::hole_to(&case.well.path, from_md_m)?;
-    let h = settings.step_m.max(super::march::MIN_STEP_M * 2.0);
+    // the fine march runs at half the step: no silent change of either
+    let h = settings.step_m;
+    if h.is_nan() || h / 2.0 < super::march::MIN_STEP_M - 1e-9 {
+        return Err(PredictError::StepTooShort { step_m: h / 2.0 });
+    }
     let coarse_settings = super::march::MarchSettings { step_m: h, ..*settings };
     let fine_settings = super::march::MarchSettings {
         step_m: h / 2.0,

@@ -13,8 +13,48 @@ use crate::geometry::{Frame, HoleSection, HoleSize, Station, Survey, Vec3, WellP
 use nalgebra::{Matrix2, Vector2};
 use std::time::Instant;
 
-/// Shortest prediction step accepted, m (physics.md 7.6).
+/// Shortest prediction step accepted, m (physics.md 7.6). A shorter step is an error
+/// ([`PredictError::StepTooShort`]), never silently raised.
 pub const MIN_STEP_M: f64 = 0.2;
+
+/// Trailing length of predicted hole over which the ripple of the hole direction is measured,
+/// m: the chord directions of the last steps are fitted by a straight line in MD (the trend)
+/// and the ripple is the largest deviation from it (see [`Prediction::ripple_deg`]).
+pub const RIPPLE_WINDOW_M: f64 = 6.0;
+
+/// Ripple (deg) at which a prediction carries a warning: the end inclination and azimuth move
+/// by up to this much with the phase of the ripple.
+pub const RIPPLE_WARN_DEG: f64 = 0.15;
+
+/// Ripple (deg) at which a prediction stops with [`PredictError::Ripple`] when it also grew
+/// by [`RIPPLE_GROWTH`] over the last [`RIPPLE_GROWTH_LENGTH_M`] (a growing ripple, not the
+/// decaying transient of the first steps).
+pub const RIPPLE_FAIL_DEG: f64 = 1.0;
+
+/// Growth factor of the ripple over [`RIPPLE_GROWTH_LENGTH_M`] that marks it as growing.
+pub const RIPPLE_GROWTH: f64 = 1.5;
+
+/// Length over which the growth of the ripple is judged, m.
+pub const RIPPLE_GROWTH_LENGTH_M: f64 = 10.0;
+
+/// Steps per ripple wavelength below which the march damps a ripple: the step suggested when
+/// a growing ripple stops a prediction is at least its wavelength over this. Measured
+/// (docs/performance.md, "Step convergence"): the 2.3 m ripple of the horizontal example grows
+/// at 0.45 m steps (5.1 per wavelength) and decays at 0.5 m (4.6); with its near-bit
+/// stabilizer 0.9 m higher, the 3.3 m ripple grows at 0.5 m (6.6) and decays at 0.75 m (4.4).
+pub const RIPPLE_STEPS_PER_WAVELENGTH: f64 = 4.0;
+
+/// Step suggested against a ripple of wavelength `wavelength_m` (None: not measured) met at
+/// step `step_m`, m: a quarter of the wavelength rounded up to 0.1 m
+/// ([`RIPPLE_STEPS_PER_WAVELENGTH`]), at least 1.5 x the step; twice the step and at least
+/// 0.5 m without a wavelength.
+pub fn ripple_safe_step_m(wavelength_m: Option<f64>, step_m: f64) -> f64 {
+    let up = |x: f64| (x * 10.0 - 1e-9).ceil() / 10.0;
+    match wavelength_m {
+        Some(w) => up(w / RIPPLE_STEPS_PER_WAVELENGTH).max(up(1.5 * step_m)),
+        None => up(2.0 * step_m).max(0.5),
+    }
+}
 
 /// Shortest string model (bit to cut or to the top of the hole), m.
 pub const MIN_MODEL_LENGTH_M: f64 = 10.0;
@@ -103,6 +143,11 @@ pub struct Prediction {
     pub seconds: f64,
     /// The model and solved state at the start (a warm start for predicting again from there).
     pub start_warm: WarmStart,
+    /// Ripple of the predicted hole direction at the end, deg: the largest deviation of the
+    /// chord directions of the last [`RIPPLE_WINDOW_M`] from their straight-line trend in MD
+    /// (0 when the prediction is shorter than that). A warning is due from
+    /// [`RIPPLE_WARN_DEG`].
+    pub ripple_deg: f64,
 }
 
 /// Why a prediction stopped.
@@ -130,13 +175,43 @@ pub enum PredictError {
         /// The solver's error.
         source: crate::fem::solve::SolveError,
     },
-    /// The implicit step found no hole direction consistent with the law.
-    #[error("no drilling direction consistent with the bit-rock law was found for the step ending at {md_m:.2} m MD (deviation left {residual_rad:.1e} rad); try a shorter step")]
+    /// The implicit step found no hole direction consistent with the law, also at the
+    /// shortest step the march tried (a failing step is halved while it stays at least
+    /// [`MIN_STEP_M`]).
+    #[error("no drilling direction consistent with the bit-rock law was found for the {step_m:.2} m step ending at {md_m:.2} m MD (deviation left {residual_rad:.1e} rad; a failing step is halved as long as it stays at least {MIN_STEP_M} m){hint}")]
     NoDirection {
         /// End MD of the step, m.
         md_m: f64,
         /// Deviation between drilling direction and hole tangent left, rad.
         residual_rad: f64,
+        /// Length of the last step tried, m.
+        step_m: f64,
+        /// What the march saw that may explain it (empty when nothing), with its remedy.
+        hint: String,
+    },
+    /// The predicted hole ripples around its trend by more than [`RIPPLE_FAIL_DEG`], and the
+    /// ripple grows: the step resolves a directional instability of the bottom-hole assembly
+    /// with the bit-rock law (docs/performance.md, "Step convergence").
+    #[error("the predicted hole ripples around its trend by {ripple_deg:.2} deg at {md_m:.2} m MD{wavelength}, grown from {earlier_deg:.2} deg over the last {RIPPLE_GROWTH_LENGTH_M} m: at a {step_m} m step the march resolves a directional instability of this bottom-hole assembly with this bit-rock law and the trend is lost; use a step of at least {suggested_m} m (a quarter of the ripple's wavelength or more damps it)")]
+    Ripple {
+        /// Bit MD where the ripple was found, m.
+        md_m: f64,
+        /// Ripple, deg (see [`Prediction::ripple_deg`]).
+        ripple_deg: f64,
+        /// Ripple [`RIPPLE_GROWTH_LENGTH_M`] earlier, deg.
+        earlier_deg: f64,
+        /// ", wavelength about X m" when it could be measured, else empty.
+        wavelength: String,
+        /// Step of the prediction, m.
+        step_m: f64,
+        /// Step to use instead, m.
+        suggested_m: f64,
+    },
+    /// The step is shorter than [`MIN_STEP_M`].
+    #[error("the prediction step {step_m} m is shorter than the shortest step accepted, {MIN_STEP_M} m")]
+    StepTooShort {
+        /// The step asked for, m.
+        step_m: f64,
     },
     /// Too little hole above the bit for the string model.
     #[error("the bit at {md_m:.2} m MD has only {length_m:.1} m of hole above it; the string model needs at least {MIN_MODEL_LENGTH_M} m")]
@@ -354,6 +429,58 @@ impl PredictedHole {
     }
 }
 
+/// Ripple of the predicted hole at the end of `chords` ((end MD, unit direction) per predicted
+/// segment, the first beginning at `start_md`): the chords whose middles lie within
+/// [`RIPPLE_WINDOW_M`] of the last end are fitted by a straight line in MD (component-wise) and
+/// the ripple is the largest deviation from it, rad (about the angle); with the wavelength,
+/// m, from the spacing of the sign changes of the deviations along the largest one (when there
+/// are at least three). None until the predicted hole is [`RIPPLE_WINDOW_M`] long.
+fn ripple(start_md: f64, chords: &[(f64, Vec3)]) -> Option<(f64, Option<f64>)> {
+    let end = chords.last()?.0;
+    if end - start_md < RIPPLE_WINDOW_M - 1e-9 {
+        return None;
+    }
+    let mut pts: Vec<(f64, Vec3)> = Vec::new();
+    for k in (0..chords.len()).rev() {
+        let begin = if k == 0 { start_md } else { chords[k - 1].0 };
+        let mid = 0.5 * (begin + chords[k].0);
+        if mid < end - RIPPLE_WINDOW_M {
+            break;
+        }
+        pts.push((mid, chords[k].1));
+    }
+    if pts.len() < 4 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let xm = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let vm = pts.iter().fold(Vec3::zeros(), |a, p| a + p.1) / n;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - xm).powi(2)).sum();
+    let sxv = pts.iter().fold(Vec3::zeros(), |a, p| a + (p.1 - vm) * (p.0 - xm));
+    let slope = if sxx > 0.0 { sxv / sxx } else { Vec3::zeros() };
+    let dev: Vec<Vec3> = pts.iter().map(|p| p.1 - vm - slope * (p.0 - xm)).collect();
+    let (largest, r) = dev
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (i, d.norm()))
+        .fold((0, 0.0), |a, x| if x.1 > a.1 { x } else { a });
+    let u = dev[largest];
+    let crossings: Vec<f64> = pts
+        .windows(2)
+        .zip(dev.windows(2))
+        .filter(|(_, d)| d[0].dot(&u) * d[1].dot(&u) < 0.0)
+        .map(|(p, _)| 0.5 * (p[0].0 + p[1].0))
+        .collect();
+    let wavelength = (crossings.len() >= 3)
+        .then(|| 2.0 * (crossings[0] - crossings[crossings.len() - 1]).abs() / (crossings.len() - 1) as f64);
+    Some((r, wavelength))
+}
+
+/// ", wavelength about X m" or nothing.
+fn wavelength_text(w: Option<f64>) -> String {
+    w.map(|w| format!(", wavelength about {w:.1} m")).unwrap_or_default()
+}
+
 /// Result of one implicit step's Newton iteration on the turn angles.
 struct StepOutcome {
     /// The deviation reached the tolerance.
@@ -494,7 +621,12 @@ pub fn predict_from(
     let t0 = Instant::now();
     let from = start.md_end();
     let hole = hole_for_prediction(case, to_md_m);
-    let step = settings.step_m.max(MIN_STEP_M);
+    if settings.step_m.is_nan() || settings.step_m < MIN_STEP_M - 1e-9 {
+        return Err(PredictError::StepTooShort {
+            step_m: settings.step_m,
+        });
+    }
+    let step = settings.step_m;
     let ctl = &settings.controls;
     let cut = settings
         .cut_m
@@ -535,6 +667,20 @@ pub fn predict_from(
     let mut path = start.clone();
     // the step in use: halved where the implicit step fails, grown back after a success
     let mut cur_step = step;
+    // (bit MD, ripple in rad) after each step, and the last ripple with its wavelength
+    let mut ripples: Vec<(f64, f64)> = Vec::new();
+    let mut ripple_now: (f64, Option<f64>) = (0.0, None);
+    let ripple_hint = |r: (f64, Option<f64>)| -> String {
+        if r.0.to_degrees() < RIPPLE_WARN_DEG {
+            return String::new();
+        }
+        format!(
+            "; the predicted hole ripples around its trend by {:.2} deg{} here: a longer step (at least {} m) damps such a ripple",
+            r.0.to_degrees(),
+            wavelength_text(r.1),
+            ripple_safe_step_m(r.1, step)
+        )
+    };
     while s < to_md_m - 1e-9 {
         // the last step ends exactly at the target; a sliver shorter than half the minimum
         // step is merged into this one
@@ -579,10 +725,30 @@ pub fn predict_from(
                     jac = None;
                     continue;
                 }
-                let o = failed?;
+                let o = match failed {
+                    Ok(o) => o,
+                    Err(PredictError::NotConverged {
+                        md_m,
+                        iterations,
+                        residual,
+                        penetration,
+                        detail,
+                    }) => {
+                        return Err(PredictError::NotConverged {
+                            md_m,
+                            iterations,
+                            residual,
+                            penetration,
+                            detail: detail + &ripple_hint(ripple_now),
+                        })
+                    }
+                    Err(e) => return Err(e),
+                };
                 return Err(PredictError::NoDirection {
                     md_m: s1,
                     residual_rad: o.residual[0].abs().max(o.residual[1].abs()),
+                    step_m: ds,
+                    hint: ripple_hint(ripple_now),
                 });
             }
         };
@@ -600,11 +766,40 @@ pub fn predict_from(
         last_ds = ds;
         last_chord = chord_of(turn);
         hole_pred.chords.push((s1, last_chord));
+        if let Some(r) = ripple(from, &hole_pred.chords) {
+            let earlier = ripples
+                .iter()
+                .rev()
+                .find(|(md, _)| *md <= s1 - RIPPLE_GROWTH_LENGTH_M + 1e-9)
+                .map(|x| x.1);
+            ripples.push((s1, r.0));
+            ripple_now = r;
+            if let Some(e) = earlier {
+                if r.0.to_degrees() >= RIPPLE_FAIL_DEG && r.0 >= RIPPLE_GROWTH * e {
+                    return Err(PredictError::Ripple {
+                        md_m: s1,
+                        ripple_deg: r.0.to_degrees(),
+                        earlier_deg: e.to_degrees(),
+                        wavelength: wavelength_text(r.1),
+                        step_m: step,
+                        suggested_m: ripple_safe_step_m(r.1, step),
+                    });
+                }
+            }
+        }
         path = p1;
         s = s1;
         records.push((s, sol1.bit, dir, step_iterations));
         on_step(s);
         *warm = Some((sol1.model, sol1.state));
+    }
+    if ripple_now.0.to_degrees() >= RIPPLE_WARN_DEG {
+        tracing::warn!(
+            "the predicted hole ripples around its trend by {:.2} deg at the end{} (step {} m): the end inclination and azimuth move by up to that much with the ripple's phase",
+            ripple_now.0.to_degrees(),
+            wavelength_text(ripple_now.1),
+            step
+        );
     }
     // stations reported on the final hole
     let steps = records
@@ -632,6 +827,7 @@ pub fn predict_from(
         iterations,
         seconds: t0.elapsed().as_secs_f64(),
         start_warm,
+        ripple_deg: ripple_now.0.to_degrees(),
     })
 }
 
@@ -646,4 +842,57 @@ pub fn predict(
 ) -> Result<Prediction, PredictError> {
     let start = hole_to(&case.well.path, from_md_m)?;
     predict_from(case, &case.bit_rock, &start, to_md_m, settings, &mut None, on_step)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Chords of 0.25 m from MD 100 whose direction turns at `kappa` rad/m in the vertical
+    /// plane and carries a ripple `amp * sin(2 pi s / wavelength)` rad sideways.
+    fn chords(length: f64, kappa: f64, amp: f64, wavelength: f64) -> Vec<(f64, Vec3)> {
+        let n = (length / 0.25).round() as usize;
+        (1..=n)
+            .map(|k| {
+                let mid = 0.25 * (k as f64 - 0.5);
+                let a = kappa * mid;
+                let r = amp * (2.0 * std::f64::consts::PI * mid / wavelength).sin();
+                let d = Vec3::new(a.cos() * r.cos(), r.sin(), a.sin() * r.cos());
+                (100.0 + 0.25 * k as f64, d)
+            })
+            .collect()
+    }
+
+    /// Reference: the ripple put in (amplitude and wavelength of a sine on the chord
+    /// directions); the sampling at 0.25 m can miss the crest by at most 1 - cos(pi 0.125/2.4)
+    /// (3 %), the fit window of 6 m holds 2.5 wavelengths (a few % of the amplitude leak into
+    /// the fitted line). A constant-curvature hole of 10 deg/30 m has no ripple: its directions
+    /// leave a straight line in MD by kappa^2 L^2 / 8 ~ 2e-4 rad over the window.
+    #[test]
+    fn ripple_measures_the_put_in_sine_and_ignores_a_steady_turn() {
+        let kappa = 10f64.to_radians() / 30.0;
+        let (r, w) = ripple(100.0, &chords(20.0, kappa, 0.01, 2.4)).unwrap();
+        assert!((r - 0.01).abs() < 0.001, "ripple {r}");
+        let w = w.unwrap();
+        assert!((w - 2.4).abs() < 0.25, "wavelength {w}");
+        let (r, _) = ripple(100.0, &chords(20.0, kappa, 0.0, 2.4)).unwrap();
+        assert!(
+            r.to_degrees() < 0.01 && r.to_degrees() < RIPPLE_WARN_DEG / 10.0,
+            "steady turn: {r}"
+        );
+        // shorter than the window: not measured
+        assert!(ripple(100.0, &chords(RIPPLE_WINDOW_M - 0.5, kappa, 0.01, 2.4)).is_none());
+    }
+
+    /// Reference: the rule of [`ripple_safe_step_m`] by hand (quarter wavelength rounded up to
+    /// 0.1 m, at least 1.5 x the step; without a wavelength 2 x the step, at least 0.5 m).
+    #[test]
+    fn safe_step_is_a_quarter_wavelength_rounded_up() {
+        assert_eq!(ripple_safe_step_m(Some(2.3), 0.25), 0.6);
+        assert_eq!(ripple_safe_step_m(Some(3.3), 0.5), 0.9);
+        assert_eq!(ripple_safe_step_m(Some(2.0), 0.4), 0.6);
+        assert_eq!(ripple_safe_step_m(Some(1.2), 0.2), 0.3);
+        assert_eq!(ripple_safe_step_m(None, 0.2), 0.5);
+        assert_eq!(ripple_safe_step_m(None, 0.4), 0.8);
+    }
 }
