@@ -1054,8 +1054,10 @@ fn pin_offset_m(ev: &Evaluation, pins: &[usize]) -> f64 {
 /// friction (proportional to that force) made long rotating strings wander: the 10,000 m bench
 /// string took 7-49 Newton iterations depending on its casing shoe depth (800-1,500 m),
 /// against 10-12 with penalty pins and an augmented-Lagrangian phase, and 9-10 with this
-/// switch. Lower thresholds cost the cold BHA solve an iteration (the switch moves the pins
-/// the penalty's give, ~15 um, onto the axis); 0.3 brought the wandering back (17 iterations).
+/// switch. At the switch the Newton step prescribes the pins' lateral increments that take
+/// them from the penalty's give (~15 um) onto the axis (moving the pins alone cost the cold BHA
+/// solve an iteration: their neighbours' residual jumped); 0.3 brought the wandering back (17
+/// iterations).
 pub const PIN_EXACT_RESIDUAL: f64 = 0.1;
 
 /// The model's held DOFs plus the lateral DOFs (basis 1 and 2) of the exact `pins`.
@@ -1119,7 +1121,8 @@ pub(crate) fn add_pin_coupling(model: &Model, lin: &mut Linear, ev: &Evaluation,
 
 /// Put the `pins` (zero-clearance gap nodes) on the hole axis: each loses its lateral offset
 /// from its nearest axis point (their lateral DOFs are held, so this only removes what sliding
-/// along a curved axis leaves, and a start's offset).
+/// along a curved axis leaves, and a warm start's offset; at the switch from penalty pins the
+/// Newton step moves them instead).
 fn hold_pins_on_axis(model: &Model, state: &mut State, pins: &[usize]) {
     for &i in pins {
         let md = model.path.nearest_md(&state.x[i], state.md[i]);
@@ -1250,7 +1253,9 @@ pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
 /// the friction direction as the gaps' geometric stiffness at the previous multipliers. The
 /// zero-clearance gaps (pins) are penalty springs until the outer residual falls below
 /// [`PIN_EXACT_RESIDUAL`], then exact constraints: held on the hole axis by their lateral
-/// DOFs, their force the reaction (`State::exact_pins`) with its friction linearized
+/// DOFs (the step at the switch prescribes the lateral increments that take them from the
+/// penalty's give onto the axis), their force the reaction (`State::exact_pins`) with its
+/// friction linearized
 /// (`add_pin_coupling`); no augmented-Lagrangian phase. The linearization is checked against
 /// central differences in `solve_tangent_tests.rs`.
 pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
@@ -1301,11 +1306,14 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // linearize with the managed gaps carrying only their lagged friction
         let skip_tangent = likely_converged && !redo;
         redo = false;
-        if !state.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL) {
+        // at the switch to exact pins the pins are not moved onto the axis by themselves (their
+        // neighbours would carry the jump into the residual): the Newton step prescribes their
+        // lateral increment instead (`pin_move`)
+        let switching = !state.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL);
+        if switching {
             state.exact_pins = true;
             constrained.clone_from(&pin_constrained);
-        }
-        if state.exact_pins {
+        } else if state.exact_pins {
             hold_pins_on_axis(model, &mut state, &pins);
         }
         ev = if skip_tangent {
@@ -1314,6 +1322,19 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             model.evaluate(&mut state, Some(lin.sink()))
         };
         let (c, r0) = free_residual(model, &ev, &constrained);
+        // prescribed increments of held DOFs: the switching pins' lateral DOFs take them to
+        // the hole axis (non-homogeneous constraints; their coupling enters through `K du`)
+        let pin_move: Vec<(usize, f64)> = if switching {
+            pins.iter()
+                .flat_map(|&i| {
+                    let d = state.x[i] - ev.axis[i].0;
+                    let q = &model.basis[i];
+                    [(model.dof(i, 1), -q.column(1).dot(&d)), (model.dof(i, 2), -q.column(2).dot(&d))]
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         // contact geometry of the managed gaps (node-basis normals, equilibrium columns, gaps)
         let ContactColumns {
             mut normals,
@@ -1439,6 +1460,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let eta = ip_tolerance(rn);
         // interior point on (du, R, s), du the step of this linearization
         let mut du = vec![0.0; n];
+        for &(d, v) in &pin_move {
+            du[d] = v;
+        }
         let mut dh_total = 0.0;
         // warm start from the previous multipliers, pushed off the boundary by a shift that
         // grows with the outer residual (far from the solution the old contact set is a poor
@@ -1484,7 +1508,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         for ip in 0..MAX_IP_ITERATIONS {
             // residuals (K du vanishes before the first step: du starts at zero)
             rd.copy_from_slice(&r0);
-            if ip > 0 {
+            if ip > 0 || !pin_move.is_empty() {
                 lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
             }
             for j in 0..mt {
@@ -1648,6 +1672,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 r_f = start_r(shift);
                 s_v = start_s(shift);
                 du.fill(0.0);
+                for &(d, v) in &pin_move {
+                    du[d] = v;
+                }
                 dh_total = 0.0;
                 stalled = 0;
                 tracing::debug!(restarts, shift, "interior point restarted");
