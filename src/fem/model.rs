@@ -534,9 +534,8 @@ impl Model {
             if !self.mesh.nodes[i].has_gap {
                 continue;
             }
-            let md = self.path.nearest_md(&state.x[i], state.md[i]);
+            let (md, p) = self.path.nearest_axis(&state.x[i], state.md[i]);
             state.md[i] = md;
-            let p = self.path.axis_at(md);
             axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
             clearance[i] = eo;

@@ -1125,8 +1125,7 @@ pub(crate) fn add_pin_coupling(model: &Model, lin: &mut Linear, ev: &Evaluation,
 /// Newton step moves them instead).
 fn hold_pins_on_axis(model: &Model, state: &mut State, pins: &[usize]) {
     for &i in pins {
-        let md = model.path.nearest_md(&state.x[i], state.md[i]);
-        let p = model.path.axis_at(md);
+        let (_, p) = model.path.nearest_axis(&state.x[i], state.md[i]);
         let d = state.x[i] - p.position;
         state.x[i] -= d - p.tangent * p.tangent.dot(&d);
     }
