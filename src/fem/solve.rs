@@ -375,6 +375,11 @@ pub const IP_RESTART_SHIFT_FACTOR: f64 = 100.0;
 /// fails. Newton converges quadratically here (e.g. 8e-3, 8e-5, 3e-8 on a 3,000 m string).
 pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
 
+/// After two Newton iterations, a full step is expected to converge only if the next residual
+/// predicted from the last contraction (`rn^2 / rn_prev`) is below this many residual
+/// tolerances (the cold BHA's 0.05, 7.6e-4, 5e-6: the step from 7.6e-4 is not probed).
+pub const LIKELY_CONVERGED_FACTOR: f64 = 10.0;
+
 /// Gap nodes with a clearance below this (m) get the whole wall as constraints of the
 /// linearized contact problem ([`WALL_PLANES`] supporting planes of the hole circle, the
 /// current wall's among them): the linearized gap bounds only the motion toward the current
@@ -1710,7 +1715,16 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             "interior-point iterations and step cap (bending-rotation and lateral caps: ratio and \
              distance from the bit of the node that sets each)"
         );
-        likely_converged = alpha == 1.0 && rn < LIKELY_CONVERGED_RESIDUAL;
+        // ... and, after a previous iteration, its contraction (the next residual predicted as
+        // rn^2 / rn_prev) says so too: a probe that fails costs a residual-only evaluation
+        let h = &stats.residual_history;
+        let predicted = match h.len() {
+            0 | 1 => 0.0,
+            k => rn * rn / h[k - 2],
+        };
+        likely_converged = alpha == 1.0
+            && rn < LIKELY_CONVERGED_RESIDUAL
+            && predicted < LIKELY_CONVERGED_FACTOR * ctl.residual_tolerance;
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
         for (j, &i) in qidx.iter().enumerate() {
