@@ -413,6 +413,23 @@ fn ip_tolerance(rn: f64) -> f64 {
     (1e-2 * rn).min(rn * rn).max(1e-10)
 }
 
+/// Outer residual (relative to the load scale) below which an interior-point solve first
+/// tries the active-set step (see `solve_ip_from`).
+pub const ACTIVE_SET_RESIDUAL: f64 = 1e-3;
+
+/// Distance from the boundary of the active-set step's start, and how far past it a pair may
+/// end and still count as in its set: relative to the clearance (slacks) and to the load scale
+/// per contact (multipliers).
+pub const ACTIVE_SET_EPS: f64 = 1e-9;
+
+/// Active-set steps tried per Newton step before the interior point takes over.
+pub const ACTIVE_SET_TRIES: usize = 2;
+
+/// Smallest force of a pair in the active set's start, per contact's share of the load scale:
+/// a pair with less force (one just touching, at the end of a contact run) starts outside the
+/// set.
+pub const ACTIVE_SET_MIN_FORCE: f64 = 1e-3;
+
 /// Largest step in (0, 1] keeping `r + a dr` and `s + a ds` positive, times `tau`
 /// (fraction to the boundary).
 fn step_to_boundary(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64], tau: f64) -> f64 {
@@ -1260,7 +1277,10 @@ pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
 /// DOFs (the step at the switch prescribes the lateral increments that take them from the
 /// penalty's give onto the axis), their force the reaction (`State::exact_pins`) with its
 /// friction linearized
-/// (`add_pin_coupling`); no augmented-Lagrangian phase. The linearization is checked against
+/// (`add_pin_coupling`); no augmented-Lagrangian phase. Below [`ACTIVE_SET_RESIDUAL`] (not at
+/// the pins' switch) each step first tries the equality-constrained Newton step of the last
+/// contact set (one factorization; [`ACTIVE_SET_TRIES`] with the pairs that left the set
+/// switched), the interior point taking over when the set does not hold. The linearization is checked against
 /// central differences in `solve_tangent_tests.rs`.
 pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
@@ -1333,7 +1353,10 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 .flat_map(|&i| {
                     let d = state.x[i] - ev.axis[i].0;
                     let q = &model.basis[i];
-                    [(model.dof(i, 1), -q.column(1).dot(&d)), (model.dof(i, 2), -q.column(2).dot(&d))]
+                    [
+                        (model.dof(i, 1), -q.column(1).dot(&d)),
+                        (model.dof(i, 2), -q.column(2).dot(&d)),
+                    ]
                 })
                 .collect()
         } else {
@@ -1492,6 +1515,47 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             .iter()
             .map(|&i| ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M))
             .collect();
+        // active-set finish (a primal-dual active-set step): near convergence the first
+        // interior-point iterations start from the contact set of the last step, pairs in the
+        // set on the boundary (slack `ACTIVE_SET_EPS` clearances: the linearized gap held
+        // closed), the others with zero force (their force held at zero), and the affine
+        // direction is taken in full when no pair leaves its set: the equality-constrained
+        // Newton step of that set, one factorization. Pairs that leave it switch sides and the
+        // step is tried again (`ACTIVE_SET_TRIES` in all); then the interior point goes on
+        // from its usual warm start.
+        let per_contact = scale / mt.max(1) as f64;
+        let mut in_set: Vec<bool> = (0..mt)
+            .map(|j| {
+                // in the set when its force (per contact's share of the load scale) is the
+                // larger side of the complementarity pair, the open gap (per clearance) the other
+                let lam = if j < m { state.lambda[qidx[j]] } else { 0.0 };
+                lam / per_contact > ((-gaps0[j]).max(0.0) / clr[j]).max(ACTIVE_SET_MIN_FORCE)
+            })
+            .collect();
+        // not at the pins' switch (their prescribed move changes the contact set)
+        let mut active_set_tries = if stats.iterations > 0 && pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL {
+            ACTIVE_SET_TRIES
+        } else {
+            0
+        };
+        let active_set_start = |in_set: &[bool], r_f: &mut [f64], s_v: &mut [f64]| {
+            for j in 0..mt {
+                if in_set[j] {
+                    let lam = if j < m { state.lambda[qidx[j]] } else { 0.0 };
+                    // at least the contact's share of the load scale: the pair's compliance in
+                    // the step's matrix is its slack over this force, and it ends the step
+                    // `slack * dR / R` past the wall
+                    r_f[j] = lam.max(per_contact);
+                    s_v[j] = ACTIVE_SET_EPS * clr[j];
+                } else {
+                    r_f[j] = 0.0;
+                    s_v[j] = (-gaps0[j]).max(clr[j]);
+                }
+            }
+        };
+        if active_set_tries > 0 {
+            active_set_start(&in_set, &mut r_f, &mut s_v);
+        }
         let dofs6: Vec<[usize; 6]> = cnode
             .iter()
             .map(|&i| std::array::from_fn(|k| model.dof(i, k)))
@@ -1631,7 +1695,40 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 }
                 dh
             };
-            finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
+            let dh_aff = finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
+            if active_set_tries > 0 {
+                active_set_tries -= 1;
+                let eps_r = ACTIVE_SET_EPS * per_contact;
+                let mut switched = 0usize;
+                for j in 0..mt {
+                    if in_set[j] && r_f[j] + dr_aff[j] < -eps_r {
+                        in_set[j] = false;
+                        switched += 1;
+                    } else if !in_set[j] && s_v[j] + ds_aff[j] < -ACTIVE_SET_EPS * clr[j] {
+                        in_set[j] = true;
+                        switched += 1;
+                    }
+                }
+                tracing::trace!(switched, "active-set step");
+                if switched == 0 {
+                    for (x, d) in du.iter_mut().zip(&rhs) {
+                        *x += d;
+                    }
+                    dh_total += dh_aff;
+                    for j in 0..mt {
+                        r_f[j] = (r_f[j] + dr_aff[j]).max(0.0);
+                        s_v[j] = (s_v[j] + ds_aff[j]).max(0.0);
+                    }
+                    break;
+                }
+                if active_set_tries > 0 {
+                    active_set_start(&in_set, &mut r_f, &mut s_v);
+                } else {
+                    r_f = start_r(shift);
+                    s_v = start_s(shift);
+                }
+                continue;
+            }
             let a_aff = step_to_boundary(&r_f, &dr_aff, &s_v, &ds_aff, 1.0);
             let mu_aff = (0..mt)
                 .map(|j| (r_f[j] + a_aff * dr_aff[j]) * (s_v[j] + a_aff * ds_aff[j]))

@@ -132,6 +132,13 @@ fn loaded_full_gauge_stabilizer_converges_without_a_pin_phase() {
         "{} iterations: {hist:?}",
         sol.stats.iterations
     );
+    // the step from below `ACTIVE_SET_RESIDUAL` is the active-set step, one factorization (the
+    // interior point took three: 16 factorizations in all before)
+    assert!(
+        sol.stats.factorizations <= 14,
+        "{} factorizations",
+        sol.stats.factorizations
+    );
     let rises = hist.windows(2).filter(|w| w[1] >= w[0]).count();
     assert!(rises == 0, "residual history {hist:?}");
     let pin = pins_of(&model)[0];
