@@ -172,10 +172,10 @@ pub fn load_scale(model: &Model) -> f64 {
 /// `state.md` (no friction).
 fn soft_string_tension(model: &Model, state: &State) -> Vec<f64> {
     let mut tension = -model.loads.wob_n;
+    let tangent: Vec<Vec3> = state.md.iter().map(|&md| model.path.axis_at(md).tangent).collect();
     (0..model.nodes() - 1)
         .map(|e| {
-            let tbar =
-                (model.path.axis_at(state.md[e]).tangent + model.path.axis_at(state.md[e + 1]).tangent).normalize();
+            let tbar = (tangent[e] + tangent[e + 1]).normalize();
             let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
             let mid = tension + 0.5 * w * tbar.z;
             tension += w * tbar.z;
@@ -226,10 +226,9 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     let nn = model.nodes();
     let mut tension = -model.loads.wob_n;
     let mut load = vec![Vec3::zeros(); nn];
+    let axis: Vec<_> = state.md.iter().map(|&md| model.path.axis_at(md)).collect();
     for e in 0..nn - 1 {
-        let (lo, up) = (state.md[e], state.md[e + 1]);
-        let p_lo = model.path.point_at(lo);
-        let p_up = model.path.point_at(up);
+        let (p_lo, p_up) = (&axis[e], &axis[e + 1]);
         let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
         let tbar = (p_lo.tangent + p_up.tangent).normalize();
         let g = (p_lo.tangent - p_up.tangent) * tension + Vec3::new(0.0, 0.0, w);
@@ -255,7 +254,7 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
         }
         let n = li.normalize();
         let eo = model.clearance(i, state.md[i]);
-        state.x[i] = model.path.axis_at(state.md[i]).position + n * eo;
+        state.x[i] = axis[i].position + n * eo;
         state.lambda[i] = li.norm();
         state.normal[i] = n;
     }

@@ -287,7 +287,7 @@ impl WellPath {
     /// Borehole frame (t, h, r) at `md_m`; where vertical, h points to the surveyed azimuth of
     /// the station at or above `md_m`.
     pub fn frame_at(&self, md_m: f64) -> Frame {
-        let p = self.point_at(md_m);
+        let p = self.axis_at(md_m);
         let k = if md_m <= self.md[0] {
             0
         } else {
@@ -299,7 +299,7 @@ impl WellPath {
     /// Parallel-transported (Bishop) frame `(t, b1, b2)` at `md_m`: `b1` starts as the high
     /// side at the first station and is carried along the arcs without twisting about `t`.
     pub fn bishop_at(&self, md_m: f64) -> (Vec3, Vec3, Vec3) {
-        let p = self.point_at(md_m);
+        let p = self.axis_at(md_m);
         let n = self.md.len();
         let b1 = if n == 1 || md_m <= self.md[0] {
             self.b1[0]
