@@ -208,8 +208,9 @@ pub struct State {
     /// Zero-clearance gaps (pins) are exact constraints: the node is held on the hole axis (its
     /// lateral DOFs are held by the solver) and its wall force is the reaction that balances
     /// the lateral residual of everything else, friction included ([`Model::pin_reaction`]);
-    /// the vector multiplier is set to it at each evaluation. `false`: penalty springs about
-    /// the multiplier.
+    /// the vector multiplier is set to it at each evaluation, and the force is that reaction
+    /// alone (no penalty on an offset from the axis, which the solver removes by prescribed
+    /// lateral increments). `false`: penalty springs about the multiplier.
     pub exact_pins: bool,
 }
 
@@ -545,9 +546,8 @@ impl Model {
             if !self.mesh.nodes[i].has_gap {
                 continue;
             }
-            let md = self.path.nearest_md(&state.x[i], state.md[i]);
+            let (md, p) = self.path.nearest_axis(&state.x[i], state.md[i]);
             state.md[i] = md;
-            let p = self.path.axis_at(md);
             axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
             clearance[i] = eo;
@@ -596,7 +596,11 @@ impl Model {
             let (p, t) = axis[i];
             let offset = state.x[i] - p;
             state.lambda_vec[i] = self.pin_reaction(i, &t, &(-e_lat));
-            let g = evaluate(&self.gap_input(state, i, offset, t, clearance[i]));
+            // the exact pin's force is the reaction alone: no penalty on its offset (which the
+            // solver removes by the pin's prescribed lateral increment)
+            let mut input = self.gap_input(state, i, offset, t, clearance[i]);
+            input.k_n = 0.0;
+            let g = evaluate(&input);
             let f = q.transpose() * g.force;
             let m = q.transpose() * g.moment;
             for k in 0..3 {

@@ -172,10 +172,10 @@ pub fn load_scale(model: &Model) -> f64 {
 /// `state.md` (no friction).
 fn soft_string_tension(model: &Model, state: &State) -> Vec<f64> {
     let mut tension = -model.loads.wob_n;
+    let tangent: Vec<Vec3> = state.md.iter().map(|&md| model.path.axis_at(md).tangent).collect();
     (0..model.nodes() - 1)
         .map(|e| {
-            let tbar =
-                (model.path.axis_at(state.md[e]).tangent + model.path.axis_at(state.md[e + 1]).tangent).normalize();
+            let tbar = (tangent[e] + tangent[e + 1]).normalize();
             let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
             let mid = tension + 0.5 * w * tbar.z;
             tension += w * tbar.z;
@@ -226,10 +226,9 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     let nn = model.nodes();
     let mut tension = -model.loads.wob_n;
     let mut load = vec![Vec3::zeros(); nn];
+    let axis: Vec<_> = state.md.iter().map(|&md| model.path.axis_at(md)).collect();
     for e in 0..nn - 1 {
-        let (lo, up) = (state.md[e], state.md[e + 1]);
-        let p_lo = model.path.point_at(lo);
-        let p_up = model.path.point_at(up);
+        let (p_lo, p_up) = (&axis[e], &axis[e + 1]);
         let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
         let tbar = (p_lo.tangent + p_up.tangent).normalize();
         let g = (p_lo.tangent - p_up.tangent) * tension + Vec3::new(0.0, 0.0, w);
@@ -255,7 +254,7 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
         }
         let n = li.normalize();
         let eo = model.clearance(i, state.md[i]);
-        state.x[i] = model.path.axis_at(state.md[i]).position + n * eo;
+        state.x[i] = axis[i].position + n * eo;
         state.lambda[i] = li.norm();
         state.normal[i] = n;
     }
@@ -375,6 +374,11 @@ pub const IP_RESTART_SHIFT_FACTOR: f64 = 100.0;
 /// fails. Newton converges quadratically here (e.g. 8e-3, 8e-5, 3e-8 on a 3,000 m string).
 pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
 
+/// After two Newton iterations, a full step is expected to converge only if the next residual
+/// predicted from the last contraction (`rn^2 / rn_prev`) is below this many residual
+/// tolerances (the cold BHA's 0.05, 7.6e-4, 5e-6: the step from 7.6e-4 is not probed).
+pub const LIKELY_CONVERGED_FACTOR: f64 = 10.0;
+
 /// Gap nodes with a clearance below this (m) get the whole wall as constraints of the
 /// linearized contact problem ([`WALL_PLANES`] supporting planes of the hole circle, the
 /// current wall's among them): the linearized gap bounds only the motion toward the current
@@ -407,6 +411,23 @@ pub const MAX_IP_ITERATIONS: usize = 60;
 fn ip_tolerance(rn: f64) -> f64 {
     (1e-2 * rn).min(rn * rn).max(1e-10)
 }
+
+/// Outer residual (relative to the load scale) below which an interior-point solve first
+/// tries the active-set step (see `solve_ip_from`).
+pub const ACTIVE_SET_RESIDUAL: f64 = 1e-3;
+
+/// Distance from the boundary of the active-set step's start, and how far past it a pair may
+/// end and still count as in its set: relative to the clearance (slacks) and to the load scale
+/// per contact (multipliers).
+pub const ACTIVE_SET_EPS: f64 = 1e-9;
+
+/// Active-set steps tried per Newton step before the interior point takes over.
+pub const ACTIVE_SET_TRIES: usize = 2;
+
+/// Smallest force of a pair in the active set's start, per contact's share of the load scale:
+/// a pair with less force (one just touching, at the end of a contact run) starts outside the
+/// set.
+pub const ACTIVE_SET_MIN_FORCE: f64 = 1e-3;
 
 /// Largest step in (0, 1] keeping `r + a dr` and `s + a ds` positive, times `tau`
 /// (fraction to the boundary).
@@ -1054,8 +1075,10 @@ fn pin_offset_m(ev: &Evaluation, pins: &[usize]) -> f64 {
 /// friction (proportional to that force) made long rotating strings wander: the 10,000 m bench
 /// string took 7-49 Newton iterations depending on its casing shoe depth (800-1,500 m),
 /// against 10-12 with penalty pins and an augmented-Lagrangian phase, and 9-10 with this
-/// switch. Lower thresholds cost the cold BHA solve an iteration (the switch moves the pins
-/// the penalty's give, ~15 um, onto the axis); 0.3 brought the wandering back (17 iterations).
+/// switch. At the switch the Newton step prescribes the pins' lateral increments that take
+/// them from the penalty's give (~15 um) onto the axis (moving the pins alone cost the cold BHA
+/// solve an iteration: their neighbours' residual jumped); 0.3 brought the wandering back (17
+/// iterations).
 pub const PIN_EXACT_RESIDUAL: f64 = 0.1;
 
 /// The model's held DOFs plus the lateral DOFs (basis 1 and 2) of the exact `pins`.
@@ -1119,11 +1142,11 @@ pub(crate) fn add_pin_coupling(model: &Model, lin: &mut Linear, ev: &Evaluation,
 
 /// Put the `pins` (zero-clearance gap nodes) on the hole axis: each loses its lateral offset
 /// from its nearest axis point (their lateral DOFs are held, so this only removes what sliding
-/// along a curved axis leaves, and a start's offset).
+/// along a curved axis leaves, and a warm start's offset; at the switch from penalty pins the
+/// Newton step moves them instead).
 fn hold_pins_on_axis(model: &Model, state: &mut State, pins: &[usize]) {
     for &i in pins {
-        let md = model.path.nearest_md(&state.x[i], state.md[i]);
-        let p = model.path.axis_at(md);
+        let (_, p) = model.path.nearest_axis(&state.x[i], state.md[i]);
         let d = state.x[i] - p.position;
         state.x[i] -= d - p.tangent * p.tangent.dot(&d);
     }
@@ -1250,8 +1273,13 @@ pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
 /// the friction direction as the gaps' geometric stiffness at the previous multipliers. The
 /// zero-clearance gaps (pins) are penalty springs until the outer residual falls below
 /// [`PIN_EXACT_RESIDUAL`], then exact constraints: held on the hole axis by their lateral
-/// DOFs, their force the reaction (`State::exact_pins`) with its friction linearized
-/// (`add_pin_coupling`); no augmented-Lagrangian phase. The linearization is checked against
+/// DOFs (the step at the switch prescribes the lateral increments that take them from the
+/// penalty's give onto the axis), their force the reaction (`State::exact_pins`) with its
+/// friction linearized
+/// (`add_pin_coupling`); no augmented-Lagrangian phase. Below [`ACTIVE_SET_RESIDUAL`] (not at
+/// the pins' switch) each step first tries the equality-constrained Newton step of the last
+/// contact set (one factorization; [`ACTIVE_SET_TRIES`] with the pairs that left the set
+/// switched), the interior point taking over when the set does not hold. The linearization is checked against
 /// central differences in `solve_tangent_tests.rs`.
 pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
@@ -1301,11 +1329,14 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // linearize with the managed gaps carrying only their lagged friction
         let skip_tangent = likely_converged && !redo;
         redo = false;
-        if !state.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL) {
+        // at the switch to exact pins the pins are not moved onto the axis by themselves (their
+        // neighbours would carry the jump into the residual): the Newton step prescribes their
+        // lateral increment instead (`pin_move`)
+        let switching = !state.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL);
+        if switching {
             state.exact_pins = true;
             constrained.clone_from(&pin_constrained);
-        }
-        if state.exact_pins {
+        } else if state.exact_pins {
             hold_pins_on_axis(model, &mut state, &pins);
         }
         ev = if skip_tangent {
@@ -1314,6 +1345,22 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             model.evaluate(&mut state, Some(lin.sink()))
         };
         let (c, r0) = free_residual(model, &ev, &constrained);
+        // prescribed increments of held DOFs: the switching pins' lateral DOFs take them to
+        // the hole axis (non-homogeneous constraints; their coupling enters through `K du`)
+        let pin_move: Vec<(usize, f64)> = if switching {
+            pins.iter()
+                .flat_map(|&i| {
+                    let d = state.x[i] - ev.axis[i].0;
+                    let q = &model.basis[i];
+                    [
+                        (model.dof(i, 1), -q.column(1).dot(&d)),
+                        (model.dof(i, 2), -q.column(2).dot(&d)),
+                    ]
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         // contact geometry of the managed gaps (node-basis normals, equilibrium columns, gaps)
         let ContactColumns {
             mut normals,
@@ -1439,6 +1486,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let eta = ip_tolerance(rn);
         // interior point on (du, R, s), du the step of this linearization
         let mut du = vec![0.0; n];
+        for &(d, v) in &pin_move {
+            du[d] = v;
+        }
         let mut dh_total = 0.0;
         // warm start from the previous multipliers, pushed off the boundary by a shift that
         // grows with the outer residual (far from the solution the old contact set is a poor
@@ -1464,6 +1514,47 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             .iter()
             .map(|&i| ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M))
             .collect();
+        // active-set finish (a primal-dual active-set step): near convergence the first
+        // interior-point iterations start from the contact set of the last step, pairs in the
+        // set on the boundary (slack `ACTIVE_SET_EPS` clearances: the linearized gap held
+        // closed), the others with zero force (their force held at zero), and the affine
+        // direction is taken in full when no pair leaves its set: the equality-constrained
+        // Newton step of that set, one factorization. Pairs that leave it switch sides and the
+        // step is tried again (`ACTIVE_SET_TRIES` in all); then the interior point goes on
+        // from its usual warm start.
+        let per_contact = scale / mt.max(1) as f64;
+        let mut in_set: Vec<bool> = (0..mt)
+            .map(|j| {
+                // in the set when its force (per contact's share of the load scale) is the
+                // larger side of the complementarity pair, the open gap (per clearance) the other
+                let lam = if j < m { state.lambda[qidx[j]] } else { 0.0 };
+                lam / per_contact > ((-gaps0[j]).max(0.0) / clr[j]).max(ACTIVE_SET_MIN_FORCE)
+            })
+            .collect();
+        // not at the pins' switch (their prescribed move changes the contact set)
+        let mut active_set_tries = if stats.iterations > 0 && pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL {
+            ACTIVE_SET_TRIES
+        } else {
+            0
+        };
+        let active_set_start = |in_set: &[bool], r_f: &mut [f64], s_v: &mut [f64]| {
+            for j in 0..mt {
+                if in_set[j] {
+                    let lam = if j < m { state.lambda[qidx[j]] } else { 0.0 };
+                    // at least the contact's share of the load scale: the pair's compliance in
+                    // the step's matrix is its slack over this force, and it ends the step
+                    // `slack * dR / R` past the wall
+                    r_f[j] = lam.max(per_contact);
+                    s_v[j] = ACTIVE_SET_EPS * clr[j];
+                } else {
+                    r_f[j] = 0.0;
+                    s_v[j] = (-gaps0[j]).max(clr[j]);
+                }
+            }
+        };
+        if active_set_tries > 0 {
+            active_set_start(&in_set, &mut r_f, &mut s_v);
+        }
         let dofs6: Vec<[usize; 6]> = cnode
             .iter()
             .map(|&i| std::array::from_fn(|k| model.dof(i, k)))
@@ -1484,7 +1575,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         for ip in 0..MAX_IP_ITERATIONS {
             // residuals (K du vanishes before the first step: du starts at zero)
             rd.copy_from_slice(&r0);
-            if ip > 0 {
+            if ip > 0 || !pin_move.is_empty() {
                 lin.matrix_mul_add(base.as_ref(), &du, &mut rd, &mut work);
             }
             for j in 0..mt {
@@ -1603,7 +1694,40 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 }
                 dh
             };
-            finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
+            let dh_aff = finish(&rc, &mut rhs, &mut ds_aff, &mut dr_aff);
+            if active_set_tries > 0 {
+                active_set_tries -= 1;
+                let eps_r = ACTIVE_SET_EPS * per_contact;
+                let mut switched = 0usize;
+                for j in 0..mt {
+                    if in_set[j] && r_f[j] + dr_aff[j] < -eps_r {
+                        in_set[j] = false;
+                        switched += 1;
+                    } else if !in_set[j] && s_v[j] + ds_aff[j] < -ACTIVE_SET_EPS * clr[j] {
+                        in_set[j] = true;
+                        switched += 1;
+                    }
+                }
+                tracing::trace!(switched, "active-set step");
+                if switched == 0 {
+                    for (x, d) in du.iter_mut().zip(&rhs) {
+                        *x += d;
+                    }
+                    dh_total += dh_aff;
+                    for j in 0..mt {
+                        r_f[j] = (r_f[j] + dr_aff[j]).max(0.0);
+                        s_v[j] = (s_v[j] + ds_aff[j]).max(0.0);
+                    }
+                    break;
+                }
+                if active_set_tries > 0 {
+                    active_set_start(&in_set, &mut r_f, &mut s_v);
+                } else {
+                    r_f = start_r(shift);
+                    s_v = start_s(shift);
+                }
+                continue;
+            }
             let a_aff = step_to_boundary(&r_f, &dr_aff, &s_v, &ds_aff, 1.0);
             let mu_aff = (0..mt)
                 .map(|j| (r_f[j] + a_aff * dr_aff[j]) * (s_v[j] + a_aff * ds_aff[j]))
@@ -1648,6 +1772,9 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 r_f = start_r(shift);
                 s_v = start_s(shift);
                 du.fill(0.0);
+                for &(d, v) in &pin_move {
+                    du[d] = v;
+                }
                 dh_total = 0.0;
                 stalled = 0;
                 tracing::debug!(restarts, shift, "interior point restarted");
@@ -1684,7 +1811,16 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             "interior-point iterations and step cap (bending-rotation and lateral caps: ratio and \
              distance from the bit of the node that sets each)"
         );
-        likely_converged = alpha == 1.0 && rn < LIKELY_CONVERGED_RESIDUAL;
+        // ... and, after a previous iteration, its contraction (the next residual predicted as
+        // rn^2 / rn_prev) says so too: a probe that fails costs a residual-only evaluation
+        let h = &stats.residual_history;
+        let predicted = match h.len() {
+            0 | 1 => 0.0,
+            k => rn * rn / h[k - 2],
+        };
+        likely_converged = alpha == 1.0
+            && rn < LIKELY_CONVERGED_RESIDUAL
+            && predicted < LIKELY_CONVERGED_FACTOR * ctl.residual_tolerance;
         state.hook_load_n += alpha * dh_total;
         model.update(&mut state, &du, alpha);
         for (j, &i) in qidx.iter().enumerate() {

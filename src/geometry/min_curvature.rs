@@ -82,6 +82,8 @@ pub struct WellPath {
     tan: Vec<Vec3>,
     /// Dogleg of interval k (stations k -> k+1), rad.
     dogleg: Vec<f64>,
+    /// `sin` of the dogleg of interval k (the slerp's denominator).
+    sin_dogleg: Vec<f64>,
     /// Unit rotation axis `t_k x t_k+1 / |.|` of interval k (zero if straight).
     axis: Vec<Vec3>,
     /// Bishop normal b1 at each station (b2 = t x b1).
@@ -143,6 +145,7 @@ impl WellPath {
             md,
             pos,
             tan,
+            sin_dogleg: dl.iter().map(|b: &f64| b.sin()).collect(),
             dogleg: dl,
             axis,
             b1,
@@ -219,8 +222,24 @@ impl WellPath {
         self.axis_geometry(md_m).0
     }
 
+    /// [`WellPath::interval`], tried first at `hint` (the interval of a nearby MD): the same
+    /// index without the binary search when `md` lies in that interval.
+    fn interval_from(&self, md: f64, hint: usize) -> usize {
+        if hint < self.md.len().saturating_sub(1) && self.md[hint] <= md && md < self.md[hint + 1] {
+            hint
+        } else {
+            self.interval(md)
+        }
+    }
+
     /// The axis geometry at `md_m` and the index of the station interval (or end) used.
     fn axis_geometry(&self, md_m: f64) -> (AxisGeometry, usize) {
+        self.axis_geometry_from(md_m, usize::MAX)
+    }
+
+    /// [`WellPath::axis_geometry`] with the interval searched from `hint` first (see
+    /// [`WellPath::interval_from`]); the same result bit for bit.
+    fn axis_geometry_from(&self, md_m: f64, hint: usize) -> (AxisGeometry, usize) {
         let n = self.md.len();
         let (position, t, kappa, dt_ds, k) = if n == 1 || md_m <= self.md[0] {
             let t = self.tan[0];
@@ -235,13 +254,13 @@ impl WellPath {
                 n - 1,
             )
         } else {
-            let k = self.interval(md_m);
+            let k = self.interval_from(md_m, hint);
             let dm = self.md[k + 1] - self.md[k];
             let lam = (md_m - self.md[k]) / dm;
             let beta = self.dogleg[k];
             let (t1, t2) = (self.tan[k], self.tan[k + 1]);
             let t = if beta > 1e-6 {
-                (t1 * ((1.0 - lam) * beta).sin() + t2 * (lam * beta).sin()) / beta.sin()
+                (t1 * ((1.0 - lam) * beta).sin() + t2 * (lam * beta).sin()) / self.sin_dogleg[k]
             } else {
                 (t1 * (1.0 - lam) + t2 * lam).normalize()
             };
@@ -268,7 +287,7 @@ impl WellPath {
     /// Borehole frame (t, h, r) at `md_m`; where vertical, h points to the surveyed azimuth of
     /// the station at or above `md_m`.
     pub fn frame_at(&self, md_m: f64) -> Frame {
-        let p = self.point_at(md_m);
+        let p = self.axis_at(md_m);
         let k = if md_m <= self.md[0] {
             0
         } else {
@@ -280,7 +299,7 @@ impl WellPath {
     /// Parallel-transported (Bishop) frame `(t, b1, b2)` at `md_m`: `b1` starts as the high
     /// side at the first station and is carried along the arcs without twisting about `t`.
     pub fn bishop_at(&self, md_m: f64) -> (Vec3, Vec3, Vec3) {
-        let p = self.point_at(md_m);
+        let p = self.axis_at(md_m);
         let n = self.md.len();
         let b1 = if n == 1 || md_m <= self.md[0] {
             self.b1[0]
@@ -316,9 +335,23 @@ impl WellPath {
     /// Measured depth of the axis point nearest to `x` (the foot of the perpendicular from `x`
     /// to the axis), found by Newton from `md_guess` (physics.md 1.3).
     pub fn nearest_md(&self, x: &Vec3, md_guess: f64) -> f64 {
+        self.nearest_md_from(x, md_guess).0
+    }
+
+    /// [`WellPath::nearest_md`] and the axis geometry there (the same as `axis_at` of that
+    /// MD, bit for bit), the station interval searched from the last one used.
+    pub fn nearest_axis(&self, x: &Vec3, md_guess: f64) -> (f64, AxisGeometry) {
+        let (md, k) = self.nearest_md_from(x, md_guess);
+        (md, self.axis_geometry_from(md, k).0)
+    }
+
+    /// Nearest MD and the last station interval used (each step searches from the last).
+    fn nearest_md_from(&self, x: &Vec3, md_guess: f64) -> (f64, usize) {
         let mut s = md_guess;
+        let mut k = usize::MAX;
         for _ in 0..30 {
-            let p = self.axis_at(s);
+            let (p, kp) = self.axis_geometry_from(s, k);
+            k = kp;
             let d = p.position - x;
             let g = d.dot(&p.tangent);
             let dg = 1.0 + d.dot(&p.dt_ds);
@@ -328,7 +361,7 @@ impl WellPath {
                 break;
             }
         }
-        s
+        (s, k)
     }
 
     /// The same path moved by `shift_m` (every position plus `shift_m`, m): the solver works
