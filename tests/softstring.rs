@@ -75,6 +75,12 @@ impl StraightSection {
         }
     }
 
+    /// Inclination (rad), pipe length (m), friction, contact radius (m) and buoyed weight
+    /// (N/m), in that order.
+    fn values(&self) -> (f64, f64, f64, f64, f64) {
+        (self.inc, Self::L, Self::F, Self::R_C, self.w_b)
+    }
+
     /// The pass's input with axial speed `v_a` (m/s) and rotary speed `omega` (rad/s).
     fn input(&self, v_a: f64, omega: f64) -> SoftStringInput<'_> {
         SoftStringInput {
@@ -378,13 +384,7 @@ fn exact_hanging_weight_when_rotating() {
 #[test]
 fn exact_straight_inclined_section() {
     let sec = StraightSection::new();
-    let (inc, l, f, r_c, w_b) = (
-        sec.inc,
-        StraightSection::L,
-        StraightSection::F,
-        StraightSection::R_C,
-        sec.w_b,
-    );
+    let (inc, l, f, r_c, w_b) = sec.values();
     let run = |v_a: f64, omega: f64| soft_string(&sec.input(v_a, omega));
     let out = run(-0.5, 0.0);
     let inn = run(0.5, 0.0);
@@ -414,13 +414,7 @@ fn exact_straight_inclined_section() {
 #[test]
 fn stiff_contact_variant_straight_inclined_section() {
     let sec = StraightSection::new();
-    let (inc, l, f, r_c, w_b) = (
-        sec.inc,
-        StraightSection::L,
-        StraightSection::F,
-        StraightSection::R_C,
-        sec.w_b,
-    );
+    let (inc, l, f, r_c, w_b) = sec.values();
     let input = |v_a: f64, omega: f64| sec.input(v_a, omega);
     let rot = soft_string_stiff_contact(&input(0.0, 5.0));
     let n = w_b * inc.sin() / (1.0 + f * f).sqrt();

@@ -311,26 +311,7 @@ fn friction_acts_against_the_motion() {
 fn interior_point_contact_step_converges_in_few_iterations() {
     // The interior-point contact Newton (fem::solve::solve_ip_from) settles all contacts of a
     // short pendulum at once: same answer as the reference (0.5%), few Newton iterations.
-    let case = load_temp_case(
-        "md_m,inc_deg,azi_deg\n0,30,0\n40,30,0\n",
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{ to_md = "40 m", diameter = "8.5 in" }]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-wob = "0 kN"
-friction = 0.0
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-[solver]
-bha_element_length = "0.5 m"
-"#,
-    );
+    let case = slick_collar_case(30.0, 0.0, 40.0, 0.0, 0.5, "");
     let model = Model::from_case(&case);
     let mut state = model.initial_state();
     drillpath::fem::solve::soft_string_start(&model, &mut state, false);
