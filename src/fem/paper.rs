@@ -329,8 +329,7 @@ fn arc_step(model: &Model, before: &State, after: &mut State, du: &[f64], beta: 
         let n0 = d0 / s0;
         let dx = crate::geometry::Vec3::new(du[model.dof(i, 0)], du[model.dof(i, 1)], du[model.dof(i, 2)]);
         let target = s0 + n0.dot(&(model.basis[i] * dx)) * beta;
-        let md = model.path.nearest_md(&after.x[i], before.md[i]);
-        let p = model.path.point_at(md);
+        let (_, p) = model.path.nearest_axis(&after.x[i], before.md[i]);
         let d = after.x[i] - p.position;
         let d1 = d - p.tangent * p.tangent.dot(&d);
         let s1 = d1.norm();
@@ -434,8 +433,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
     let mut closed = vec![false; nn];
     for i in 0..nn {
         if kind[i] == Kind::Gap && state.lambda[i] > 0.0 {
-            let md = model.path.nearest_md(&state.x[i], state.md[i]);
-            let p = model.path.point_at(md);
+            let (md, p) = model.path.nearest_axis(&state.x[i], state.md[i]);
             let d = state.x[i] - p.position;
             let s = (d - p.tangent * p.tangent.dot(&d)).norm();
             let eo = model.clearance(i, md);

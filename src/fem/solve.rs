@@ -1485,35 +1485,41 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // tolerances tighten to the exact ones (see `ip_tolerance`)
         let eta = ip_tolerance(rn);
         // interior point on (du, R, s), du the step of this linearization
+        // the step starts at the prescribed increments (the switching pins'), zero elsewhere
+        let start_du = |du: &mut [f64]| {
+            du.fill(0.0);
+            for &(d, v) in &pin_move {
+                du[d] = v;
+            }
+        };
         let mut du = vec![0.0; n];
-        for &(d, v) in &pin_move {
-            du[d] = v;
-        }
+        start_du(&mut du);
         let mut dh_total = 0.0;
         // warm start from the previous multipliers, pushed off the boundary by a shift that
         // grows with the outer residual (far from the solution the old contact set is a poor
         // guess, and pairs pinned at the boundary would block the interior-point steps)
         let mut shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
+        // the previous multiplier of each pair (the far-wall planes: none) and its clearance
+        let lam_prev: Vec<f64> = (0..mt)
+            .map(|j| if j < m { state.lambda[qidx[j]] } else { 0.0 })
+            .collect();
+        let clr: Vec<f64> = cnode
+            .iter()
+            .map(|&i| ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M))
+            .collect();
         let start_r = |shift: f64| -> Vec<f64> {
             (0..mt)
-                .map(|j| if j < m { state.lambda[qidx[j]].max(0.0) } else { 0.0 } + shift * scale / mt.max(1) as f64)
+                .map(|j| lam_prev[j].max(0.0) + shift * scale / mt.max(1) as f64)
                 .collect()
         };
         let start_s = |shift: f64| -> Vec<f64> {
             (0..mt)
-                .map(|j| {
-                    (-gaps0[j]).max(1e-6 * ev.clearance[cnode[j]].max(MIN_REFERENCE_CLEARANCE_M))
-                        + shift * ev.clearance[cnode[j]].max(MIN_REFERENCE_CLEARANCE_M)
-                })
+                .map(|j| (-gaps0[j]).max(1e-6 * clr[j]) + shift * clr[j])
                 .collect()
         };
         let mut r_f = start_r(shift);
         let mut s_v = start_s(shift);
         let mut restarts = 0usize;
-        let clr: Vec<f64> = cnode
-            .iter()
-            .map(|&i| ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M))
-            .collect();
         // active-set finish (a primal-dual active-set step): near convergence the first
         // interior-point iterations start from the contact set of the last step, pairs in the
         // set on the boundary (slack `ACTIVE_SET_EPS` clearances: the linearized gap held
@@ -1527,8 +1533,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             .map(|j| {
                 // in the set when its force (per contact's share of the load scale) is the
                 // larger side of the complementarity pair, the open gap (per clearance) the other
-                let lam = if j < m { state.lambda[qidx[j]] } else { 0.0 };
-                lam / per_contact > ((-gaps0[j]).max(0.0) / clr[j]).max(ACTIVE_SET_MIN_FORCE)
+                lam_prev[j] / per_contact > ((-gaps0[j]).max(0.0) / clr[j]).max(ACTIVE_SET_MIN_FORCE)
             })
             .collect();
         // not at the pins' switch (their prescribed move changes the contact set)
@@ -1540,11 +1545,10 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let active_set_start = |in_set: &[bool], r_f: &mut [f64], s_v: &mut [f64]| {
             for j in 0..mt {
                 if in_set[j] {
-                    let lam = if j < m { state.lambda[qidx[j]] } else { 0.0 };
                     // at least the contact's share of the load scale: the pair's compliance in
                     // the step's matrix is its slack over this force, and it ends the step
                     // `slack * dR / R` past the wall
-                    r_f[j] = lam.max(per_contact);
+                    r_f[j] = lam_prev[j].max(per_contact);
                     s_v[j] = ACTIVE_SET_EPS * clr[j];
                 } else {
                     r_f[j] = 0.0;
@@ -1771,10 +1775,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 shift = (shift * IP_RESTART_SHIFT_FACTOR).min(1e-1);
                 r_f = start_r(shift);
                 s_v = start_s(shift);
-                du.fill(0.0);
-                for &(d, v) in &pin_move {
-                    du[d] = v;
-                }
+                start_du(&mut du);
                 dh_total = 0.0;
                 stalled = 0;
                 tracing::debug!(restarts, shift, "interior point restarted");
