@@ -5,9 +5,9 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use drillpath::fem::band::{chain_test_matrix, BandLdlt};
-use drillpath::fem::band_lu::{BandLu, GeneralBand};
-use drillpath::fem::sparse_faer::FaerLdlt;
+use drillpath::models::fem::linalg::band::{chain_test_matrix, BandLdlt};
+use drillpath::models::fem::linalg::band_lu::{BandLu, GeneralBand};
+use drillpath::models::fem::linalg::sparse_faer::FaerLdlt;
 
 fn bench_band(c: &mut Criterion) {
     let mut g = c.benchmark_group("band");

@@ -21,12 +21,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use drillpath::case::Case;
-use drillpath::fem::bha::{bha_model, default_cut_m};
-use drillpath::fem::model::{Model, TopCondition};
-use drillpath::fem::solve::{solve, solve_ip_from, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use drillpath::softstring;
-use drillpath::warm::transport_state;
+use drillpath::models::fem::bha::{bha_model, default_cut_m};
+use drillpath::models::fem::model::{Model, TopCondition};
+use drillpath::models::fem::solve::{solve, solve_ip_from, SolveControls};
+use drillpath::models::fem::warm::transport_state;
+use drillpath::models::softstring;
 use std::fmt::Write;
 use std::path::Path;
 

@@ -13,11 +13,11 @@
 //! torque relative to the reference values; all in percent. Times: median of repeated solves
 //! (at least 0.3 s of repeats, at most 15), wall clock, one thread.
 
-use drillpath::accuracy::Accuracy;
-use drillpath::case::{Case, Fidelity};
-use drillpath::fem::solve::SolveControls;
-use drillpath::fidelity::{choose, run, LevelResult, Purpose};
+use drillpath::case::accuracy::Accuracy;
+use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::models::fem::solve::SolveControls;
+use drillpath::models::levels::{run, LevelResult};
 use drillpath::predict::march::{predict, MarchSettings};
 use drillpath::report::write_atomic;
 use std::fmt::Write as _;
@@ -32,11 +32,16 @@ const WELLS: [&str; 6] = [
     "horizontal",
     "volve-f10",
 ];
-const LEVELS: [Fidelity; 4] = [Fidelity::Soft, Fidelity::Bha, Fidelity::Hybrid, Fidelity::Whole];
+const LEVELS: [Fidelity; 4] = [
+    Fidelity::Level(Level::Soft),
+    Fidelity::Level(Level::Bha),
+    Fidelity::Level(Level::Hybrid),
+    Fidelity::Level(Level::Whole),
+];
 
 fn with_preset(case: &Case, p: Accuracy) -> Case {
     let mut c = case.clone();
-    p.apply(&mut c.solver);
+    c.solver.apply_preset(p);
     c.bit_rock.step_m = p.knobs().step_m;
     c
 }
@@ -88,7 +93,7 @@ fn main() {
         )
         .expect("example case");
         let reference_case = with_preset(&base, Accuracy::Precise);
-        let (_, reference) = timed(&reference_case, Fidelity::Whole);
+        let (_, reference) = timed(&reference_case, Fidelity::Level(Level::Whole));
         assert!(reference.converged, "{well}: reference did not converge");
         let rb = reference.bit.unwrap();
         let lateral = rb.build_force_n.hypot(rb.walk_force_n);
@@ -119,7 +124,7 @@ fn main() {
                     )
                 });
                 let dofs = r.fem.as_ref().map(|f| f.model.dofs()).unwrap_or(0);
-                let name = drillpath::report::levels_output::requested_name(level);
+                let name = level.name();
                 writeln!(
                     table,
                     "{well},{name},{},{dofs},{sec:.6},{},{},{},{},{},{}",
@@ -283,15 +288,15 @@ fn scaling_table() -> String {
     for md in [1000.0, 3000.0, 10000.0] {
         let case = synthetic(&dir, md);
         let precise = with_preset(&case, Accuracy::Precise);
-        let (_, reference) = timed(&precise, Fidelity::Whole);
+        let (_, reference) = timed(&precise, Fidelity::Level(Level::Whole));
         let rb = reference.bit.unwrap();
         let lateral = rb.build_force_n.hypot(rb.walk_force_n);
         for (level, preset) in [
-            (Fidelity::Soft, Accuracy::Default),
-            (Fidelity::Bha, Accuracy::Default),
-            (Fidelity::Hybrid, Accuracy::Default),
-            (Fidelity::Whole, Accuracy::Default),
-            (Fidelity::Whole, Accuracy::Precise),
+            (Fidelity::Level(Level::Soft), Accuracy::Default),
+            (Fidelity::Level(Level::Bha), Accuracy::Default),
+            (Fidelity::Level(Level::Hybrid), Accuracy::Default),
+            (Fidelity::Level(Level::Whole), Accuracy::Default),
+            (Fidelity::Level(Level::Whole), Accuracy::Precise),
         ] {
             let c = with_preset(&case, preset);
             let (sec, r) = timed(&c, level);
@@ -307,7 +312,7 @@ fn scaling_table() -> String {
                     )
                 })
                 .unwrap_or_default();
-            let name = drillpath::report::levels_output::requested_name(level);
+            let name = level.name();
             writeln!(
                 t,
                 "{md},{name},{},{sec:.6},{},{err}",

@@ -1,15 +1,15 @@
 //! Stiff-string buckling (issue 5): the FEM's own sinusoidal onset against Dawson & Paslay
-//! (1984), and the buckling marks of `drillpath::buckling_marks` on the FEM's axial force.
+//! (1984), and the buckling marks of `drillpath::models::buckling` on the FEM's axial force.
 //!
 //! Run with `cargo test --release --test buckling -- --nocapture` to see the ramp.
 
 use drillpath::analytical::buckling::sinusoidal_dawson_paslay;
-use drillpath::buckling_marks::{stiff_marks, BuckleState};
 use drillpath::case::Case;
-use drillpath::fem::model::{Model, State};
-use drillpath::fem::results::{extract, SolveResults};
-use drillpath::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::models::buckling::{stiff_marks, BuckleState};
+use drillpath::models::fem::model::{Model, State};
+use drillpath::models::fem::results::{extract, SolveResults};
+use drillpath::models::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
 use std::f64::consts::FRAC_PI_2;
 
 /// 5 in pipe body (no tool joints), 29 kg/m, 1.2 sg, 8.5 in hole.

@@ -7,10 +7,10 @@
 //! Run with `cargo test --release --test extremes -- --nocapture` to see the table.
 
 use drillpath::case::Case;
-use drillpath::fem::model::Model;
-use drillpath::fem::results::extract;
-use drillpath::fem::solve::{solve, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::models::fem::model::Model;
+use drillpath::models::fem::results::extract;
+use drillpath::models::fem::solve::{solve, SolveControls};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// Equilibrium tolerance: net external force / largest external force (physics.md 6.7, the

@@ -3,10 +3,10 @@
 //!
 //! Run with `cargo test --release --test fidelity -- --nocapture` to see the numbers.
 
-use drillpath::case::{Case, Fidelity, Mode};
-use drillpath::fem::solve::SolveControls;
-use drillpath::fidelity::{choose, run, upper_part, Level, LevelResult, Purpose};
+use drillpath::case::{choose, Case, Fidelity, Level, Mode, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::models::fem::solve::SolveControls;
+use drillpath::models::levels::{run, upper_part, LevelResult};
 use std::path::Path;
 
 fn example(name: &str) -> Case {
@@ -37,11 +37,11 @@ fn fidelity_bha_and_hybrid_bit_forces_match_whole() {
     // target); measured: below 0.02%.
     for name in EXAMPLES {
         let case = example(name);
-        let whole = at(&case, Fidelity::Whole);
+        let whole = at(&case, Fidelity::Level(Level::Whole));
         let wb = whole.bit.unwrap();
         let lateral = wb.build_force_n.hypot(wb.walk_force_n);
         let tilt = wb.tilt_inc_rad.hypot(wb.tilt_azi_rad);
-        for level in [Fidelity::Bha, Fidelity::Hybrid] {
+        for level in [Fidelity::Level(Level::Bha), Fidelity::Level(Level::Hybrid)] {
             let r = at(&case, level);
             let b = r.bit.unwrap();
             let (eb, ew) = (
@@ -88,9 +88,9 @@ fn fidelity_surface_values_against_whole() {
     // torque gain above 1,474 m is 0.81 of the soft string's there.
     for name in EXAMPLES {
         let case = example(name);
-        let whole = at(&case, Fidelity::Whole);
+        let whole = at(&case, Fidelity::Level(Level::Whole));
         let (h, t) = (whole.hook_load_n.unwrap(), whole.surface_torque_nm.unwrap());
-        for level in [Fidelity::Soft, Fidelity::Hybrid] {
+        for level in [Fidelity::Level(Level::Soft), Fidelity::Level(Level::Hybrid)] {
             let r = at(&case, level);
             let eh = r.hook_load_n.unwrap() / h - 1.0;
             let et = r.surface_torque_nm.unwrap() / t - 1.0;
@@ -108,8 +108,8 @@ fn fidelity_surface_values_against_whole() {
                 100.0 * eh
             );
             let tol = match (level, name) {
-                (Fidelity::Hybrid, "forge-16a") => 0.08,
-                (Fidelity::Hybrid, _) => 0.03,
+                (Fidelity::Level(Level::Hybrid), "forge-16a") => 0.08,
+                (Fidelity::Level(Level::Hybrid), _) => 0.03,
                 _ => 0.10,
             };
             assert!(
@@ -142,7 +142,11 @@ fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
             c.buoyed_weight_n_per_m(rho) * (tvd(c.bottom_m) - tvd(c.top_m()))
         })
         .sum();
-    for level in [Fidelity::Hybrid, Fidelity::Soft, Fidelity::Whole] {
+    for level in [
+        Fidelity::Level(Level::Hybrid),
+        Fidelity::Level(Level::Soft),
+        Fidelity::Level(Level::Whole),
+    ] {
         let r = at(&case, level);
         let e = r.hook_load_n.unwrap() / hanging - 1.0;
         println!(
@@ -151,7 +155,11 @@ fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
             r.hook_load_n.unwrap() / 1e3,
             hanging / 1e3
         );
-        let tol = if level == Fidelity::Whole { 2e-4 } else { 1e-6 };
+        let tol = if level == Fidelity::Level(Level::Whole) {
+            2e-4
+        } else {
+            1e-6
+        };
         assert!(e.abs() < tol, "{level:?}: {e:e}");
     }
 }
@@ -161,17 +169,23 @@ fn fidelity_levels_report_only_what_they_compute() {
     // Reference: the level table of src/fidelity.rs: soft has no bit side forces, bha no
     // surface values; auto picks per command.
     let case = example("seed-daqing");
-    let soft = at(&case, Fidelity::Soft);
+    let soft = at(&case, Fidelity::Level(Level::Soft));
     assert!(soft.bit.is_none() && soft.fem.is_none() && soft.hook_load_n.is_some());
-    let bha = at(&case, Fidelity::Bha);
+    let bha = at(&case, Fidelity::Level(Level::Bha));
     assert!(bha.bit.is_some() && bha.hook_load_n.is_none() && bha.surface_torque_nm.is_none());
     assert!(bha.cut_m.unwrap() < case.string.length_m());
     assert_eq!(choose(Fidelity::Auto, Purpose::Solve).level, Level::Whole);
     assert_eq!(choose(Fidelity::Auto, Purpose::Predict).level, Level::Bha);
     assert_eq!(choose(Fidelity::Auto, Purpose::Loads).level, Level::Soft);
     // prediction needs bit forces only: hybrid's soft upper part would not change them
-    assert_eq!(choose(Fidelity::Hybrid, Purpose::Predict).level, Level::Bha);
-    assert_eq!(choose(Fidelity::Hybrid, Purpose::Solve).level, Level::Hybrid);
+    assert_eq!(
+        choose(Fidelity::Level(Level::Hybrid), Purpose::Predict).level,
+        Level::Bha
+    );
+    assert_eq!(
+        choose(Fidelity::Level(Level::Hybrid), Purpose::Solve).level,
+        Level::Hybrid
+    );
 }
 
 #[test]
@@ -278,7 +292,7 @@ fn fidelity_cli_levels_write_the_interface_files() {
 fn accuracy_preset_in_case_file_and_on_the_command_line() {
     // Reference: the preset table of src/accuracy.rs; explicit keys win over `[solver]
     // accuracy`; `--accuracy` wins over the case; unknown names are one clear error.
-    use drillpath::accuracy::Accuracy;
+    use drillpath::case::accuracy::Accuracy;
     let src = Path::new("wells/seed-daqing");
     let text: String = std::fs::read_to_string(src.join("case.toml"))
         .unwrap()
@@ -361,7 +375,7 @@ fn map_grid_origin_leaves_every_answer_unchanged() {
     let shift = drillpath::geometry::Vec3::new(origin[0], origin[1], origin[2]);
     for name in ["volve-f10", "j-shape"] {
         let (local, grid) = (example(name), at_map_grid(name, origin));
-        for level in [Fidelity::Whole, Fidelity::Bha] {
+        for level in [Fidelity::Level(Level::Whole), Fidelity::Level(Level::Bha)] {
             let (a, b) = (at(&local, level), at(&grid, level));
             let (ba, bb) = (a.bit.unwrap(), b.bit.unwrap());
             let lateral = ba.build_force_n.hypot(ba.walk_force_n);

@@ -3,10 +3,11 @@
 
 use drillpath::case::{Case, Mode};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use drillpath::io::measured_csv::MeasuredPoint;
 use drillpath::loads::calibrate::calibrate;
-use drillpath::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow};
-use drillpath::loads::stiff::{stiff_row, StiffOutcome};
+use drillpath::loads::calibrate::MeasuredPoint;
+use drillpath::loads::chart::{case_at_depth, soft_chart, ChartSettings};
+use drillpath::loads::row::{LoadRow, StiffOutcome};
+use drillpath::loads::stiff::stiff_row;
 use drillpath::loads::{set_row_operation, ChartOperation, MODES};
 
 const G: f64 = 9.80665;
@@ -76,7 +77,7 @@ fn row(rows: &[LoadRow], depth_index: usize, mode: Mode) -> &LoadRow {
     &rows[depth_index * MODES.len() + MODES.iter().position(|m| *m == mode).unwrap()]
 }
 
-fn stiff(case: &Case, bit_md: f64, mode: Mode) -> drillpath::loads::chart::RowLoads {
+fn stiff(case: &Case, bit_md: f64, mode: Mode) -> drillpath::loads::row::RowLoads {
     let mut c = case_at_depth(case, bit_md);
     set_row_operation(&mut c, bit_md, mode, &ChartOperation::from_case(case));
     match stiff_row(&c, None).0 {
@@ -380,7 +381,8 @@ tool_joint_od = "6.625 in"
 /// third depth start from the previous depth) and take fewer Newton iterations.
 #[test]
 fn warm_started_rows_equal_cold_started_rows() {
-    use drillpath::loads::stiff::{stiff_depth, Start};
+    use drillpath::loads::row::Start;
+    use drillpath::loads::stiff::stiff_depth;
     let case = load_case(
         std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/wells/seed-daqing/case.toml")),
         &CaseOverrides::default(),
@@ -479,7 +481,7 @@ fn transport_between_depths_keeps_the_state() {
     let d2 = 500.0 + 2.0 * 9.144;
     let mut c2 = case_at_depth(&case, d2);
     set_row_operation(&mut c2, d2, Mode::TripOut, &op);
-    let m2 = drillpath::fem::model::Model::from_case(&c2);
+    let m2 = drillpath::models::fem::model::Model::from_case(&c2);
     let moved = transport_to_depth(&(m.clone(), st.clone()), &m2, &c2.string);
     // a single pipe component: the whole string follows the MD rule above its first two joints
     let mut checked = 0;

@@ -1,15 +1,15 @@
-//! The seed paper's contact scheme (`[solver] method = "paper"`, `fem::paper`) against
+//! The seed paper's contact scheme (`[solver] method = "paper"`, `fem::solve::paper`) against
 //! independent references (Lubinski pendulum, statics) and against the default scheme
 //! (`method = "newton"`, interior-point contact Newton). Each test names its reference and
 //! tolerance.
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
 use drillpath::case::{Case, Method};
-use drillpath::contact::gap::ZERO_CLEARANCE_M;
-use drillpath::fem::model::Model;
-use drillpath::fem::results::{extract, SolveResults};
-use drillpath::fem::solve::{solve, Solution, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::models::fem::contact::gap::ZERO_CLEARANCE_M;
+use drillpath::models::fem::model::Model;
+use drillpath::models::fem::results::{extract, SolveResults};
+use drillpath::models::fem::solve::{solve, Solution, SolveControls};
 
 mod common;
 use common::{collar_properties, load_temp_case, slick_collar_case};

@@ -1,4 +1,4 @@
-//! Soft-string torque and drag (`drillpath::softstring`) against physics.md 6.5: the worked
+//! Soft-string torque and drag (`drillpath::models::softstring`) against physics.md 6.5: the worked
 //! example (Johancsik, Friesen & Dawson 1984 model), the exact checks (a) hanging weight,
 //! (b) straight inclined section, (c) capstan, and the ordering property
 //! trip out >= rotating >= trip in.
@@ -11,7 +11,9 @@ use std::path::Path;
 use drillpath::case::{Case, Mode};
 use drillpath::geometry::{HoleSize, Station, Survey, Vec3, WellPath};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use drillpath::softstring::{from_case, soft_string, soft_string_stiff_contact, SoftStringInput, SoftStringResult};
+use drillpath::models::softstring::{
+    from_case, soft_string, soft_string_stiff_contact, SoftStringInput, SoftStringResult,
+};
 use drillpath::string::material::steel;
 use drillpath::string::{Component, ComponentKind, DrillString};
 use drillpath::units::G;

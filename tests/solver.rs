@@ -4,10 +4,10 @@
 //! `drillpath::analytical` (written and tested separately from the FEM, physics.md 6).
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
-use drillpath::fem::model::Model;
-use drillpath::fem::results::{extract, SolveResults};
-use drillpath::fem::solve::{solve, SolveControls};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use drillpath::models::fem::model::Model;
+use drillpath::models::fem::results::{extract, SolveResults};
+use drillpath::models::fem::solve::{solve, SolveControls};
 
 mod common;
 use common::{collar_properties, load_temp_case, slick_collar_case};
@@ -252,13 +252,13 @@ element_length = "2 m"
 
 #[test]
 fn soft_string_limit_in_a_smooth_well() {
-    // Reference: Johancsik et al. (1984) soft-string torque and drag (drillpath::softstring,
+    // Reference: Johancsik et al. (1984) soft-string torque and drag (drillpath::models::softstring,
     // verified separately against physics.md 6.5). Tolerance 5% (issue 3); a stiff string
     // that rotates on the wall carries 1/sqrt(1+f^2) of the soft-string torque (physics.md 6.6,
     // -3% at f = 0.25), hook loads agree much closer.
     for mode in ["rotating_off_bottom", "trip_in", "trip_out"] {
         let (case, fem) = pipe_in_build_and_hold(mode, 0.25);
-        let soft = drillpath::softstring::from_case(&case, 1.0);
+        let soft = drillpath::models::softstring::from_case(&case, 1.0);
         let e_h = (fem.hook_load_n - soft.hook_load_n) / soft.hook_load_n;
         println!(
             "{mode}: hook load FEM {:.2} kN, soft {:.2} kN ({:+.2}%); torque FEM {:.3} kN.m, soft {:.3} kN.m",
@@ -314,8 +314,8 @@ fn interior_point_contact_step_converges_in_few_iterations() {
     let case = slick_collar_case(30.0, 0.0, 40.0, 0.0, 0.5, "");
     let model = Model::from_case(&case);
     let mut state = model.initial_state();
-    drillpath::fem::solve::soft_string_start(&model, &mut state, false);
-    let sol = drillpath::fem::solve::solve_ip_from(&model, state, &SolveControls::default()).unwrap();
+    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut state, false);
+    let sol = drillpath::models::fem::solve::solve_ip_from(&model, state, &SolveControls::default()).unwrap();
     assert!(sol.converged);
     println!(
         "interior-point contact Newton: {} iterations, {} factorizations",
@@ -501,7 +501,7 @@ fn mirrored_well_flips_the_walk_force() {
 
 #[test]
 fn paper_method_runs_the_paper_scheme_not_the_default() {
-    // `[solver] method = "paper"` must run the paper's scheme (fem::paper::solve_paper), not
+    // `[solver] method = "paper"` must run the paper's scheme (fem::solve::paper::solve_paper), not
     // the default one under the user's choice: `solve` returns exactly what solve_paper does.
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n",
@@ -513,7 +513,7 @@ fn paper_method_runs_the_paper_scheme_not_the_default() {
         ..Default::default()
     };
     let via_solve = solve(&model, &ctl).expect("paper scheme runs");
-    let direct = drillpath::fem::paper::solve_paper(&model, &ctl).expect("paper scheme runs");
+    let direct = drillpath::models::fem::solve::paper::solve_paper(&model, &ctl).expect("paper scheme runs");
     assert!(via_solve.converged);
     assert_eq!(via_solve.stats.iterations, direct.stats.iterations);
     assert_eq!(via_solve.stats.residual_history, direct.stats.residual_history);
@@ -559,10 +559,10 @@ bha_element_length = "2 m"
     assert!(q > 0.0, "the default mud drag is on");
     let expected = -(4e3 * length + q * length * length / 2.0) / gj;
     let mut state = model.initial_state();
-    drillpath::fem::solve::wind_up_start(&model, &mut state);
+    drillpath::models::fem::solve::newton::wind_up_start(&model, &mut state);
     let twist = |lam: &nalgebra::Matrix3<f64>| {
         let r = model.basis[0].transpose() * lam;
-        drillpath::fem::rotation::log_so3(&r).x
+        drillpath::models::fem::element::rotation::log_so3(&r).x
     };
     let start = twist(&state.lam[0]);
     assert!(
@@ -590,9 +590,9 @@ fn smoothed_start_limits_the_lateral_slope() {
     let case = load_case(&path, &CaseOverrides::default()).unwrap();
     let model = Model::from_case(&case);
     let mut raw = model.initial_state();
-    drillpath::fem::solve::soft_string_start(&model, &mut raw, false);
+    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut raw, false);
     let mut smooth = raw.clone();
-    drillpath::fem::solve::smooth_start(&model, &mut smooth);
+    drillpath::models::fem::solve::newton::smooth_start(&model, &mut smooth);
     let axis: Vec<_> = (0..model.nodes())
         .map(|i| model.path.point_at(model.md_ref[i]).position)
         .collect();
@@ -608,12 +608,15 @@ fn smoothed_start_limits_the_lateral_slope() {
         let jump = (lat(&smooth.x[e + 1], e + 1) - lat(&smooth.x[e], e)).norm();
         worst_raw = worst_raw.max((lat(&raw.x[e + 1], e + 1) - lat(&raw.x[e], e)).norm() / l);
         assert!(
-            jump <= 2.0 * drillpath::fem::solve::START_MAX_SLOPE * l * (1.0 + 1e-9),
+            jump <= 2.0 * drillpath::models::fem::solve::newton::START_MAX_SLOPE * l * (1.0 + 1e-9),
             "element {e}: lateral jump {jump} m over {l} m"
         );
     }
     // the raw start does have the kinks this removes
-    assert!(worst_raw > 10.0 * drillpath::fem::solve::START_MAX_SLOPE, "{worst_raw}");
+    assert!(
+        worst_raw > 10.0 * drillpath::models::fem::solve::newton::START_MAX_SLOPE,
+        "{worst_raw}"
+    );
 }
 
 #[test]
@@ -697,7 +700,7 @@ bha_element_length = "1 m"
         "a 2 km string in tension stretches by decimetres: {expected} m"
     );
     let mut state = model.initial_state();
-    drillpath::fem::solve::stretch_start(&model, &mut state);
+    drillpath::models::fem::solve::newton::stretch_start(&model, &mut state);
     let z0 = model.path.point_at(model.md_ref[top]).position.z;
     let start = z0 - state.x[top].z;
     assert!(

@@ -13,6 +13,7 @@
 //! Mitchell (1986) for the helix contact force and pitch.
 
 use super::{require_non_negative, require_positive, AnalyticalError};
+use crate::models::buckling as onset;
 use std::f64::consts::{PI, SQRT_2};
 
 /// Euler load of a pinned-pinned column `P_E = pi^2 EI / l^2`, N (compression), for bending
@@ -43,7 +44,8 @@ fn inclined_scale(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, An
 /// `F_s = 2 sqrt(EI w_b sin I / r)`, N compression (physics.md 6.4). Inputs: `ei` N.m2, `w_b`
 /// N/m (> 0), `inclination` rad in (0, pi), `r` radial clearance m (> 0).
 pub fn sinusoidal_dawson_paslay(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, AnalyticalError> {
-    Ok(2.0 * inclined_scale(ei, w_b, inclination, r)?)
+    inclined_scale(ei, w_b, inclination, r)?;
+    Ok(onset::dawson_paslay(ei, w_b * inclination.sin(), r))
 }
 
 /// Wavelength of the critical sinusoidal mode, `2 pi (EI r / q)^(1/4)` with `q = w_b sin I`, m
@@ -57,7 +59,8 @@ pub fn sinusoidal_wavelength(ei: f64, w_b: f64, inclination: f64, r: f64) -> Res
 /// Helical buckling load, Chen, Lin & Cheatham (1990) (derived for horizontal holes, used with
 /// `sin I`): `F_h = 2 sqrt(2) sqrt(EI w_b sin I / r)`, N compression (physics.md 6.4).
 pub fn helical_chen_lin_cheatham(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, AnalyticalError> {
-    Ok(2.0 * SQRT_2 * inclined_scale(ei, w_b, inclination, r)?)
+    inclined_scale(ei, w_b, inclination, r)?;
+    Ok(onset::chen_lin_cheatham(ei, w_b * inclination.sin(), r))
 }
 
 /// Helical buckling load, Wu & Juvkam-Wold (1993):
@@ -66,24 +69,14 @@ pub fn helical_wu_juvkam_wold(ei: f64, w_b: f64, inclination: f64, r: f64) -> Re
     Ok(2.0 * (2.0 * SQRT_2 - 1.0) * inclined_scale(ei, w_b, inclination, r)?)
 }
 
-/// Force unit of vertical-hole buckling `(EI w_b^2)^(1/3)`, N (`ei` N.m2, `w_b` N/m); multiply by
-/// [`LUBINSKI_VERTICAL_FIRST`], [`WU_VERTICAL_SINUSOIDAL`] or [`WU_VERTICAL_HELICAL`].
-pub fn vertical_force_unit(ei: f64, w_b: f64) -> f64 {
-    (ei * w_b * w_b).cbrt()
-}
+pub use crate::models::buckling::vertical_force_unit;
 
 /// Vertical hole, Lubinski (1950) first-order buckling: `1.94 (EI w_b^2)^(1/3)` (dimensionless
 /// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10), to confirm against
 /// the original before a test relies on it.
 pub const LUBINSKI_VERTICAL_FIRST: f64 = 1.94;
 
-/// Vertical hole, sinusoidal buckling after Wu et al.: `2.55 (EI w_b^2)^(1/3)` (dimensionless
-/// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10).
-pub const WU_VERTICAL_SINUSOIDAL: f64 = 2.55;
-
-/// Vertical hole, helical buckling after Wu et al.: `5.55 (EI w_b^2)^(1/3)` (dimensionless
-/// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10).
-pub const WU_VERTICAL_HELICAL: f64 = 5.55;
+pub use crate::models::buckling::{WU_VERTICAL_HELICAL, WU_VERTICAL_SINUSOIDAL};
 
 /// Wall contact force per length of a weightless helically buckled pipe,
 /// `w_c = r F^2 / (4 EI)`, N/m (Lubinski, Althouse & Logan 1962; Mitchell 1986; physics.md 6.4).

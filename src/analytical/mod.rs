@@ -1,8 +1,8 @@
 //! Closed-form and quasi-closed-form references for verifying the FEM (physics.md sections 2,
 //! 6.2, 6.3, 6.4).
 //!
-//! Everything here is written independently of [`crate::fem`], [`crate::string`] and
-//! [`crate::contact`]: no code, constant or helper is shared with the finite element model, so
+//! Everything here is written independently of [`crate::models::fem`], [`crate::string`] and
+//! [`crate::models::fem::contact`]: no code, constant or helper is shared with the finite element model, so
 //! that agreement between the two is evidence, not tautology. The module only depends on `std`.
 //!
 //! Units are SI throughout (m, N, N.m, Pa, kg/m3, rad). Axial forces in this module are

@@ -4,14 +4,15 @@
 use super::args::LoadsArgs;
 use super::progress::Progress;
 use super::{apply_accuracy_option, fidelity_option, length_opt};
+use crate::case::fidelity::{choose, Choice, Level, Purpose};
 use crate::case::{Case, Fidelity, Mode};
 use crate::error::InputError;
-use crate::fidelity::{choose, Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::io::measured_csv::read_measured_csv;
 use crate::loads::calibrate::{calibrate, calibrated_case};
-use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings, LoadRow, RowLoads};
-use crate::loads::stiff::{hybrid_depth, stiff_depth, Solved, Start, StiffOutcome};
+use crate::loads::chart::{case_at_depth, soft_chart, ChartSettings};
+use crate::loads::row::{LoadRow, RowLoads, Start, StiffOutcome};
+use crate::loads::stiff::{hybrid_depth, stiff_depth, Solved};
 use crate::loads::{check_fits, depth_list, string_at_depth, ChartOperation, MODES};
 use crate::report::display_units::{fixed, UnitSystem};
 use crate::report::loads_output::{calibration_json, loads_csv, overlay_csv};
@@ -74,7 +75,7 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     }
     let settings = ChartSettings {
         op,
-        max_element_m: crate::softstring::segment_length_m(&case.solver),
+        max_element_m: crate::models::softstring::segment_length_m(&case.solver),
     };
     let (du, su, fu, tu) = (
         a.units.depth(),
@@ -215,7 +216,7 @@ fn chart_fidelity(a: &LoadsArgs, case: &Case) -> Result<Choice, InputError> {
         }
     }
     let requested = if a.stiff {
-        Fidelity::Whole
+        Fidelity::Level(Level::Whole)
     } else {
         fidelity_option(a.fidelity.as_deref(), case.solver.fidelity)?
     };

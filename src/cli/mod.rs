@@ -42,16 +42,16 @@ pub fn length_opt(name: &str, v: &Option<String>, min: f64) -> anyhow::Result<Op
 }
 
 /// Apply `--accuracy PRESET` (when given) to the case's solver settings: element lengths and
-/// contact tolerance of the preset, overriding the case file ([`crate::accuracy`]).
+/// contact tolerance of the preset, overriding the case file ([`crate::case::accuracy`]).
 pub fn apply_accuracy_option(option: Option<&str>, solver: &mut crate::case::SolverSettings) -> Result<(), InputError> {
     let Some(t) = option else { return Ok(()) };
-    let preset = crate::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
+    let preset = crate::case::accuracy::Accuracy::parse(t.trim()).ok_or_else(|| {
         InputError::option(
             "--accuracy",
-            format!("unknown accuracy `{t}` (expected {})", crate::accuracy::NAMES),
+            format!("unknown accuracy `{t}` (expected {})", crate::case::accuracy::NAMES),
         )
     })?;
-    preset.apply(solver);
+    solver.apply_preset(preset);
     Ok(())
 }
 
@@ -62,10 +62,10 @@ pub fn fidelity_option(
 ) -> Result<crate::case::Fidelity, InputError> {
     match option {
         None => Ok(case_value),
-        Some(t) => crate::fidelity::parse(t.trim()).ok_or_else(|| {
+        Some(t) => crate::case::Fidelity::parse(t.trim()).ok_or_else(|| {
             InputError::option(
                 "--fidelity",
-                format!("unknown fidelity `{t}` (expected {})", crate::fidelity::NAMES),
+                format!("unknown fidelity `{t}` (expected {})", crate::case::fidelity::NAMES),
             )
         }),
     }
@@ -83,12 +83,12 @@ pub fn model_choice(
     fidelity: Option<&str>,
     accuracy: Option<&str>,
     case: &mut crate::case::Case,
-    purpose: crate::fidelity::Purpose,
-) -> Result<crate::fidelity::Choice, InputError> {
+    purpose: crate::case::fidelity::Purpose,
+) -> Result<crate::case::fidelity::Choice, InputError> {
     apply_accuracy_option(accuracy, &mut case.solver)?;
     if let Some(preset) = accuracy.and(case.solver.accuracy) {
         case.bit_rock.step_m = preset.knobs().step_m;
     }
     let requested = fidelity_option(fidelity, case.solver.fidelity)?;
-    Ok(crate::fidelity::choose(requested, purpose))
+    Ok(crate::case::fidelity::choose(requested, purpose))
 }

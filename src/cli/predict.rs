@@ -4,8 +4,8 @@
 use super::args::PredictArgs;
 use super::progress::Progress;
 use super::{length_opt, parse_length_option};
+use crate::case::fidelity::{Choice, Level, Purpose};
 use crate::case::Case;
-use crate::fidelity::{Choice, Level, Purpose};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::extrapolate::predict_extrapolated;
 use crate::predict::law::LawParams;
@@ -88,7 +88,7 @@ pub fn prediction_choice(
 /// The `model.fidelity` object of a prediction summary.
 pub fn fidelity_json(choice: &Choice) -> serde_json::Value {
     json!({
-        "requested": crate::report::levels_output::requested_name(choice.requested),
+        "requested": choice.requested.name(),
         "used": choice.level.name(),
         "reason": choice.reason,
     })

@@ -4,10 +4,10 @@ use super::args::SolveArgs;
 use super::parse_length_option;
 use super::solve_levels::BitLines;
 use crate::error::InputError;
-use crate::fem::model::Model;
-use crate::fem::results::extract;
-use crate::fem::solve::{solve, SolveControls};
 use crate::io::case_toml::{load_case, CaseOverrides};
+use crate::models::fem::model::Model;
+use crate::models::fem::results::extract;
+use crate::models::fem::solve::{solve, SolveControls};
 use crate::report::display_units::fixed;
 use crate::report::solve_output::{string_csv, summary_json};
 use crate::report::write_atomic;
@@ -32,8 +32,8 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         bail!("{}: the case has no [[string]] components to solve", a.case.display());
     }
     let choice = super::solve_levels::configure(&a, &mut case)?;
-    if choice.level != crate::fidelity::Level::Whole {
-        if a.view.report.is_some() && choice.level == crate::fidelity::Level::Soft {
+    if choice.level != crate::case::fidelity::Level::Whole {
+        if a.view.report.is_some() && choice.level == crate::case::fidelity::Level::Soft {
             return Err(InputError::option(
                 "--report",
                 "fidelity soft has no stiff results to draw (contacts, deflection, stresses along the string); use bha, hybrid or whole",
@@ -153,9 +153,9 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The soft-string hints on a non-converged solve ([`crate::diagnose`]), as a message suffix.
+/// The soft-string hints on a non-converged solve ([`crate::models::diagnose`]), as a message suffix.
 pub fn hints_suffix(case: &crate::case::Case) -> String {
-    crate::diagnose::nonconvergence_hints(case)
+    crate::models::diagnose::nonconvergence_hints(case)
         .iter()
         .map(|h| format!("; {h}"))
         .collect()

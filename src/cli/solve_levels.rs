@@ -3,17 +3,16 @@
 
 use super::args::SolveArgs;
 use super::progress::Progress;
-use crate::buckling_marks::Mark;
+use crate::case::fidelity::{Choice, Level, Purpose};
 use crate::case::Case;
 use crate::error::InputError;
-use crate::fem::model::Model;
-use crate::fem::results::BitResult;
-use crate::fem::results::SolveResults;
-use crate::fidelity::{run_with_progress, stages, Choice, Level, LevelResult, Purpose};
+use crate::models::buckling::Mark;
+use crate::models::fem::model::Model;
+use crate::models::fem::results::BitResult;
+use crate::models::fem::results::SolveResults;
+use crate::models::levels::{run_with_progress, stages, LevelResult};
 use crate::report::display_units::{fixed, signed, UnitSystem};
-use crate::report::levels_output::{
-    append_buckling_columns, buckling_json, levels_csv, levels_summary, requested_name,
-};
+use crate::report::levels_output::{append_buckling_columns, buckling_json, levels_csv, levels_summary};
 use anyhow::{bail, Context};
 use std::io::Write;
 
@@ -34,9 +33,9 @@ pub fn annotate_whole(
     summary: &mut serde_json::Value,
     csv: String,
 ) -> anyhow::Result<(String, Vec<Mark>)> {
-    let marks = crate::buckling_marks::stiff_marks(case, model, &res.nodes);
+    let marks = crate::models::buckling::stiff_marks(case, model, &res.nodes);
     summary["fidelity"] = serde_json::json!({
-        "requested": requested_name(choice.requested),
+        "requested": choice.requested.name(),
         "used": Level::Whole.name(),
         "reason": choice.reason,
         "surface_values_from": "stiff whole string",
@@ -61,7 +60,7 @@ pub fn run(a: &SolveArgs, case: &Case, choice: Choice, quiet: bool) -> anyhow::R
     let lr = run_with_progress(
         case,
         choice,
-        &crate::fem::solve::SolveControls::from_settings(&case.solver),
+        &crate::models::fem::solve::SolveControls::from_settings(&case.solver),
         &mut |k, _, what| progress.set(k as u64, what),
     );
     progress.finish();

@@ -5,8 +5,9 @@
 //! mud density sg, weight per length kg/m, ROP m/h, trip speed m/s, angles deg, moduli GPa,
 //! material density kg/m3, viscosity cP.
 
-use super::survey_csv::{read_survey_csv, SurveyFile, SurveyUnits};
+use super::survey_csv::{read_survey_csv, SurveyUnits};
 use super::toml_reader::Section;
+use crate::case::SurveyFile;
 use crate::case::*;
 use crate::error::{InputError, InputResult};
 use crate::geometry::{HoleSection, HoleSize, Vec3, WellPath};
@@ -616,12 +617,12 @@ fn read_bit_rock(s: &Section, default_step_m: f64) -> InputResult<BitRock> {
     let dip = s.quantity("dip", D::Angle, "deg")?.unwrap_or(0.0);
     let dipdir = s.quantity("dip_direction", D::Angle, "deg")?.unwrap_or(0.0);
     let step = s.positive("step", D::Length, "m", false)?.unwrap_or(default_step_m);
-    if step < crate::predict::march::MIN_STEP_M - 1e-9 {
+    if step < crate::case::bit_rock::MIN_STEP_M - 1e-9 {
         return Err(s.error(
             "step",
             format!(
                 "{step} m is shorter than the shortest prediction step accepted, {} m",
-                crate::predict::march::MIN_STEP_M
+                crate::case::bit_rock::MIN_STEP_M
             ),
         ));
     }
@@ -665,13 +666,13 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     let mut d = SolverSettings::default();
     let mut accuracy = None;
     if let Some(name) = s.string("accuracy")? {
-        let preset = crate::accuracy::Accuracy::parse(&name).ok_or_else(|| {
+        let preset = crate::case::accuracy::Accuracy::parse(&name).ok_or_else(|| {
             s.error(
                 "accuracy",
-                format!("unknown accuracy `{name}` (expected {})", crate::accuracy::NAMES),
+                format!("unknown accuracy `{name}` (expected {})", crate::case::accuracy::NAMES),
             )
         })?;
-        preset.apply(&mut d);
+        d.apply_preset(preset);
         accuracy = Some(preset);
     }
     let el = s
@@ -684,18 +685,14 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     if !(tol > 0.0 && tol <= 0.1) {
         return Err(s.error("tolerance", format!("{tol} outside (0, 0.1]")));
     }
-    let fidelity = match s.string("fidelity")?.as_deref() {
-        None | Some("auto") => Fidelity::Auto,
-        Some("soft") => Fidelity::Soft,
-        Some("bha") => Fidelity::Bha,
-        Some("hybrid") => Fidelity::Hybrid,
-        Some("whole") => Fidelity::Whole,
-        Some(other) => {
-            return Err(s.error(
+    let fidelity = match s.string("fidelity")? {
+        None => Fidelity::Auto,
+        Some(name) => Fidelity::parse(&name).ok_or_else(|| {
+            s.error(
                 "fidelity",
-                format!("unknown fidelity `{other}` (expected auto, soft, bha, hybrid, whole)"),
-            ))
-        }
+                format!("unknown fidelity `{name}` (expected {})", crate::case::fidelity::NAMES),
+            )
+        })?,
     };
     let method = match s.string("method")?.as_deref() {
         None | Some("newton") => Method::Newton,

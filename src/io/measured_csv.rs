@@ -16,25 +16,9 @@
 
 use crate::case::Mode;
 use crate::error::{InputError, InputResult};
+use crate::loads::calibrate::MeasuredPoint;
 use crate::units::{lookup_dim, Dimension, Unit};
 use std::path::Path;
-
-/// One measured point, SI.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MeasuredPoint {
-    /// 1-based line in the file.
-    pub line: usize,
-    /// Bit measured depth, m.
-    pub bit_md_m: f64,
-    /// Load case.
-    pub mode: Mode,
-    /// Measured hook load, N.
-    pub hook_load_n: f64,
-    /// Measured surface torque, N.m, if given.
-    pub torque_nm: Option<f64>,
-    /// Weight on bit, N, if given.
-    pub wob_n: Option<f64>,
-}
 
 #[derive(Clone, Copy, PartialEq)]
 enum Role {

@@ -13,6 +13,7 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
+use crate::case::SurveyFile;
 use crate::error::{InputError, InputResult};
 use crate::geometry::survey::{Station, Survey, SurveyProblem};
 use crate::units::{lookup_dim, Dimension, Unit};
@@ -24,23 +25,6 @@ pub struct SurveyUnits {
     pub md: Option<Unit>,
     /// Unit of inclination / azimuth columns without a unit in their header (an angle unit).
     pub angle: Option<Unit>,
-}
-
-/// What was read, with the units that were used for each column (so the CLI can print them).
-#[derive(Debug, Clone)]
-pub struct SurveyFile {
-    /// The validated survey, SI (m, rad), azimuth normalized to [0, 2 pi).
-    pub survey: Survey,
-    /// Canonical name of the unit the measured depths were read in, e.g. `"ft"`.
-    pub md_unit: String,
-    /// Canonical name of the unit the inclinations were read in, e.g. `"deg"`.
-    pub inc_unit: String,
-    /// Canonical name of the unit the azimuths were read in, e.g. `"deg"`.
-    pub azi_unit: String,
-    /// Human notes, e.g. "md column `Measured depth` has no unit in its header: assumed ft (from the case file)".
-    pub notes: Vec<String>,
-    /// 1-based line number of each station in the file (for errors found after reading).
-    pub station_lines: Vec<usize>,
 }
 
 /// Read and validate the survey CSV file at `path` (see the module documentation).

@@ -21,8 +21,24 @@ use super::chart::{case_at_depth, soft_row};
 use super::{set_row_operation, ChartOperation};
 use crate::case::{Case, Mode};
 use crate::geometry::{HoleSection, HoleSize};
-use crate::io::measured_csv::MeasuredPoint;
 use nalgebra::{DMatrix, DVector};
+
+/// One measured point, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeasuredPoint {
+    /// 1-based line in the file.
+    pub line: usize,
+    /// Bit measured depth, m.
+    pub bit_md_m: f64,
+    /// Load case.
+    pub mode: Mode,
+    /// Measured hook load, N.
+    pub hook_load_n: f64,
+    /// Measured surface torque, N.m, if given.
+    pub torque_nm: Option<f64>,
+    /// Weight on bit, N, if given.
+    pub wob_n: Option<f64>,
+}
 
 /// Hook-load scale floor of the relative residuals, N.
 pub const HOOK_LOAD_FLOOR_N: f64 = 10e3;

@@ -2,7 +2,7 @@
 //! surface torque, largest contact force, buckling and yield (one [`LoadRow`] each).
 //!
 //! Each depth refits the string once ([`super::string_at_depth`]) and runs the five load cases
-//! on it (Johancsik soft string, [`crate::softstring::from_case`]). A soft-string pass is a
+//! on it (Johancsik soft string, [`crate::models::softstring::from_case`]). A soft-string pass is a
 //! single explicit sweep from the bit up, so there is nothing to iterate and no state to warm
 //! start; the only reuse is the refitted string and case per depth.
 //!
@@ -11,62 +11,12 @@
 //! when the pipe touches the wall at its joints, 9.144 m by default), comparable with the
 //! nodal contact forces of the stiff model; `max_side_force_n_per_m` keeps `q` itself.
 
-use super::limits::{buckling_along, combined_torque_limit, max_stress_ratio, yield_limits, Buckling};
-use super::stiff::StiffOutcome;
+use super::limits::{buckling_along, combined_torque_limit, max_stress_ratio, yield_limits};
+use super::row::{LoadRow, RowLoads, RowYield};
 use super::{set_row_operation, string_at_depth, ChartOperation, MODES};
-use crate::case::{Case, Mode};
-use crate::softstring::{from_case, SoftStringResult};
+use crate::case::Case;
+use crate::models::softstring::{from_case, SoftStringResult};
 use crate::string::DrillString;
-
-/// Surface loads and largest wall contact of one solution (soft or stiff), SI.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RowLoads {
-    /// Hook load (effective tension at the top, no block weight), N.
-    pub hook_load_n: f64,
-    /// Surface torque, N.m.
-    pub surface_torque_nm: f64,
-    /// Largest wall contact force, N (soft: per joint, see the module documentation; stiff:
-    /// largest nodal contact force).
-    pub max_contact_force_n: f64,
-    /// Largest wall contact force per length, N/m (soft only; 0 for stiff).
-    pub max_side_force_n_per_m: f64,
-}
-
-/// Yield limits at the surface and the worst stress along the string (all `None` when the
-/// string gives no yield strength; see [`super::limits`]).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct RowYield {
-    /// Tension at yield of the top component, N.
-    pub tension_limit_n: Option<f64>,
-    /// Torque at yield of the top component without tension, N.m.
-    pub torque_limit_nm: Option<f64>,
-    /// Torque at yield of the top component under this row's hook load, N.m.
-    pub combined_torque_limit_nm: Option<f64>,
-    /// Largest von Mises ratio (axial + torsion) along the string.
-    pub max_stress_ratio: Option<f64>,
-}
-
-/// One row of the chart: one bit depth, one load case.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LoadRow {
-    /// Bit measured depth, m.
-    pub bit_md_m: f64,
-    /// Load case.
-    pub mode: Mode,
-    /// Weight on bit of the row, N (0 off bottom; on bottom the chart's WOB, or less where the
-    /// string cannot give it, see [`soft_row`]).
-    pub wob_n: f64,
-    /// Soft-string loads.
-    pub soft: RowLoads,
-    /// Buckling along the soft string.
-    pub buckling: Buckling,
-    /// Yield limits and stress ratio.
-    pub yield_: RowYield,
-    /// Stiff result (whole-string FEM, or hybrid), when asked for.
-    pub stiff: Option<StiffOutcome>,
-    /// The level of `stiff` (whole or hybrid).
-    pub stiff_level: Option<crate::fidelity::Level>,
-}
 
 /// Settings of a soft-string chart.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,12 +1,12 @@
 //! Limit curves of the torque-and-drag chart: buckling onset along the string and pipe-body
 //! yield limits.
 //!
-//! **Buckling**: the onsets of [`crate::buckling_marks::onset_at`] (the same as `solve`'s
+//! **Buckling**: the onsets of [`crate::models::buckling::onset_at`] (the same as `solve`'s
 //! buckling marks): Dawson & Paslay (1984) sinusoidal and Chen, Lin & Cheatham (1990) helical
 //! with the curved-hole wall load `q(F) = |w_b (e_D - t t_D) - F dt/ds|` (curvature raises the
 //! onset in a build and lowers it in a drop), the vertical-hole floors `2.55 / 5.55 (EI
 //! w_b^2)^(1/3)` \[uncertain coefficients, physics.md 6.4], and in the bottom-hole assembly the
-//! span between stabilizers as a supported column ([`crate::buckling_marks::span_sinusoidal_onset`]).
+//! span between stabilizers as a supported column ([`crate::models::buckling::span_sinusoidal_onset`]).
 //! The clearance uses the body OD (tool joints make `r` ambiguous, physics.md 6.4); components
 //! with less than [`MIN_BUCKLING_CLEARANCE_M`] of clearance (bit, gauge stabilizers) are taken
 //! as unable to buckle. The buckled length is the length where the soft-string effective
@@ -28,10 +28,10 @@
 //! Bending stress, internal/external pressure stresses and wear are not included: these are
 //! body limits of new pipe, not a design check.
 
-pub use crate::buckling_marks::MIN_BUCKLING_CLEARANCE_M;
-use crate::buckling_marks::{onset_at, support_span_m};
 use crate::geometry::{HoleSize, WellPath};
-use crate::softstring::SoftStringResult;
+pub use crate::models::buckling::MIN_BUCKLING_CLEARANCE_M;
+use crate::models::buckling::{onset_at, support_span_m};
+use crate::models::softstring::SoftStringResult;
 use crate::string::{Component, DrillString};
 use crate::units::G;
 
@@ -246,7 +246,7 @@ mod tests {
     #[test]
     fn chart_buckling_includes_hole_curvature() {
         use crate::geometry::Vec3;
-        use crate::softstring::SoftStringPoint;
+        use crate::models::softstring::SoftStringPoint;
         let string = DrillString {
             components: vec![pipe()],
         };

@@ -2,7 +2,7 @@
 //! for the five load cases, buckling onset and yield limits, stiff (whole-string FEM) results
 //! on request, and friction calibration from measured hook loads.
 //!
-//! - [`chart`]: the soft-string chart (Johancsik, [`crate::softstring`]) over a list of bit
+//! - [`chart`]: the soft-string chart (Johancsik, [`crate::models::softstring`]) over a list of bit
 //!   depths, one row per depth and load case;
 //! - [`stiff`]: the same rows from the whole-string FEM, warm-started;
 //! - [`limits`]: buckling onset (sinusoidal, helical) along the string and pipe-body yield
@@ -17,6 +17,7 @@
 pub mod calibrate;
 pub mod chart;
 pub mod limits;
+pub mod row;
 pub mod stiff;
 
 use crate::case::{Case, Mode};

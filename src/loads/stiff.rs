@@ -1,5 +1,5 @@
-//! Stiff rows of the chart: the whole-string FEM ([`crate::fem`]), or the stiff bottom-hole
-//! assembly with the soft string above ([`crate::fidelity`] `hybrid`), for each load case at a
+//! Stiff rows of the chart: the whole-string FEM ([`crate::models::fem`]), or the stiff bottom-hole
+//! assembly with the soft string above ([`crate::models::levels`] `hybrid`), for each load case at a
 //! bit depth.
 //!
 //! **Warm starts** (whole string). Each load case starts the interior-point contact Newton
@@ -32,76 +32,17 @@
 //! A solve that does not converge gives [`StiffOutcome::NotConverged`]: no numbers are
 //! reported for it.
 
-use super::chart::{soft_loads, RowLoads};
+use super::chart::soft_loads;
+use super::row::{RowLoads, Start, StiffOutcome};
 use super::{set_row_operation, ChartOperation, MODES};
+use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
-use crate::fem::model::{Model, State};
-use crate::fem::results::{extract, SolveResults};
-use crate::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
-use crate::fidelity::{choose, run as run_level, Level};
+use crate::models::fem::model::{Model, State};
+use crate::models::fem::results::{extract, SolveResults};
+use crate::models::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
+use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
+use crate::models::levels::run as run_level;
 use crate::string::DrillString;
-use crate::warm::{source_by_distance, transport_mapped, Source};
-
-/// How a converged stiff solve started.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Start {
-    /// The solver's own cold start (and fallbacks).
-    Cold,
-    /// The previous load case's state at the same bit depth.
-    PreviousCase,
-    /// The same load case's state at the previous bit depth, carried onto the new mesh.
-    PreviousDepth,
-}
-
-/// Result of the stiff model for one row.
-#[derive(Debug, Clone, PartialEq)]
-pub enum StiffOutcome {
-    /// Converged solve.
-    Converged {
-        /// Surface loads and largest nodal contact force.
-        loads: RowLoads,
-        /// Newton iterations (all attempts, a failed warm start included).
-        iterations: usize,
-        /// Wall-clock time, s.
-        seconds: f64,
-        /// How the converged solve started.
-        start: Start,
-    },
-    /// The solver stopped without meeting its criteria: no valid numbers.
-    NotConverged {
-        /// Newton iterations (all attempts).
-        iterations: usize,
-        /// Last relative residual.
-        residual: f64,
-    },
-    /// The solver failed (e.g. singular stiffness); the message says why.
-    Failed(String),
-}
-
-impl StiffOutcome {
-    /// The loads when converged.
-    pub fn loads(&self) -> Option<&RowLoads> {
-        match self {
-            StiffOutcome::Converged { loads, .. } => Some(loads),
-            _ => None,
-        }
-    }
-    /// Status word for `loads.csv`: `converged`, `not_converged` or `failed`.
-    pub fn status(&self) -> &'static str {
-        match self {
-            StiffOutcome::Converged { .. } => "converged",
-            StiffOutcome::NotConverged { .. } => "not_converged",
-            StiffOutcome::Failed(_) => "failed",
-        }
-    }
-    /// Newton iterations (0 for a failed solve).
-    pub fn iterations(&self) -> usize {
-        match self {
-            StiffOutcome::Converged { iterations, .. } | StiffOutcome::NotConverged { iterations, .. } => *iterations,
-            StiffOutcome::Failed(_) => 0,
-        }
-    }
-}
 
 /// Iteration limit of a warm-started solve: beyond it the cold start (about 5-10 iterations on
 /// the example wells) is cheaper than going on.
@@ -341,14 +282,17 @@ pub fn stiff_depth(
 
 /// The `hybrid` row of `case` (string and operation set for the row): the stiff bottom-hole
 /// assembly cut where it lies on the wall, and the soft string from the coupling point to the
-/// surface ([`crate::fidelity`]); cold-started (the cut model is short). The largest contact
+/// surface ([`crate::models::levels`]); cold-started (the cut model is short). The largest contact
 /// force is the larger of the FEM's largest nodal force and the soft string's per-joint force.
 pub fn hybrid_row(case: &Case) -> StiffOutcome {
     let ctl = SolveControls::from_settings(&case.solver);
     let t0 = std::time::Instant::now();
     let lr = match run_level(
         case,
-        choose(crate::case::Fidelity::Hybrid, crate::fidelity::Purpose::Loads),
+        choose(
+            crate::case::Fidelity::Level(Level::Hybrid),
+            crate::case::fidelity::Purpose::Loads,
+        ),
         &ctl,
     ) {
         Ok(lr) => lr,
@@ -370,7 +314,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
     // stiff results are reported up to the coupling node (above it the cut's clamp disturbs
     // them); the soft string above adds no torque without rotation
     let (mut max_f, friction_torque) = lr.fem.as_ref().map_or((0.0, 0.0), |f| {
-        let k = crate::fidelity::coupling_node(case, &f.model);
+        let k = crate::models::levels::coupling_node(case, &f.model);
         let max_f = f.results.nodes[..=k]
             .iter()
             .map(|n| n.contact_force_n)

@@ -5,9 +5,9 @@
 
 use super::march::{hole_to, predict_from, MarchSettings, PredictError, WarmStart};
 use crate::case::{BitRock, Case};
-use crate::fem::results::BitResult;
 use crate::geometry::survey::wrap_pi;
 use crate::geometry::{Vec3, WellPath};
+use crate::models::fem::results::BitResult;
 
 /// How the survey is cut into intervals.
 #[derive(Debug, Clone, Copy)]

@@ -4,18 +4,16 @@
 
 use super::law::{deviation, drilling_direction, BitAction, LawParams};
 use crate::case::{BitRock, Case};
-use crate::fem::bha::{bha_model, default_cut_m};
-use crate::fem::model::{Model, State};
-use crate::fem::results::{extract, BitResult};
-use crate::fem::solve::{solve, solve_ip_from, SolveControls};
 use crate::geometry::frame::inc_azi;
 use crate::geometry::{Frame, HoleSection, HoleSize, Station, Survey, Vec3, WellPath};
+use crate::models::fem::bha::{bha_model, default_cut_m};
+use crate::models::fem::model::{Model, State};
+use crate::models::fem::results::{extract, BitResult};
+use crate::models::fem::solve::{solve, solve_ip_from, SolveControls};
 use nalgebra::{Matrix2, Vector2};
 use std::time::Instant;
 
-/// Shortest prediction step accepted, m (physics.md 7.6). A shorter step is an error
-/// ([`PredictError::StepTooShort`]), never silently raised.
-pub const MIN_STEP_M: f64 = 0.2;
+pub use crate::case::bit_rock::MIN_STEP_M;
 
 /// Trailing length of predicted hole over which the ripple of the hole direction is measured,
 /// m: the chord directions of the last steps are fitted by a straight line in MD (the trend)
@@ -65,7 +63,7 @@ pub struct MarchSettings {
     /// Step length, m.
     pub step_m: f64,
     /// Cut distance of the bottom-hole-assembly model above the bit, m (None: the default rule
-    /// of [`crate::fem::bha`]).
+    /// of [`crate::models::fem::bha`]).
     pub cut_m: Option<f64>,
     /// Solver controls.
     pub controls: SolveControls,
@@ -173,7 +171,7 @@ pub enum PredictError {
         /// Bit MD, m.
         md_m: f64,
         /// The solver's error.
-        source: crate::fem::solve::SolveError,
+        source: crate::models::fem::solve::SolveError,
     },
     /// The implicit step found no hole direction consistent with the law, also at the
     /// shortest step the march tried (a failing step is halved while it stays at least
@@ -264,7 +262,7 @@ pub fn hole_for_prediction(case: &Case, to_md_m: f64) -> HoleSize {
     HoleSize::new(sections, hole.caliper().to_vec())
 }
 
-pub use crate::warm::transport_state;
+pub use crate::models::fem::warm::transport_state;
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
 /// full cold [`solve`] (its own start and fallbacks).
@@ -272,7 +270,7 @@ fn solve_step(
     model: &Model,
     warm: Option<State>,
     ctl: &SolveControls,
-) -> Result<crate::fem::solve::Solution, PredictError> {
+) -> Result<crate::models::fem::solve::Solution, PredictError> {
     let md = model.bit_md_m;
     let wrap = |source| PredictError::Solve { md_m: md, source };
     if let Some(state) = warm {

@@ -2,9 +2,9 @@
 //! output rows of `trajectory.csv` (interface.md).
 
 use super::march::{Prediction, StepRecord};
-use crate::fem::results::BitResult;
 use crate::geometry::survey::wrap_pi;
 use crate::geometry::{Vec3, WellPath};
+use crate::models::fem::results::BitResult;
 
 /// One output station.
 #[derive(Debug, Clone, Copy)]

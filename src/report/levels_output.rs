@@ -5,10 +5,11 @@
 
 use super::solve_output::{CONTACT_THRESHOLD_N, STRING_HEADER};
 use super::{finite, num};
-use crate::buckling_marks::{soft_marks, stiff_marks, zones, BuckleState, Mark};
-use crate::case::{Case, Fidelity};
-use crate::fidelity::{coupling_node, FemPart, Level, LevelResult};
-use crate::softstring::SoftStringResult;
+use crate::case::Case;
+use crate::case::Level;
+use crate::models::buckling::{soft_marks, stiff_marks, zones, BuckleState, Mark};
+use crate::models::levels::{coupling_node, FemPart, LevelResult};
+use crate::models::softstring::SoftStringResult;
 use serde_json::{json, Value};
 
 /// Columns appended to `string.csv` after the interface's (kN; empty where the component
@@ -109,17 +110,6 @@ pub fn buckling_json(marks: &[Mark], model: &str) -> Result<Value, String> {
     }))
 }
 
-/// Name of a requested fidelity.
-pub fn requested_name(f: Fidelity) -> &'static str {
-    match f {
-        Fidelity::Auto => "auto",
-        Fidelity::Soft => "soft",
-        Fidelity::Bha => "bha",
-        Fidelity::Hybrid => "hybrid",
-        Fidelity::Whole => "whole",
-    }
-}
-
 /// The `fidelity` key of `summary.json`.
 pub fn fidelity_json(lr: &LevelResult, case: &Case) -> Result<Value, String> {
     let c = &lr.choice;
@@ -152,7 +142,7 @@ pub fn fidelity_json(lr: &LevelResult, case: &Case) -> Result<Value, String> {
         Level::Whole => ("stiff whole string", vec![]),
     };
     Ok(json!({
-        "requested": requested_name(c.requested),
+        "requested": c.requested.name(),
         "used": c.level.name(),
         "reason": c.reason,
         "cut_m": opt(lr.cut_m, 1.0)?,
@@ -212,7 +202,7 @@ pub fn levels_csv(case: &Case, lr: &LevelResult) -> Result<(String, Vec<Mark>), 
     let mut all_marks = Vec::new();
     if let Some(part) = &lr.fem {
         let last = last_reported(case, lr, part);
-        let partial = crate::fem::results::SolveResults {
+        let partial = crate::models::fem::results::SolveResults {
             nodes: part.results.nodes[..=last].to_vec(),
             ..part.results.clone()
         };
@@ -311,10 +301,10 @@ pub fn levels_summary(case: &Case, lr: &LevelResult, marks: &[Mark]) -> Result<V
 pub fn reported_stiff_part(
     case: &Case,
     lr: &LevelResult,
-) -> Option<(crate::fem::results::SolveResults, Vec<Mark>, bool)> {
+) -> Option<(crate::models::fem::results::SolveResults, Vec<Mark>, bool)> {
     let part = lr.fem.as_ref()?;
     let last = last_reported(case, lr, part);
-    let mut res = crate::fem::results::SolveResults {
+    let mut res = crate::models::fem::results::SolveResults {
         nodes: part.results.nodes[..=last].to_vec(),
         ..part.results.clone()
     };

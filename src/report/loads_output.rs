@@ -3,7 +3,7 @@
 
 use super::{finite, num};
 use crate::loads::calibrate::Calibration;
-use crate::loads::chart::LoadRow;
+use crate::loads::row::LoadRow;
 
 /// Header of `loads.csv`: the six interface columns, then buckling, yield and stiff columns
 /// (`stiff_model`: `whole` or `hybrid`, the level of the `stiff_*` values).

@@ -2,7 +2,7 @@
 //! JSON summaries.
 
 use super::{finite, num};
-use crate::fem::results::BitResult;
+use crate::models::fem::results::BitResult;
 use crate::predict::backanalysis::{ErrorStats, IntervalResult};
 use crate::predict::calibrate::{Calibration, FitParameter};
 use crate::predict::law::LawParams;

@@ -1,8 +1,8 @@
 //! `solve` outputs: `summary.json` and `string.csv` with the interface's names (kN, kN.m, mm, deg, MPa).
 
 use super::{finite, num};
-use crate::fem::results::SolveResults;
-use crate::fem::solve::SolveStats;
+use crate::models::fem::results::SolveResults;
+use crate::models::fem::solve::SolveStats;
 use serde_json::json;
 
 /// Header of `string.csv` (interface.md).

@@ -6,10 +6,10 @@ use super::inputs::echo_inputs;
 use super::plots::{render, Band, Chart, Series, Style};
 use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
-use crate::buckling_marks::{spans, BuckleState, Mark};
 use crate::case::Case;
-use crate::fem::results::SolveResults;
-use crate::fem::solve::SolveStats;
+use crate::models::buckling::{spans, BuckleState, Mark};
+use crate::models::fem::results::SolveResults;
+use crate::models::fem::solve::SolveStats;
 
 /// Ids of the solve report's figures (the tests look for each).
 pub const SOLVE_FIGURES: &[&str] = &[
@@ -209,7 +209,7 @@ pub fn solve_report(
     page.key_values(&kv);
     // contact zones in the shown bottom of the string: runs of neighbouring contact nodes
     let shown = shown_length_m(&case.string);
-    let mut zones: Vec<Vec<&crate::fem::results::NodeResult>> = Vec::new();
+    let mut zones: Vec<Vec<&crate::models::fem::results::NodeResult>> = Vec::new();
     for n in contacts.iter().filter(|n| b.md_m - n.md_m < shown) {
         match zones.last_mut() {
             Some(z) if z.last().is_some_and(|p| (p.md_m - n.md_m).abs() < ZONE_GAP_M) => z.push(n),
@@ -256,7 +256,7 @@ pub fn solve_report(
 
     page.heading("Along the string");
     let md_label = format!("MD [{}]", du.label);
-    let along = |f: &dyn Fn(&crate::fem::results::NodeResult) -> f64| -> Vec<(f64, f64)> {
+    let along = |f: &dyn Fn(&crate::models::fem::results::NodeResult) -> f64| -> Vec<(f64, f64)> {
         res.nodes.iter().map(|n| (du.show(n.md_m), f(n))).collect()
     };
     let contact = Chart::new(
@@ -278,19 +278,20 @@ pub fn solve_report(
 
     let bha_len = shown_length_m(&case.string);
     let bha: Vec<_> = res.nodes.iter().filter(|n| b.md_m - n.md_m <= bha_len + 1e-9).collect();
-    let x = |n: &crate::fem::results::NodeResult| du.show(b.md_m - n.md_m);
+    let x = |n: &crate::models::fem::results::NodeResult| du.show(b.md_m - n.md_m);
     for (id, title, dir, f) in [
         (
             "deflection-high",
             "BHA deflection in the hole: high side",
             "toward the high side",
-            (|n: &crate::fem::results::NodeResult| n.disp_high_m) as fn(&crate::fem::results::NodeResult) -> f64,
+            (|n: &crate::models::fem::results::NodeResult| n.disp_high_m)
+                as fn(&crate::models::fem::results::NodeResult) -> f64,
         ),
         (
             "deflection-right",
             "BHA deflection in the hole: right side",
             "toward the right side",
-            |n: &crate::fem::results::NodeResult| n.disp_right_m,
+            |n: &crate::models::fem::results::NodeResult| n.disp_right_m,
         ),
     ] {
         let mut c = Chart::new(

@@ -14,9 +14,9 @@
 //! next bit depth, where the string is longer ([`crate::loads::stiff`] maps nodes by their
 //! distance from the bit).
 
-use crate::fem::model::{Model, State};
-use crate::fem::rotation::orthonormalize;
 use crate::geometry::Vec3;
+use crate::models::fem::element::rotation::orthonormalize;
+use crate::models::fem::model::{Model, State};
 use nalgebra::Matrix3;
 
 /// Where a node of the new model takes its state: between node `node` and node `node + 1` of

@@ -1,8 +1,9 @@
 //! Checks of the interior-point Newton's linearization (`solve_ip_from`) and of its exact pins.
 
 use super::*;
-use crate::fem::bha::{bha_model, default_cut_m};
 use crate::io::case_toml::{load_case, CaseOverrides};
+use crate::models::fem::bha::{bha_model, default_cut_m};
+use crate::models::fem::solve::solve;
 
 /// The predictor's cut BHA model of wells/j-shape: rotating at 60 rpm while sliding down at
 /// 12 m/h, friction 0.25, a loaded full-gauge near-bit stabilizer (a pin, 17 kN) and an

@@ -805,7 +805,7 @@ mod tests {
             rel_diff(&x, xd.as_slice())
         );
 
-        let mut fl = crate::fem::sparse_faer::FaerLdlt::new(&a);
+        let mut fl = crate::models::fem::linalg::sparse_faer::FaerLdlt::new(&a);
         fl.factor(&a).unwrap();
         let mut xf = b.clone();
         fl.solve_in_place(&mut xf);
@@ -1022,7 +1022,7 @@ mod tests {
                 f.solve_in_place(&mut x);
                 ts.push(t.elapsed().as_secs_f64() * 1e3);
             }
-            let mut fl = crate::fem::sparse_faer::FaerLdlt::new(&a);
+            let mut fl = crate::models::fem::linalg::sparse_faer::FaerLdlt::new(&a);
             let mut tff = Vec::new();
             for _ in 0..reps {
                 let t = Instant::now();

@@ -10,9 +10,9 @@
 //! Neither proves the stiff solve impossible, but both tell the user the case is at the edge
 //! of what the string can do, not only of what the solver can do.
 
-use crate::buckling_marks::{soft_marks, zones, BuckleState};
 use crate::case::Case;
-use crate::softstring;
+use crate::models::buckling::{soft_marks, zones, BuckleState};
+use crate::models::softstring;
 
 /// One-sentence hints on `case` for a non-converged stiff solve (empty when the soft string
 /// shows neither lock-up nor helical buckling). Forces in kN, depths in m.

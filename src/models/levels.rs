@@ -1,11 +1,6 @@
-//! Fidelity levels of a static string solve (issue 5): what model runs, and why.
-//!
-//! | level    | model                                                         | gives |
-//! |----------|---------------------------------------------------------------|-------|
-//! | `soft`   | soft-string torque and drag over the whole string ([`crate::softstring`]) | hook load, surface torque, axial force and torque along the string, buckling check; **no** bit side forces, tilt or bending |
-//! | `bha`    | stiff FEM of the bottom part, cut where it lies on the wall ([`crate::fem::bha`]) | bit forces and tilt, contacts and bending below the cut; **no** surface values |
-//! | `hybrid` | `bha` + soft string from the cut to the surface, started from the FEM's axial force and torque at the cut | all of `bha`, plus hook load and surface torque |
-//! | `whole`  | stiff FEM of the whole string (the seed paper's model)        | everything |
+//! Running a static string solve at a fidelity level ([`crate::case::fidelity`]): the soft
+//! string, the stiff bottom-hole assembly cut where it lies on the wall, the two coupled
+//! (`hybrid`), or the whole stiff string.
 //!
 //! The coupling of `hybrid`: the soft-string integration starts at the coupling node
 //! ([`coupling_node`], half way between the highest stabilizer and the cut, away from the
@@ -20,121 +15,16 @@
 //! forge-16a aside (+6.8%: short doglegs of its real survey that the stiff pipe bridges);
 //! Johancsik's form gave +1% to +8.4% (tests/fidelity.rs).
 //!
-//! `auto` picks per command ([`choose`]): `solve` reports the whole string (contacts, bending
-//! and stresses along it, hook load and surface torque) and runs `whole`; prediction needs bit
-//! forces only and runs `bha` (a requested `hybrid` also runs `bha` there: the soft upper part
-//! does not change the bit forces); the torque-and-drag chart needs surface values at many depths and
-//! runs `soft`.
 
-use crate::case::{Case, Fidelity};
-use crate::fem::bha::{bha_model, default_cut_m};
-use crate::fem::model::{Model, TopCondition};
-use crate::fem::results::{extract, BitResult, SolveResults};
-use crate::fem::solve::{solve, SolveControls, SolveError, SolveStats};
-use crate::softstring::{self, SoftStringInput, SoftStringResult};
+use crate::case::fidelity::{Choice, Level};
+use crate::case::Case;
+use crate::models::fem::bha::{bha_model, default_cut_m};
+use crate::models::fem::model::{Model, TopCondition};
+use crate::models::fem::results::{extract, BitResult, SolveResults};
+use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
+use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
 use std::time::Instant;
-
-/// The model actually run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Level {
-    /// Soft string over the whole length.
-    Soft,
-    /// Stiff bottom-hole assembly only.
-    Bha,
-    /// Stiff bottom-hole assembly plus soft string above the cut.
-    Hybrid,
-    /// Stiff whole string.
-    Whole,
-}
-
-impl Level {
-    /// Name as in `[solver] fidelity` and `summary.json`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Level::Soft => "soft",
-            Level::Bha => "bha",
-            Level::Hybrid => "hybrid",
-            Level::Whole => "whole",
-        }
-    }
-}
-
-/// What a command asks of the model (for `auto`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Purpose {
-    /// `drillpath solve`: bit forces, contacts along the string, hook load and surface torque.
-    Solve,
-    /// `drillpath predict` / `backanalyze`: bit forces and tilt at many bit positions.
-    Predict,
-    /// `drillpath loads`: hook load and surface torque at many depths.
-    Loads,
-}
-
-/// The level chosen and why.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Choice {
-    /// What the user asked for (case file or `--fidelity`).
-    pub requested: Fidelity,
-    /// What runs.
-    pub level: Level,
-    /// One sentence: why this level.
-    pub reason: String,
-}
-
-/// Parse a fidelity name (`auto`, `soft`, `bha`, `hybrid`, `whole`).
-pub fn parse(name: &str) -> Option<Fidelity> {
-    Some(match name {
-        "auto" => Fidelity::Auto,
-        "soft" => Fidelity::Soft,
-        "bha" => Fidelity::Bha,
-        "hybrid" => Fidelity::Hybrid,
-        "whole" => Fidelity::Whole,
-        _ => return None,
-    })
-}
-
-/// Accepted names, for messages.
-pub const NAMES: &str = "auto, soft, bha, hybrid, whole";
-
-/// The level for `requested` on a command with `purpose` (see the module documentation).
-pub fn choose(requested: Fidelity, purpose: Purpose) -> Choice {
-    let (level, reason) = match requested {
-        Fidelity::Hybrid if purpose == Purpose::Predict => (
-            Level::Bha,
-            "requested hybrid: prediction uses the bit forces only, which the soft string above the stiff bottom-hole assembly does not change, so the bha model runs",
-        ),
-        Fidelity::Soft => (Level::Soft, "requested: soft string (no bending, no bit side forces)"),
-        Fidelity::Bha => (
-            Level::Bha,
-            "requested: stiff bottom-hole assembly only (no hook load or surface torque)",
-        ),
-        Fidelity::Hybrid => (
-            Level::Hybrid,
-            "requested: stiff bottom-hole assembly, soft string from the coupling point (half way to the cut) to the surface",
-        ),
-        Fidelity::Whole => (Level::Whole, "requested: stiff whole string"),
-        Fidelity::Auto => match purpose {
-            Purpose::Solve => (
-                Level::Whole,
-                "auto: solve reports the whole string (contacts, bending and stresses along it, hook load and surface torque), which needs the stiff whole-string model",
-            ),
-            Purpose::Predict => (
-                Level::Bha,
-                "auto: prediction needs the bit forces and tilt only, which depend on the stiff bottom part",
-            ),
-            Purpose::Loads => (
-                Level::Soft,
-                "auto: the torque-and-drag chart needs hook load and surface torque at many depths, which the soft string gives",
-            ),
-        },
-    };
-    Choice {
-        requested,
-        level,
-        reason: reason.to_string(),
-    }
-}
 
 /// The part of `string` above `cut_m` from the bit, with positions measured from the cut
 /// (the component crossing the cut shortened); empty if the string is not longer.
@@ -204,7 +94,7 @@ pub enum FidelityError {
     Unsupported(String),
 }
 
-/// Cut distance above the bit for `case` (the rule of [`crate::fem::bha`]).
+/// Cut distance above the bit for `case` (the rule of [`crate::models::fem::bha`]).
 pub fn cut_for(case: &Case) -> f64 {
     let md = case.operation.bit_md_m;
     default_cut_m(

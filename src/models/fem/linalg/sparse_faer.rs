@@ -1,5 +1,5 @@
 //! General sparse LDLᵀ through faer: the fallback for structures that are not a node chain
-//! (branches, distant couplings) and the test oracle for [`crate::fem::band`].
+//! (branches, distant couplings) and the test oracle for [`crate::models::fem::linalg::band`].
 //!
 //! The symbolic analysis is done once from the full band pattern of a [`BandMatrix`]
 //! (natural ordering, simplicial), then every [`FaerLdlt::factor`] is a numeric refactor into
@@ -12,7 +12,7 @@
 //!
 //! The LDLᵀ runs without pivoting and without regularization, so it works for symmetric
 //! indefinite matrices as long as no pivot vanishes (same contract as
-//! [`BandLdlt`](crate::fem::band::BandLdlt)); zero pivots are detected with the same relative
+//! [`BandLdlt`](crate::models::fem::linalg::band::BandLdlt)); zero pivots are detected with the same relative
 //! threshold and reported as [`FactorError::ZeroPivot`].
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -25,7 +25,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
-use crate::fem::band::{is_zero_pivot, BandMatrix, FactorError, PIVOT_TOL};
+use crate::models::fem::linalg::band::{is_zero_pivot, BandMatrix, FactorError, PIVOT_TOL};
 
 /// Sparse LDLᵀ (faer, simplicial, natural ordering) with the pattern of a [`BandMatrix`].
 pub struct FaerLdlt {
@@ -190,7 +190,7 @@ impl FaerLdlt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fem::band::{chain_test_matrix, BandLdlt};
+    use crate::models::fem::linalg::band::{chain_test_matrix, BandLdlt};
 
     fn rel_diff(x: &[f64], y: &[f64]) -> f64 {
         let num = x.iter().zip(y).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);

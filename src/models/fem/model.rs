@@ -6,14 +6,14 @@
 //! bit (node 0) upward, but DOFs are ordered from the surface down so that the bottom-hole
 //! assembly, where contacts change most, sits at the end of the band (tail refactoring).
 
-use super::band::BandMatrix;
-use super::band_lu::GeneralBand;
-use super::beam::BeamSection;
-use super::corotational::{element_forces, element_response_into, ElementForces, ElementState, Mat12};
+use super::element::beam::BeamSection;
+use super::element::corotational::{element_forces, element_response_into, ElementForces, ElementState, Mat12};
+use super::linalg::band::BandMatrix;
+use super::linalg::band_lu::GeneralBand;
 use super::mesh::{build_mesh, Mesh};
 use crate::case::{Case, Mode};
-use crate::contact::gap::{evaluate, GapInput, GapResponse};
 use crate::geometry::{HoleSize, Vec3, WellPath};
+use crate::models::fem::contact::gap::{evaluate, GapInput, GapResponse};
 use crate::string::DrillString;
 use nalgebra::Matrix3;
 
@@ -169,7 +169,7 @@ pub struct Model {
     /// Length of the bottom-hole assembly from the bit, m.
     pub bha_length_m: f64,
     /// Full consistent element tangent (needed under torque; slower), see
-    /// [`super::corotational::element_response`].
+    /// [`super::element::corotational::element_response`].
     pub consistent_tangent: bool,
     /// How the top node is held.
     pub top: TopCondition,
@@ -551,7 +551,7 @@ impl Model {
             axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
             clearance[i] = eo;
-            if state.exact_pins && eo <= crate::contact::gap::ZERO_CLEARANCE_M {
+            if state.exact_pins && eo <= crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
                 // applied below, once the lateral residual of everything else is known
                 pins.push(i);
                 continue;
@@ -628,7 +628,7 @@ impl Model {
             clearance: eo,
             contact_radius: self.mesh.nodes[i].contact_od_m / 2.0,
             lambda: state.lambda[i],
-            k_n: if state.exact_multipliers && eo > crate::contact::gap::ZERO_CLEARANCE_M {
+            k_n: if state.exact_multipliers && eo > crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
                 0.0
             } else {
                 self.k_n[i]
@@ -678,7 +678,8 @@ impl Model {
             let dw = Vec3::new(du[self.dof(i, 3)], du[self.dof(i, 4)], du[self.dof(i, 5)]) * alpha;
             state.x[i] += q * dx;
             let w = q * dw;
-            state.lam[i] = super::rotation::orthonormalize(&(super::rotation::exp_so3(&w) * state.lam[i]));
+            state.lam[i] =
+                super::element::rotation::orthonormalize(&(super::element::rotation::exp_so3(&w) * state.lam[i]));
         }
     }
 }

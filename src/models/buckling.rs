@@ -1,4 +1,4 @@
-//! Buckling onsets along the string and where it is buckled (issue 5), for the soft string and
+//! Buckling onsets along the string and where it is buckled, for the soft string and
 //! the stiff FEM alike: the onset loads at each node compared with the model's effective axial
 //! force there.
 //!
@@ -31,7 +31,6 @@
 //! [`MIN_BUCKLING_CLEARANCE_M`] of clearance (bit, gauge stabilizers) do
 //! not buckle.
 
-use crate::analytical::buckling::{vertical_force_unit, WU_VERTICAL_HELICAL, WU_VERTICAL_SINUSOIDAL};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::string::{Component, DrillString};
 use std::f64::consts::SQRT_2;
@@ -88,6 +87,33 @@ pub struct Zone {
     /// Largest compression / sinusoidal onset in the zone.
     pub max_ratio: f64,
 }
+
+/// Sinusoidal buckling onset in a straight inclined hole, Dawson & Paslay (1984):
+/// `2 sqrt(EI q / r)`, N compression, for bending stiffness `ei` N.m2, lateral wall load `q`
+/// N/m (`w_b sin I` in a straight hole) and radial clearance `r` m.
+pub fn dawson_paslay(ei: f64, q: f64, r: f64) -> f64 {
+    2.0 * (ei * q / r).sqrt()
+}
+
+/// Helical buckling onset, Chen, Lin & Cheatham (1990): `2 sqrt(2) sqrt(EI q / r)`, N
+/// compression; inputs as [`dawson_paslay`].
+pub fn chen_lin_cheatham(ei: f64, q: f64, r: f64) -> f64 {
+    2.0 * SQRT_2 * (ei * q / r).sqrt()
+}
+
+/// Force unit of vertical-hole buckling `(EI w_b^2)^(1/3)`, N (`ei` N.m2, `w_b` N/m); multiply by
+/// [`WU_VERTICAL_SINUSOIDAL`] or [`WU_VERTICAL_HELICAL`].
+pub fn vertical_force_unit(ei: f64, w_b: f64) -> f64 {
+    (ei * w_b * w_b).cbrt()
+}
+
+/// Vertical hole, sinusoidal buckling after Wu et al.: `2.55 (EI w_b^2)^(1/3)` (dimensionless
+/// coefficient). **\[uncertain\]** commonly quoted value (docs/theory.md, buckling).
+pub const WU_VERTICAL_SINUSOIDAL: f64 = 2.55;
+
+/// Vertical hole, helical buckling after Wu et al.: `5.55 (EI w_b^2)^(1/3)` (dimensionless
+/// coefficient). **\[uncertain\]** commonly quoted value (docs/theory.md, buckling).
+pub const WU_VERTICAL_HELICAL: f64 = 5.55;
 
 /// Radial clearance below which a component is taken as unable to buckle, m.
 pub const MIN_BUCKLING_CLEARANCE_M: f64 = 1e-3;
@@ -175,8 +201,8 @@ pub fn onset_at(
     let g = (ez - p.tangent * p.tangent.z) * w_b;
     let k = p.dt_ds;
     let unit = vertical_force_unit(ei, w_b);
-    let mut s = curved_onset(|q| 2.0 * (ei * q / r).sqrt(), g, k);
-    let mut h = curved_onset(|q| 2.0 * SQRT_2 * (ei * q / r).sqrt(), g, k);
+    let mut s = curved_onset(|q| dawson_paslay(ei, q, r), g, k);
+    let mut h = curved_onset(|q| chen_lin_cheatham(ei, q, r), g, k);
     if let Some(l) = span_m.filter(|l| *l > 0.0) {
         s = s.max(curved_onset(|q| span_sinusoidal_onset(ei, q, r, l), g, k));
         h = h.max(s);
@@ -229,8 +255,8 @@ pub fn marks(
 /// fewer than the mesh's) on the mesh of `model`.
 pub fn stiff_marks(
     case: &crate::case::Case,
-    model: &crate::fem::model::Model,
-    nodes: &[crate::fem::results::NodeResult],
+    model: &crate::models::fem::model::Model,
+    nodes: &[crate::models::fem::results::NodeResult],
 ) -> Vec<Mark> {
     marks(
         nodes
@@ -245,7 +271,11 @@ pub fn stiff_marks(
 }
 
 /// Marks at the points of the soft-string result `soft` of `case`, from point `skip` on.
-pub fn soft_marks(case: &crate::case::Case, soft: &crate::softstring::SoftStringResult, skip: usize) -> Vec<Mark> {
+pub fn soft_marks(
+    case: &crate::case::Case,
+    soft: &crate::models::softstring::SoftStringResult,
+    skip: usize,
+) -> Vec<Mark> {
     let bit = case.operation.bit_md_m;
     marks(
         soft.points[skip..].iter().map(|p| (p.md_m, bit - p.md_m, p.tension_n)),

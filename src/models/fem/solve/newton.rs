@@ -1,18 +1,17 @@
-//! Static solution with contact: Newton iterations on the co-rotational model with
-//! penalty/augmented-Lagrangian gap elements (`method = "newton"`), or the seed paper's modified
-//! Newton with gradient-updated gap forces (`method = "paper"`, eq. 15).
+//! Static solution with contact by Newton iterations on the co-rotational model, the contact
+//! forces of each step from an interior-point complementarity solve (`method = "newton"`).
 //!
 //! The bit is held on the hole axis at the bit MD; the hook load `H` at the top is an extra
 //! unknown found with the equation "axial reaction at the bit = -WOB" (a bordered system solved
 //! with two back-substitutions of the same factor). Friction enters the residual exactly and
 //! is lagged in the tangent.
 
-use super::band::{BandLdlt, BandMatrix, FactorError};
-use super::band_lu::{BandLu, GeneralBand};
-use super::model::StiffnessSink;
-use super::model::{Evaluation, Model, State, HALF_BANDWIDTH};
 use crate::case::{Method, SolverSettings};
 use crate::geometry::Vec3;
+use crate::models::fem::linalg::band::{BandLdlt, BandMatrix, FactorError};
+use crate::models::fem::linalg::band_lu::{BandLu, GeneralBand};
+use crate::models::fem::model::StiffnessSink;
+use crate::models::fem::model::{Evaluation, Model, State, HALF_BANDWIDTH};
 use std::time::Instant;
 
 /// Solver controls.
@@ -55,7 +54,7 @@ impl Default for SolveControls {
     }
 }
 
-/// Globalization choices of one solve attempt (see [`solve`]).
+/// Globalization choices of one solve attempt (see [`solve_newton`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Strategy {
     /// Iterates remembered by the non-monotone line search (1: monotone).
@@ -64,7 +63,7 @@ pub struct Strategy {
     pub bha_open_start: bool,
 }
 
-/// Attempts made by [`solve`], in order, each from a fresh start: the active-set iteration is
+/// Attempts made by [`solve_newton`], in order, each from a fresh start: the active-set iteration is
 /// sensitive to its start and line search, and no single choice converges on every case.
 pub const STRATEGIES: [Strategy; 4] = [
     Strategy {
@@ -295,7 +294,7 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
     for i in (0..nn - 1).rev() {
         phi -= twist_rate[i] * model.sections[i].l0;
         let t = state.lam[i].column(0).into_owned();
-        state.lam[i] = super::rotation::exp_so3(&(t * phi)) * state.lam[i];
+        state.lam[i] = crate::models::fem::element::rotation::exp_so3(&(t * phi)) * state.lam[i];
     }
 }
 
@@ -756,10 +755,7 @@ fn singular(model: &Model, e: FactorError) -> SolveError {
 /// Newton ([`solve_ip_from`]) with the consistent tangent, then, if it fails, the active-set
 /// [`STRATEGIES`] in turn and a load continuation; returns the last attempt (flagged
 /// unconverged) if none converges.
-pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
-    if ctl.method == Method::Paper {
-        return super::paper::solve_paper(model, ctl);
-    }
+pub fn solve_newton(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
     // 1. Newton with the fully consistent co-rotational tangent, each step solving the contact
     //    problem of all gaps by the interior-point method
@@ -813,7 +809,7 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
     Ok(sol)
 }
 
-/// Iteration limit of each fallback attempt of [`solve`] (active-set strategy, continuation
+/// Iteration limit of each fallback attempt of [`solve_newton`] (active-set strategy, continuation
 /// step) after the interior-point Newton failed. None of them has rescued a case since the
 /// interior-point Newton became the default (the test suite, the example wells, the benchmark
 /// wells and the failing extremes: inclination 120 and 180 deg, DLS 30 deg/30 m drilling,
@@ -966,7 +962,7 @@ pub fn solve_from(
                 // augmented-Lagrangian update of the closed (and freely switching) gaps
                 for (i, g) in ev.gaps.iter().enumerate() {
                     if let Some(g) = g {
-                        if ev.clearance[i] <= crate::contact::gap::ZERO_CLEARANCE_M {
+                        if ev.clearance[i] <= crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
                             // pin: vector multiplier takes the whole current force
                             state.lambda_vec[i] = -g.force_normal();
                             continue;
@@ -1254,7 +1250,8 @@ pub(crate) fn add_circle_stiffness(
 pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
     (0..model.nodes())
         .map(|i| {
-            model.mesh.nodes[i].has_gap && model.clearance(i, model.md_ref[i]) > crate::contact::gap::ZERO_CLEARANCE_M
+            model.mesh.nodes[i].has_gap
+                && model.clearance(i, model.md_ref[i]) > crate::models::fem::contact::gap::ZERO_CLEARANCE_M
         })
         .collect()
 }
@@ -1855,5 +1852,5 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
 }
 
 #[cfg(test)]
-#[path = "solve_tangent_tests.rs"]
+#[path = "newton_tangent_tests.rs"]
 mod tangent_tests;

@@ -1,4 +1,4 @@
-//! Accuracy presets (issue 5): element length, contact tolerance and prediction step set
+//! Accuracy presets: element length, contact tolerance and prediction step set
 //! together. `[solver] accuracy = "fast" | "default" | "precise"` gives the defaults of
 //! `element_length`, `bha_element_length` and `tolerance` (keys given explicitly win);
 //! `--accuracy` on `solve`, `predict` and `backanalyze` overrides all three. The preset's
@@ -15,7 +15,7 @@
 //! own, finer mesh) and little for the surface values: on the six example wells, 3 m pipe
 //! elements give the same bit forces as 0.5 m to 5 digits, hook loads within 1e-5 and surface
 //! torques within 0.2% (6 m: 0.8%); docs/performance.md "Pipe mesh". The soft string keeps
-//! segments of at most 1 m ([`crate::softstring::MAX_SEGMENT_M`]).
+//! segments of at most 1 m ([`crate::models::softstring::MAX_SEGMENT_M`]).
 //!
 //! The prediction step dominates the predictor's error; the bottom-hole-assembly mesh and the
 //! tolerance move the inclination after 100 m by less than 0.005 deg between the presets' values
@@ -33,8 +33,6 @@
 //!
 //! `precise` uses 0.3 m, not 0.25 m, in the bottom-hole assembly: with 0.25 m the cut
 //! (`bha`) model of the j-shape and horizontal examples does not converge (open point).
-
-use crate::case::SolverSettings;
 
 /// An accuracy preset.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -109,20 +107,12 @@ impl Accuracy {
             },
         }
     }
-
-    /// Set the preset's element lengths and tolerance in `s` (and record the preset there).
-    pub fn apply(self, s: &mut SolverSettings) {
-        let k = self.knobs();
-        s.accuracy = Some(self);
-        s.element_length_m = k.element_length_m;
-        s.bha_element_length_m = k.bha_element_length_m;
-        s.tolerance = k.tolerance;
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::case::SolverSettings;
 
     /// Reference: the documented defaults of `[solver]` (SolverSettings::default, interface.md):
     /// the `default` preset must equal them; presets are ordered fast -> precise on every knob.

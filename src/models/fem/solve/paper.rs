@@ -119,13 +119,13 @@
 //! surface torque. Unconverged solves end flagged `converged == false`. Use `method =
 //! "newton"` (the default) for speed.
 
-use super::band_lu::{BandLu, GeneralBand};
-use super::model::{Evaluation, Model, State, StiffnessSink, HALF_BANDWIDTH};
-use super::solve::{
+use super::newton::{
     bordered_step, constrain_and_factor, load_scale, residual_norm, smooth_start, soft_string_start, wind_up_start,
     Linear, Solution, SolveControls, SolveError, SolveStats, MAX_BENDING_ROTATION_STEP,
 };
-use crate::contact::gap::{evaluate as gap_evaluate, GapInput, ZERO_CLEARANCE_M};
+use crate::models::fem::contact::gap::{evaluate as gap_evaluate, GapInput, ZERO_CLEARANCE_M};
+use crate::models::fem::linalg::band_lu::{BandLu, GeneralBand};
+use crate::models::fem::model::{Evaluation, Model, State, StiffnessSink, HALF_BANDWIDTH};
 use std::time::Instant;
 
 /// Gap spring `k_g` of a node as a multiple of the string's own lateral stiffness there (the
@@ -245,7 +245,7 @@ fn gap_springs(model: &Model, kind: &[Kind]) -> Vec<f64> {
 /// the sliding velocity of the string surface (axial speed and rotation combined, with the
 /// current contact normal) and its moment about the node (the friction torque `(D/2) T`),
 /// Table 1 with the normal force `R_lag` of the previous contact check. Uses the gap element's
-/// own friction law ([`crate::contact::gap::evaluate`]) with the normal force given.
+/// own friction law ([`crate::models::fem::contact::gap::evaluate`]) with the normal force given.
 /// With `k`, the stiffness of these loads (their direction turns with the contact normal) is
 /// added to it.
 fn add_lagged_friction(
@@ -563,7 +563,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             let mut friction_gap: f64 = 0.0;
             for i in 0..nn {
                 let Some(g) = &ev.gaps[i] else { continue };
-                let eo = ev.clearance[i].max(super::solve::MIN_REFERENCE_CLEARANCE_M);
+                let eo = ev.clearance[i].max(super::newton::MIN_REFERENCE_CLEARANCE_M);
                 let tol = ctl.gap_tolerance * eo;
                 if model.friction[i] > 0.0 {
                     friction_gap = friction_gap.max(model.friction[i] * (g.normal_force.max(0.0) - r_lag[i]).abs());
@@ -670,7 +670,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             // eq. 15: P2 = P1 + alpha (dP1/dS1) dS2 for every closed gap
             for i in 0..nn {
                 let Some(g) = &ev.gaps[i] else { continue };
-                let eo = ev.clearance[i].max(super::solve::MIN_REFERENCE_CLEARANCE_M);
+                let eo = ev.clearance[i].max(super::newton::MIN_REFERENCE_CLEARANCE_M);
                 let tol = ctl.gap_tolerance * eo;
                 match kind[i] {
                     Kind::None => {}

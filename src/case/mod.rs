@@ -1,0 +1,71 @@
+//! A validated case: well, mud, operation, string, bit-rock law and solver settings, all SI.
+//!
+//! Built from a TOML case file by [`crate::io::case_toml::load_case`]; every check that needs a
+//! user-facing message is done there, so the mechanics can trust these values.
+
+pub mod accuracy;
+pub mod bit_rock;
+pub mod fidelity;
+pub mod operation;
+pub mod solver;
+pub mod well;
+
+pub use accuracy::Accuracy;
+pub use bit_rock::{BitRock, Formation};
+pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
+pub use operation::{Mode, Mud, Operation};
+pub use solver::{Method, SolverSettings};
+pub use well::{SurveyFile, Well};
+
+use crate::string::DrillString;
+use std::path::PathBuf;
+
+/// A complete validated case.
+#[derive(Debug, Clone)]
+pub struct Case {
+    /// Case name.
+    pub name: String,
+    /// Free description.
+    pub description: String,
+    /// Case file path (or the survey CSV when a bare CSV was given).
+    pub path: PathBuf,
+    /// Well geometry.
+    pub well: Well,
+    /// Mud.
+    pub mud: Mud,
+    /// Operation.
+    pub operation: Operation,
+    /// The string (empty when only a survey was given).
+    pub string: DrillString,
+    /// Bit-rock law.
+    pub bit_rock: BitRock,
+    /// Solver settings.
+    pub solver: SolverSettings,
+}
+
+/// How far the string may reach above the first survey station before the straight
+/// extrapolation there is worth a warning, m.
+pub const ABOVE_SURVEY_NOTE_M: f64 = 1.0;
+
+impl Case {
+    /// The assumption made when the string reaches above the first survey station (a survey
+    /// that starts at a tie-in): the hole there is the straight line along the first
+    /// station's direction ([`crate::geometry::WellPath::point_at`]), which the hook load,
+    /// surface torque and the contacts above depend on. None when the survey covers the string.
+    pub fn string_above_survey_note(&self) -> Option<String> {
+        let top_md_m = self.operation.bit_md_m - self.string.length_m();
+        let first = self.well.path.stations().first()?;
+        let above_m = first.md_m - top_md_m;
+        if self.string.components.is_empty() || above_m <= ABOVE_SURVEY_NOTE_M {
+            return None;
+        }
+        Some(format!(
+            "the survey starts at {:.1} m MD but the string reaches up to {:.1} m MD: the hole above the first station is taken as a straight line along its direction (inclination {:.2} deg, azimuth {:.2} deg), and the hook load, surface torque and contacts there depend on that assumption; add the survey stations above {:.1} m MD (a vertical hole from surface: a station at 0 m with inclination 0)",
+            first.md_m,
+            top_md_m.max(0.0),
+            first.inc_rad.to_degrees(),
+            first.azi_rad.to_degrees(),
+            first.md_m
+        ))
+    }
+}

@@ -1,0 +1,61 @@
+//! Solver settings: element lengths, contact tolerance, fidelity, contact scheme, iteration limit.
+
+use super::accuracy::Accuracy;
+use super::fidelity::Fidelity;
+
+/// Contact solution scheme.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Newton with penalty/augmented-Lagrangian contact (robust default).
+    Newton,
+    /// The seed paper's modified Newton with gap additional forces (eq. 15).
+    Paper,
+}
+
+/// Solver settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Longest element in the pipe, m.
+    pub element_length_m: f64,
+    /// Longest element in the bottom-hole assembly, m.
+    pub bha_element_length_m: f64,
+    /// Contact gap tolerance relative to the local clearance.
+    pub tolerance: f64,
+    /// Fidelity.
+    pub fidelity: Fidelity,
+    /// Contact scheme.
+    pub method: Method,
+    /// Iteration limit.
+    pub max_iterations: usize,
+    /// Paper scheme's gradient-update factor alpha in (0, 1).
+    pub alpha: f64,
+    /// The accuracy preset that set the defaults above (`[solver] accuracy` or `--accuracy`),
+    /// None when the documented defaults and explicit keys apply.
+    pub accuracy: Option<Accuracy>,
+}
+
+impl Default for SolverSettings {
+    fn default() -> Self {
+        SolverSettings {
+            element_length_m: 3.0,
+            bha_element_length_m: 0.5,
+            tolerance: 1e-4,
+            fidelity: Fidelity::Auto,
+            method: Method::Newton,
+            max_iterations: 300,
+            alpha: 0.7,
+            accuracy: None,
+        }
+    }
+}
+
+impl SolverSettings {
+    /// Set the element lengths and tolerance of `preset` (and record the preset).
+    pub fn apply_preset(&mut self, preset: Accuracy) {
+        let k = preset.knobs();
+        self.accuracy = Some(preset);
+        self.element_length_m = k.element_length_m;
+        self.bha_element_length_m = k.bha_element_length_m;
+        self.tolerance = k.tolerance;
+    }
+}

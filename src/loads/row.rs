@@ -1,0 +1,117 @@
+//! One row of the torque-and-drag chart: a bit depth and a load case, with the soft string's
+//! loads, buckling and yield, and the stiff model's outcome when asked for.
+
+use super::limits::Buckling;
+use crate::case::fidelity::Level;
+use crate::case::Mode;
+
+/// How a converged stiff solve started.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Start {
+    /// The solver's own cold start (and fallbacks).
+    Cold,
+    /// The previous load case's state at the same bit depth.
+    PreviousCase,
+    /// The same load case's state at the previous bit depth, carried onto the new mesh.
+    PreviousDepth,
+}
+
+/// Result of the stiff model for one row.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StiffOutcome {
+    /// Converged solve.
+    Converged {
+        /// Surface loads and largest nodal contact force.
+        loads: RowLoads,
+        /// Newton iterations (all attempts, a failed warm start included).
+        iterations: usize,
+        /// Wall-clock time, s.
+        seconds: f64,
+        /// How the converged solve started.
+        start: Start,
+    },
+    /// The solver stopped without meeting its criteria: no valid numbers.
+    NotConverged {
+        /// Newton iterations (all attempts).
+        iterations: usize,
+        /// Last relative residual.
+        residual: f64,
+    },
+    /// The solver failed (e.g. singular stiffness); the message says why.
+    Failed(String),
+}
+
+impl StiffOutcome {
+    /// The loads when converged.
+    pub fn loads(&self) -> Option<&RowLoads> {
+        match self {
+            StiffOutcome::Converged { loads, .. } => Some(loads),
+            _ => None,
+        }
+    }
+    /// Status word for `loads.csv`: `converged`, `not_converged` or `failed`.
+    pub fn status(&self) -> &'static str {
+        match self {
+            StiffOutcome::Converged { .. } => "converged",
+            StiffOutcome::NotConverged { .. } => "not_converged",
+            StiffOutcome::Failed(_) => "failed",
+        }
+    }
+    /// Newton iterations (0 for a failed solve).
+    pub fn iterations(&self) -> usize {
+        match self {
+            StiffOutcome::Converged { iterations, .. } | StiffOutcome::NotConverged { iterations, .. } => *iterations,
+            StiffOutcome::Failed(_) => 0,
+        }
+    }
+}
+
+/// Surface loads and largest wall contact of one solution (soft or stiff), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowLoads {
+    /// Hook load (effective tension at the top, no block weight), N.
+    pub hook_load_n: f64,
+    /// Surface torque, N.m.
+    pub surface_torque_nm: f64,
+    /// Largest wall contact force, N (soft: per joint, see the module documentation; stiff:
+    /// largest nodal contact force).
+    pub max_contact_force_n: f64,
+    /// Largest wall contact force per length, N/m (soft only; 0 for stiff).
+    pub max_side_force_n_per_m: f64,
+}
+
+/// Yield limits at the surface and the worst stress along the string (all `None` when the
+/// string gives no yield strength; see [`super::limits`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RowYield {
+    /// Tension at yield of the top component, N.
+    pub tension_limit_n: Option<f64>,
+    /// Torque at yield of the top component without tension, N.m.
+    pub torque_limit_nm: Option<f64>,
+    /// Torque at yield of the top component under this row's hook load, N.m.
+    pub combined_torque_limit_nm: Option<f64>,
+    /// Largest von Mises ratio (axial + torsion) along the string.
+    pub max_stress_ratio: Option<f64>,
+}
+
+/// One row of the chart: one bit depth, one load case.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadRow {
+    /// Bit measured depth, m.
+    pub bit_md_m: f64,
+    /// Load case.
+    pub mode: Mode,
+    /// Weight on bit of the row, N (0 off bottom; on bottom the chart's WOB, or less where the
+    /// string cannot give it, see [`super::chart::soft_row`]).
+    pub wob_n: f64,
+    /// Soft-string loads.
+    pub soft: RowLoads,
+    /// Buckling along the soft string.
+    pub buckling: Buckling,
+    /// Yield limits and stress ratio.
+    pub yield_: RowYield,
+    /// Stiff result (whole-string FEM, or hybrid), when asked for.
+    pub stiff: Option<StiffOutcome>,
+    /// The level of `stiff` (whole or hybrid).
+    pub stiff_level: Option<Level>,
+}
