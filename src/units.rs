@@ -122,6 +122,7 @@ const TABLE: &[(&[&str], Dimension, f64)] = &[
     (&["rad", "radian", "radians"], Dimension::Angle, 1.0),
     (&["deg/30m", "°/30m"], Dimension::Curvature, DEG / 30.0),
     (&["deg/100ft", "°/100ft"], Dimension::Curvature, DEG / (100.0 * FOOT)),
+    (&["deg/100m", "°/100m"], Dimension::Curvature, DEG / 100.0),
     (&["deg/m", "°/m"], Dimension::Curvature, DEG),
     (&["deg/10m"], Dimension::Curvature, DEG / 10.0),
     (&["rad/m"], Dimension::Curvature, 1.0),

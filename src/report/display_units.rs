@@ -50,10 +50,13 @@ pub struct DisplayUnit {
 }
 
 impl DisplayUnit {
-    const fn new(label: &'static str, si_per_unit: f64, extra_decimals: i32) -> DisplayUnit {
+    /// The unit `label` with its SI factor from the crate's one unit table ([`crate::units`]).
+    fn new(label: &'static str, extra_decimals: i32) -> DisplayUnit {
+        let unit = crate::units::lookup(label)
+            .unwrap_or_else(|| panic!("internal: display unit `{label}` missing from the unit table"));
         DisplayUnit {
             label,
-            si_per_unit,
+            si_per_unit: unit.to_si,
             extra_decimals,
         }
     }
@@ -79,73 +82,69 @@ impl DisplayUnit {
     }
 }
 
-const LBF_N: f64 = 4.448_221_615_260_5;
-const FT_M: f64 = 0.3048;
-
 impl UnitSystem {
     /// Depths and long lengths (SI m).
     pub fn depth(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("m", 1.0, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("ft", FT_M, 0),
+            UnitSystem::Si => DisplayUnit::new("m", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ft", 0),
         }
     }
     /// Diameters, displacements and clearances (SI m).
     pub fn small_length(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("mm", 1e-3, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("in", 0.0254, 2),
+            UnitSystem::Si => DisplayUnit::new("mm", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("in", 2),
         }
     }
     /// Forces (SI N).
     pub fn force(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("kN", 1e3, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("klbf", 1e3 * LBF_N, 0),
+            UnitSystem::Si => DisplayUnit::new("kN", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("klbf", 0),
         }
     }
     /// Torques and bending moments (SI N.m).
     pub fn torque(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("kN.m", 1e3, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("ft.lbf", LBF_N * FT_M, -2),
+            UnitSystem::Si => DisplayUnit::new("kN.m", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ft.lbf", -2),
         }
     }
     /// Stresses (SI Pa).
     pub fn stress(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("MPa", 1e6, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("ksi", 1e3 * LBF_N / (0.0254 * 0.0254), 1),
+            UnitSystem::Si => DisplayUnit::new("MPa", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ksi", 1),
         }
     }
     /// Mud density (SI kg/m3).
     pub fn density(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("kg/m3", 1.0, 0),
-            // 1 lb/US gal = 0.45359237 kg / 3.785411784e-3 m3
-            UnitSystem::Oilfield => DisplayUnit::new("ppg", 0.453_592_37 / 3.785_411_784e-3, 1),
+            UnitSystem::Si => DisplayUnit::new("kg/m3", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ppg", 1),
         }
     }
     /// Curvature rates (SI rad/m), shown in deg per 30 m or deg per 100 ft.
     pub fn dogleg(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("deg/30 m", 1f64.to_radians() / 30.0, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("deg/100 ft", 1f64.to_radians() / (100.0 * FT_M), 0),
+            UnitSystem::Si => DisplayUnit::new("deg/30 m", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("deg/100 ft", 0),
         }
     }
     /// Angle changes or errors per length (SI rad/m), shown per 100 m or per 100 ft (the seed
     /// paper's error metric is per 100 m).
     pub fn per_100(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("deg/100 m", 1f64.to_radians() / 100.0, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("deg/100 ft", 1f64.to_radians() / (100.0 * FT_M), 0),
+            UnitSystem::Si => DisplayUnit::new("deg/100 m", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("deg/100 ft", 0),
         }
     }
     /// Speeds (SI m/s), shown per hour.
     pub fn rop(self) -> DisplayUnit {
         match self {
-            UnitSystem::Si => DisplayUnit::new("m/h", 1.0 / 3600.0, 0),
-            UnitSystem::Oilfield => DisplayUnit::new("ft/h", FT_M / 3600.0, 0),
+            UnitSystem::Si => DisplayUnit::new("m/h", 0),
+            UnitSystem::Oilfield => DisplayUnit::new("ft/h", 0),
         }
     }
 }
