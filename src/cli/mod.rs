@@ -7,7 +7,6 @@ pub mod loads;
 pub mod predict;
 pub mod progress;
 pub mod solve;
-pub mod solve_levels;
 pub mod survey;
 
 use crate::error::InputError;

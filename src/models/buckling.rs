@@ -314,6 +314,61 @@ pub fn zones(marks: &[Mark]) -> Vec<Zone> {
     out
 }
 
+/// Buckled lengths and zones along a string, from its marks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BucklingSummary {
+    /// Length where the compression exceeds the sinusoidal onset (helical included), m: the
+    /// tributary lengths of the marks (half the distance to each neighbour) added up.
+    pub sinusoidal_length_m: f64,
+    /// Length where the compression exceeds the helical onset, m.
+    pub helical_length_m: f64,
+    /// Largest effective compression, N (0 when all in tension).
+    pub max_compression_n: f64,
+    /// The buckled zones ([`zones`]).
+    pub zones: Vec<Zone>,
+}
+
+/// Tributary length (m) of each mark along the string: half the distance to each neighbour.
+fn tributary(marks: &[Mark]) -> Vec<f64> {
+    (0..marks.len())
+        .map(|i| {
+            let lo = if i > 0 {
+                (marks[i].md_m - marks[i - 1].md_m).abs()
+            } else {
+                0.0
+            };
+            let up = if i + 1 < marks.len() {
+                (marks[i + 1].md_m - marks[i].md_m).abs()
+            } else {
+                0.0
+            };
+            0.5 * (lo + up)
+        })
+        .collect()
+}
+
+/// Buckled lengths, largest compression and zones of `marks` (in order along the string).
+pub fn summarize(marks: &[Mark]) -> BucklingSummary {
+    let mut sinusoidal_length_m = 0.0;
+    let mut helical_length_m = 0.0;
+    for (m, l) in marks.iter().zip(tributary(marks)) {
+        match m.state {
+            BuckleState::Sinusoidal => sinusoidal_length_m += l,
+            BuckleState::Helical => {
+                sinusoidal_length_m += l;
+                helical_length_m += l;
+            }
+            _ => {}
+        }
+    }
+    BucklingSummary {
+        sinusoidal_length_m,
+        helical_length_m,
+        max_compression_n: marks.iter().map(|m| m.compression_n).fold(0.0, f64::max),
+        zones: zones(marks),
+    }
+}
+
 /// MD intervals `(top, bottom)` where the marks are in `state`: each run of neighbouring marks
 /// in that state, extended half way to the marks on either side (the tributary lengths that
 /// the buckled lengths of `summary.json` add up). Marks in order along the string.

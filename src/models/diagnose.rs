@@ -12,6 +12,7 @@
 
 use crate::case::Case;
 use crate::models::buckling::{soft_marks, zones, BuckleState};
+use crate::models::levels::FemPart;
 use crate::models::softstring;
 
 /// One-sentence hints on `case` for a non-converged stiff solve (empty when the soft string
@@ -51,6 +52,31 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
         ));
     }
     hints
+}
+
+/// The last state of a stiff solve that did not converge, in one phrase: its last relative
+/// residuals, the largest penetration relative to the clearance, and the MDs of the contacts
+/// that kept switching.
+pub fn solve_state_summary(part: &FemPart) -> String {
+    let stats = &part.stats;
+    let hist = &stats.residual_history;
+    let tail: Vec<String> = hist.iter().rev().take(5).rev().map(|r| format!("{r:.2e}")).collect();
+    let chatter: Vec<String> = stats
+        .chattering_nodes
+        .iter()
+        .take(10)
+        .map(|&i| format!("{:.1} m", part.model.md_ref[i]))
+        .collect();
+    format!(
+        "last relative residuals {}; max penetration {:.2e} of clearance; contacts switching at MD {}",
+        tail.join(", "),
+        stats.max_penetration,
+        if chatter.is_empty() {
+            "none".into()
+        } else {
+            chatter.join(", ")
+        }
+    )
 }
 
 #[cfg(test)]

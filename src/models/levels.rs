@@ -18,9 +18,10 @@
 
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
+use crate::models::buckling::{soft_marks, stiff_marks, Mark};
 use crate::models::fem::bha::{bha_model, default_cut_m};
 use crate::models::fem::model::{Model, TopCondition};
-use crate::models::fem::results::{extract, BitResult, SolveResults};
+use crate::models::fem::results::{extract, BitResult, NodeResult, SolveResults};
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
@@ -257,5 +258,77 @@ pub fn soft_above(case: &Case, part: &FemPart) -> SoftStringResult {
         omega_rad_s: op.omega_rad_s(),
         friction: op.friction,
         max_element_m: softstring::segment_length_m(&case.solver),
+    })
+}
+
+/// A static solve of a case at a fidelity level with what `drillpath solve` reports: the
+/// level's result, the nodes of its stiff part that are reported (the stiff part of a cut model
+/// is reported up to the coupling point, [`coupling_node`]), the buckling marks there and
+/// along the soft part above, and the assumptions the user should know of.
+pub struct StringSolve {
+    /// The level's result.
+    pub level: LevelResult,
+    /// Index of the last reported node of the stiff part (None without a stiff part).
+    pub last_reported_node: Option<usize>,
+    /// Distance of the coupling point above the bit, m (a cut `bha` or `hybrid` model).
+    pub coupling_m: Option<f64>,
+    /// Buckling marks: the stiff part's reported nodes from the bit up, then the soft
+    /// string's points above them.
+    pub marks: Vec<Mark>,
+    /// Assumptions stated in the outputs (e.g. the hole above the first survey station).
+    pub notes: Vec<String>,
+}
+
+impl StringSolve {
+    /// The stiff part's node results from the bit to the last reported node (empty without
+    /// a stiff part).
+    pub fn reported_nodes(&self) -> &[NodeResult] {
+        match (&self.level.fem, self.last_reported_node) {
+            (Some(part), Some(last)) => &part.results.nodes[..=last],
+            _ => &[],
+        }
+    }
+    /// The buckling marks of the stiff part's reported nodes.
+    pub fn stiff_marks(&self) -> &[Mark] {
+        &self.marks[..self.reported_nodes().len()]
+    }
+}
+
+/// Solve `case` at the level of `choice` ([`run_with_progress`]) and add what the outputs of
+/// `drillpath solve` show ([`StringSolve`]).
+pub fn solve_string(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Result<StringSolve, FidelityError> {
+    let level = run_with_progress(case, choice, ctl, on_stage)?;
+    let coupling = level
+        .fem
+        .as_ref()
+        .filter(|_| level.cut_m.is_some())
+        .map(|part| coupling_node(case, &part.model));
+    let last_reported_node = level
+        .fem
+        .as_ref()
+        .map(|part| coupling.unwrap_or(part.model.nodes() - 1));
+    let coupling_m = level
+        .fem
+        .as_ref()
+        .zip(coupling)
+        .map(|(part, k)| part.model.mesh.nodes[k].s_m);
+    let mut marks = Vec::new();
+    if let (Some(part), Some(last)) = (&level.fem, last_reported_node) {
+        marks.extend(stiff_marks(case, &part.model, &part.results.nodes[..=last]));
+    }
+    if let Some(soft) = &level.soft {
+        marks.extend(soft_marks(case, soft, usize::from(level.fem.is_some())));
+    }
+    Ok(StringSolve {
+        level,
+        last_reported_node,
+        coupling_m,
+        marks,
+        notes: case.string_above_survey_note().into_iter().collect(),
     })
 }

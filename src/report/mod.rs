@@ -3,7 +3,6 @@
 pub mod display_units;
 pub mod html;
 pub mod inputs;
-pub mod levels_output;
 pub mod loads_output;
 pub mod plots;
 pub mod predict_output;
@@ -11,6 +10,7 @@ pub mod predict_report;
 pub mod schematic;
 pub mod solve_output;
 pub mod solve_report;
+pub mod solve_text;
 pub mod survey_table;
 
 use std::io::Write;
@@ -48,6 +48,37 @@ pub fn finite(x: f64) -> Result<f64, String> {
     } else {
         Err(format!("non-finite value {x} in output"))
     }
+}
+
+/// A number for JSON output: a finite value serializes as a number; NaN or infinity is an
+/// internal error (the serialization fails), never written.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Finite(pub f64);
+
+impl serde::Serialize for Finite {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        if self.0.is_finite() {
+            s.serialize_f64(self.0)
+        } else {
+            Err(serde::ser::Error::custom(format!(
+                "non-finite value {} in output",
+                self.0
+            )))
+        }
+    }
+}
+
+/// `Some(Finite(x / si_per_unit))`, or None: an optional SI value for JSON output in a unit
+/// (`si_per_unit`: 1e3 for kN from N; None is `null`).
+pub fn in_unit(x: Option<f64>, si_per_unit: f64) -> Option<Finite> {
+    x.map(|v| Finite(v / si_per_unit))
+}
+
+/// Pretty JSON text of `value` with its object keys in alphabetical order (the order of every
+/// `summary.json`); a non-finite number is an error naming it.
+pub fn json_text<T: serde::Serialize>(value: &T) -> Result<String, String> {
+    let v = serde_json::to_value(value).map_err(|e| e.to_string())?;
+    serde_json::to_string_pretty(&v).map_err(|e| e.to_string())
 }
 
 /// Format a finite number for CSV output; NaN or infinity is an internal error, never printed.

@@ -1,86 +1,349 @@
-//! `solve` outputs: `summary.json` and `string.csv` with the interface's names (kN, kN.m, mm, deg, MPa).
+//! `solve` outputs at every fidelity level: `summary.json` and `string.csv` with the
+//! interface's names (kN, kN.m, mm, deg, MPa). Values a level does not compute are `null` in
+//! JSON and empty cells in CSV.
 
-use super::{finite, num};
-use crate::models::fem::results::SolveResults;
-use crate::models::fem::solve::SolveStats;
-use serde_json::json;
+use super::{in_unit, num, Finite};
+use crate::case::{Case, Level};
+use crate::models::buckling::{summarize, Mark};
+use crate::models::fem::results::NodeResult;
+use crate::models::levels::{LevelResult, StringSolve};
+use crate::models::softstring::SoftStringResult;
+use serde::Serialize;
 
-/// Header of `string.csv` (interface.md).
+/// Header of `string.csv`: the interface's columns.
 pub const STRING_HEADER: &str = "md_m,north_m,east_m,tvd_m,disp_high_mm,disp_right_mm,clearance_mm,contact_force_kN,contact_angle_deg,axial_force_kN,torque_kNm,bending_moment_kNm,von_mises_MPa";
+
+/// Columns appended to `string.csv` after the interface's (kN; empty where the component
+/// cannot buckle).
+pub const BUCKLING_COLUMNS: &str = "sinusoidal_onset_kN,helical_onset_kN,buckling";
 
 /// Contacts reported in the summary: nodes with a normal force above this, N.
 pub const CONTACT_THRESHOLD_N: f64 = 1.0;
 
-/// `string.csv` text, one row per node from the bit up.
-pub fn string_csv(res: &SolveResults) -> Result<String, String> {
-    let mut out = String::from(STRING_HEADER);
-    out.push('\n');
-    for n in &res.nodes {
-        let row = [
-            num(n.md_m, 3)?,
-            num(n.position.x, 4)?,
-            num(n.position.y, 4)?,
-            num(n.position.z, 4)?,
-            num(n.disp_high_m * 1e3, 3)?,
-            num(n.disp_right_m * 1e3, 3)?,
-            num(n.clearance_m * 1e3, 3)?,
-            num(n.contact_force_n / 1e3, 4)?,
-            num(n.contact_angle_deg, 2)?,
-            num(n.axial_force_n / 1e3, 3)?,
-            num(n.torque_nm / 1e3, 4)?,
-            num(n.bending_moment_nm / 1e3, 4)?,
-            num(n.von_mises_pa / 1e6, 3)?,
-        ];
-        out.push_str(&row.join(","));
+/// How the buckling onsets are computed (the `buckling.onsets` text of `summary.json`).
+pub const ONSETS_TEXT: &str = "Dawson-Paslay / Chen-Lin-Cheatham with the curved-hole wall load, vertical-hole floor 2.55 / 5.55 (EI w_b^2)^(1/3)";
+
+/// The `bit` key.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct BitJson {
+    md_m: Finite,
+    wob_kN: Finite,
+    build_force_kN: Option<Finite>,
+    walk_force_kN: Option<Finite>,
+    tilt_inc_deg: Option<Finite>,
+    tilt_azi_deg: Option<Finite>,
+    torque_kNm: Finite,
+}
+
+/// The `surface` key.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct SurfaceJson {
+    hook_load_kN: Option<Finite>,
+    torque_kNm: Option<Finite>,
+}
+
+/// One entry of the `contacts` key.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct ContactJson {
+    md_m: Finite,
+    force_kN: Finite,
+    angle_deg: Finite,
+}
+
+/// The `equilibrium` key of a stiff solve.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct EquilibriumJson {
+    force_imbalance_kN: Finite,
+    moment_imbalance_kNm: Finite,
+    largest_force_kN: Finite,
+}
+
+/// The `solver` key (the stiff solve's statistics; the soft string's have fewer keys).
+#[derive(Serialize)]
+struct SolverJson {
+    converged: bool,
+    iterations: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    factorizations: Option<usize>,
+    dofs: usize,
+    elements: usize,
+    seconds: Finite,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    final_residual: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_penetration_rel: Option<Finite>,
+}
+
+/// The `fidelity` key: the level asked for and run, and what it does not compute.
+#[derive(Serialize)]
+struct FidelityJson {
+    requested: &'static str,
+    used: &'static str,
+    reason: String,
+    cut_m: Option<Finite>,
+    coupling_m: Option<Finite>,
+    surface_values_from: &'static str,
+    not_computed: Vec<&'static str>,
+    seconds: Finite,
+}
+
+/// One entry of `buckling.zones`.
+#[derive(Serialize)]
+struct ZoneJson {
+    top_md_m: Finite,
+    bottom_md_m: Finite,
+    state: &'static str,
+    max_compression_over_sinusoidal_onset: Finite,
+}
+
+/// The `buckling` key: model compared, buckled lengths, zones.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct BucklingJson {
+    axial_force_from: &'static str,
+    onsets: &'static str,
+    sinusoidal_length_m: Finite,
+    helical_length_m: Finite,
+    max_compression_kN: Finite,
+    zones: Vec<ZoneJson>,
+}
+
+/// `summary.json` of `drillpath solve`.
+#[derive(Serialize)]
+pub struct SolveSummary {
+    bit: BitJson,
+    surface: SurfaceJson,
+    contacts: Vec<ContactJson>,
+    equilibrium: Option<EquilibriumJson>,
+    solver: SolverJson,
+    fidelity: FidelityJson,
+    buckling: BucklingJson,
+    notes: Vec<String>,
+}
+
+/// The `buckling` key of `marks`, whose axial force comes from `model`.
+fn buckling_json(marks: &[Mark], model: &'static str) -> BucklingJson {
+    let b = summarize(marks);
+    BucklingJson {
+        axial_force_from: model,
+        onsets: ONSETS_TEXT,
+        sinusoidal_length_m: Finite(b.sinusoidal_length_m),
+        helical_length_m: Finite(b.helical_length_m),
+        max_compression_kN: Finite(b.max_compression_n / 1e3),
+        zones: b
+            .zones
+            .iter()
+            .map(|z| ZoneJson {
+                top_md_m: Finite(z.top_md_m),
+                bottom_md_m: Finite(z.bottom_md_m),
+                state: z.state.name(),
+                max_compression_over_sinusoidal_onset: Finite(z.max_ratio),
+            })
+            .collect(),
+    }
+}
+
+/// Where the surface values of `lr` come from, and what its level does not compute.
+fn scope(lr: &LevelResult) -> (&'static str, Vec<&'static str>) {
+    let whole_stiff = matches!(lr.choice.level, Level::Bha | Level::Hybrid) && lr.cut_m.is_none();
+    match lr.choice.level {
+        _ if whole_stiff => ("stiff whole string (not longer than the cut)", vec![]),
+        Level::Soft => (
+            "soft string",
+            vec![
+                "bit build and walk force",
+                "bit tilt",
+                "contacts",
+                "bending moment",
+                "von Mises stress",
+            ],
+        ),
+        Level::Bha => (
+            "not computed (the stiff model ends at the cut)",
+            vec!["hook load", "surface torque", "string above the coupling point"],
+        ),
+        Level::Hybrid => (
+            "soft string from the coupling point up, started from the stiff model's axial force and torque there",
+            vec!["bending, contacts and stresses above the coupling point"],
+        ),
+        Level::Whole => ("stiff whole string", vec![]),
+    }
+}
+
+fn fidelity_json(s: &StringSolve) -> FidelityJson {
+    let lr = &s.level;
+    let (surface, missing) = scope(lr);
+    FidelityJson {
+        requested: lr.choice.requested.name(),
+        used: lr.choice.level.name(),
+        reason: lr.choice.reason.clone(),
+        cut_m: in_unit(lr.cut_m, 1.0),
+        coupling_m: in_unit(s.coupling_m, 1.0),
+        surface_values_from: surface,
+        not_computed: missing,
+        seconds: Finite(lr.seconds),
+    }
+}
+
+fn solver_json(lr: &LevelResult) -> SolverJson {
+    match &lr.fem {
+        Some(p) => SolverJson {
+            converged: p.converged,
+            iterations: p.stats.iterations,
+            factorizations: Some(p.stats.factorizations),
+            dofs: p.model.dofs(),
+            elements: p.model.nodes() - 1,
+            seconds: Finite(lr.seconds),
+            final_residual: Some(Finite(*p.stats.residual_history.last().unwrap_or(&0.0))),
+            max_penetration_rel: Some(Finite(p.stats.max_penetration)),
+        },
+        None => SolverJson {
+            converged: true,
+            iterations: 0,
+            factorizations: None,
+            dofs: 0,
+            elements: lr.soft.as_ref().map(|s| s.points.len().saturating_sub(1)).unwrap_or(0),
+            seconds: Finite(lr.seconds),
+            final_residual: None,
+            max_penetration_rel: None,
+        },
+    }
+}
+
+/// Name of the model whose axial force the buckling marks of `level` compare.
+fn axial_force_model(level: Level) -> &'static str {
+    match level {
+        Level::Soft => "soft string",
+        Level::Bha => "stiff FEM below the coupling point",
+        Level::Hybrid => "stiff FEM below the coupling point, soft string above",
+        Level::Whole => "stiff FEM",
+    }
+}
+
+impl SolveSummary {
+    /// The summary of the solve `s` of `case`.
+    pub fn new(case: &Case, s: &StringSolve) -> SolveSummary {
+        let lr = &s.level;
+        let bit = lr.bit;
+        SolveSummary {
+            bit: BitJson {
+                md_m: Finite(case.operation.bit_md_m),
+                wob_kN: Finite(lr.wob_n / 1e3),
+                build_force_kN: in_unit(bit.map(|b| b.build_force_n), 1e3),
+                walk_force_kN: in_unit(bit.map(|b| b.walk_force_n), 1e3),
+                tilt_inc_deg: bit.map(|b| Finite(b.tilt_inc_rad.to_degrees())),
+                tilt_azi_deg: bit.map(|b| Finite(b.tilt_azi_rad.to_degrees())),
+                torque_kNm: Finite(lr.bit_torque_nm / 1e3),
+            },
+            surface: SurfaceJson {
+                hook_load_kN: in_unit(lr.hook_load_n, 1e3),
+                torque_kNm: in_unit(lr.surface_torque_nm, 1e3),
+            },
+            contacts: s
+                .reported_nodes()
+                .iter()
+                .filter(|n| n.contact_force_n > CONTACT_THRESHOLD_N)
+                .map(|n| ContactJson {
+                    md_m: Finite(n.md_m),
+                    force_kN: Finite(n.contact_force_n / 1e3),
+                    angle_deg: Finite(n.contact_angle_deg),
+                })
+                .collect(),
+            equilibrium: lr.fem.as_ref().map(|p| EquilibriumJson {
+                force_imbalance_kN: Finite(p.results.force_imbalance_n.norm() / 1e3),
+                moment_imbalance_kNm: Finite(p.results.moment_imbalance_nm.norm() / 1e3),
+                largest_force_kN: Finite(p.results.largest_force_n / 1e3),
+            }),
+            solver: solver_json(lr),
+            fidelity: fidelity_json(s),
+            buckling: buckling_json(&s.marks, axial_force_model(lr.choice.level)),
+            notes: s.notes.clone(),
+        }
+    }
+}
+
+/// One `string.csv` row of a stiff node (interface columns).
+fn node_row(n: &NodeResult) -> Result<String, String> {
+    Ok([
+        num(n.md_m, 3)?,
+        num(n.position.x, 4)?,
+        num(n.position.y, 4)?,
+        num(n.position.z, 4)?,
+        num(n.disp_high_m * 1e3, 3)?,
+        num(n.disp_right_m * 1e3, 3)?,
+        num(n.clearance_m * 1e3, 3)?,
+        num(n.contact_force_n / 1e3, 4)?,
+        num(n.contact_angle_deg, 2)?,
+        num(n.axial_force_n / 1e3, 3)?,
+        num(n.torque_nm / 1e3, 4)?,
+        num(n.bending_moment_nm / 1e3, 4)?,
+        num(n.von_mises_pa / 1e6, 3)?,
+    ]
+    .join(","))
+}
+
+/// One `string.csv` row of a soft-string point (columns the soft string does not compute
+/// left empty; the contact force is the wall load per length times the point's share of the
+/// string).
+fn soft_row(case: &Case, soft: &SoftStringResult, i: usize) -> Result<String, String> {
+    let p = &soft.points[i];
+    let pos = case.well.path.point_at(p.md_m).position;
+    let lo = if i > 0 {
+        (soft.points[i - 1].md_m - p.md_m).abs()
+    } else {
+        0.0
+    };
+    let up = soft.points.get(i + 1).map(|q| (p.md_m - q.md_m).abs()).unwrap_or(0.0);
+    let contact = p.normal_force_per_m * 0.5 * (lo + up);
+    Ok([
+        num(p.md_m, 3)?,
+        num(pos.x, 4)?,
+        num(pos.y, 4)?,
+        num(pos.z, 4)?,
+        String::new(),
+        String::new(),
+        String::new(),
+        num(contact / 1e3, 4)?,
+        String::new(),
+        num(p.tension_n / 1e3, 3)?,
+        num(p.torque_nm / 1e3, 4)?,
+        String::new(),
+        String::new(),
+    ]
+    .join(","))
+}
+
+/// The buckling cells of a mark.
+fn mark_cells(m: &Mark) -> Result<String, String> {
+    let f = |x: Option<f64>| x.map(|v| num(v / 1e3, 3)).transpose().map(|v| v.unwrap_or_default());
+    Ok(format!("{},{},{}", f(m.sinusoidal_n)?, f(m.helical_n)?, m.state.name()))
+}
+
+/// `string.csv` of the solve `s` of `case`: the stiff part's reported nodes from the bit up,
+/// then the soft string's points above them, each with its buckling columns.
+pub fn string_csv(case: &Case, s: &StringSolve) -> Result<String, String> {
+    let mut rows = Vec::with_capacity(s.marks.len());
+    for n in s.reported_nodes() {
+        rows.push(node_row(n)?);
+    }
+    if let Some(soft) = &s.level.soft {
+        for i in usize::from(s.level.fem.is_some())..soft.points.len() {
+            rows.push(soft_row(case, soft, i)?);
+        }
+    }
+    if rows.len() != s.marks.len() {
+        return Err(format!("{} rows but {} buckling marks", rows.len(), s.marks.len()));
+    }
+    let mut out = format!("{STRING_HEADER},{BUCKLING_COLUMNS}\n");
+    for (row, m) in rows.iter().zip(&s.marks) {
+        out.push_str(row);
+        out.push(',');
+        out.push_str(&mark_cells(m)?);
         out.push('\n');
     }
     Ok(out)
-}
-
-/// `summary.json` value.
-pub fn summary_json(
-    res: &SolveResults,
-    stats: &SolveStats,
-    converged: bool,
-    dofs: usize,
-    elements: usize,
-) -> Result<serde_json::Value, String> {
-    let b = &res.bit;
-    let contacts: Vec<serde_json::Value> = res
-        .nodes
-        .iter()
-        .filter(|n| n.contact_force_n > CONTACT_THRESHOLD_N)
-        .map(|n| Ok(json!({"md_m": finite(n.md_m)?, "force_kN": finite(n.contact_force_n / 1e3)?, "angle_deg": finite(n.contact_angle_deg)?})))
-        .collect::<Result<_, String>>()?;
-    Ok(json!({
-        "bit": {
-            "md_m": finite(b.md_m)?,
-            "wob_kN": finite(b.wob_n / 1e3)?,
-            "build_force_kN": finite(b.build_force_n / 1e3)?,
-            "walk_force_kN": finite(b.walk_force_n / 1e3)?,
-            "tilt_inc_deg": finite(b.tilt_inc_rad.to_degrees())?,
-            "tilt_azi_deg": finite(b.tilt_azi_rad.to_degrees())?,
-            "torque_kNm": finite(b.torque_nm / 1e3)?,
-        },
-        "surface": {
-            "hook_load_kN": finite(res.hook_load_n / 1e3)?,
-            "torque_kNm": finite(res.surface_torque_nm / 1e3)?,
-        },
-        "contacts": contacts,
-        "equilibrium": {
-            "force_imbalance_kN": finite(res.force_imbalance_n.norm() / 1e3)?,
-            "moment_imbalance_kNm": finite(res.moment_imbalance_nm.norm() / 1e3)?,
-            "largest_force_kN": finite(res.largest_force_n / 1e3)?,
-        },
-        "solver": {
-            "converged": converged,
-            "iterations": stats.iterations,
-            "factorizations": stats.factorizations,
-            "dofs": dofs,
-            "elements": elements,
-            "seconds": finite(stats.seconds)?,
-            "final_residual": finite(*stats.residual_history.last().unwrap_or(&0.0))?,
-            "max_penetration_rel": finite(stats.max_penetration)?,
-        }
-    }))
 }

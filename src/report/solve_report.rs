@@ -6,10 +6,11 @@ use super::inputs::echo_inputs;
 use super::plots::{render, Band, Chart, Series, Style};
 use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
-use crate::case::Case;
+use crate::case::{Case, Level};
 use crate::models::buckling::{spans, BuckleState, Mark};
 use crate::models::fem::results::SolveResults;
 use crate::models::fem::solve::SolveStats;
+use crate::models::levels::StringSolve;
 
 /// Ids of the solve report's figures (the tests look for each).
 pub const SOLVE_FIGURES: &[&str] = &[
@@ -380,4 +381,67 @@ pub fn write(
     let html = solve_report(case, res, marks, stats, converged, scope)
         .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
     super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+}
+
+/// Write the HTML report of the solve `s` of `case` to `file` (atomically), in `units`: the
+/// whole string, or the stiff part of a `bha` or `hybrid` result from the bit to the coupling
+/// point with the level's hook load and surface torque (hybrid) or none (bha). A `soft`
+/// result has nothing stiff to draw: an error.
+pub fn write_solve(file: &std::path::Path, case: &Case, s: &StringSolve, units: UnitSystem) -> anyhow::Result<()> {
+    let lr = &s.level;
+    let Some(part) = &lr.fem else {
+        anyhow::bail!(
+            "internal error: no stiff part to report for fidelity {}",
+            lr.choice.level.name()
+        );
+    };
+    if lr.choice.level == Level::Whole {
+        let options = ReportOptions {
+            units,
+            ..Default::default()
+        };
+        return write(
+            file,
+            case,
+            &part.results,
+            &s.marks,
+            &part.stats,
+            part.converged,
+            &options,
+        );
+    }
+    let mut res = SolveResults {
+        nodes: s.reported_nodes().to_vec(),
+        ..part.results.clone()
+    };
+    let surface = match (lr.hook_load_n, lr.surface_torque_nm) {
+        (Some(h), Some(t)) => {
+            res.hook_load_n = h;
+            res.surface_torque_nm = t;
+            true
+        }
+        _ => false,
+    };
+    let shown = res
+        .nodes
+        .last()
+        .map(|n| case.operation.bit_md_m - n.md_m)
+        .unwrap_or(0.0);
+    let note = format!(
+        "Fidelity {}: stiff model of the bottom {} of the string only (cut {} above the bit, results shown up to the coupling point); {}",
+        lr.choice.level.name(),
+        units.depth().fmt(shown, 1),
+        units.depth().fmt(lr.cut_m.unwrap_or(shown), 1),
+        if surface {
+            "hook load and surface torque from the soft string above the coupling point."
+        } else {
+            "no hook load or surface torque (use hybrid or whole)."
+        }
+    );
+    let options = ReportOptions {
+        units,
+        note: Some(note),
+        no_surface_values: !surface,
+    };
+    write(file, case, &res, s.stiff_marks(), &part.stats, lr.converged, &options)
 }

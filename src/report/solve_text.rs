@@ -1,0 +1,205 @@
+//! The readable summary of `drillpath solve` on stdout, in the user's units.
+
+use super::display_units::{fixed, signed, UnitSystem};
+use super::solve_output::CONTACT_THRESHOLD_N;
+use crate::case::{Case, Level};
+use crate::models::buckling::summarize;
+use crate::models::fem::results::BitResult;
+use crate::models::levels::StringSolve;
+use std::io::Write;
+use std::path::Path;
+
+/// What the summary shows besides the solve: where it came from and where it went.
+pub struct SolveView<'a> {
+    /// The case file as the user named it.
+    pub case_file: &'a Path,
+    /// Units shown.
+    pub units: UnitSystem,
+    /// The `--out` directory, when files were written.
+    pub out_dir: Option<&'a Path>,
+}
+
+/// The lines every level prints about the operation and the bit: mode, bit MD, WOB, rpm; bit
+/// side forces, tilt and torque (or only the torque for the soft string).
+pub struct BitLines<'a> {
+    /// Units shown.
+    pub units: UnitSystem,
+    /// The case solved.
+    pub case: &'a Case,
+    /// Weight on bit, N.
+    pub wob_n: f64,
+    /// Bit forces and tilt (None for the soft string).
+    pub bit: Option<&'a BitResult>,
+    /// Bit torque, N.m.
+    pub bit_torque_nm: f64,
+}
+
+impl BitLines<'_> {
+    /// Write the two lines to `out`.
+    pub fn write(&self, out: &mut impl Write) -> std::io::Result<()> {
+        let (du, fu, tu) = (self.units.depth(), self.units.force(), self.units.torque());
+        let op = &self.case.operation;
+        // the string turns only when the mode rotates it (sliding and tripping: the rpm of the
+        // case is not applied, Operation::omega_rad_s)
+        let rotation = if op.omega_rad_s() > 0.0 {
+            format!("{} rpm", fixed(op.rpm, 0))
+        } else {
+            "string not rotating".to_string()
+        };
+        writeln!(
+            out,
+            "  mode {}, bit at {} MD, WOB {}, {rotation}",
+            op.mode.name(),
+            du.fmt(op.bit_md_m, 2),
+            fu.fmt(self.wob_n, 1),
+        )?;
+        match self.bit {
+            Some(b) => writeln!(
+                out,
+                "  bit: build force {}, walk force {}, tilt inc {} deg, tilt azi {} deg, torque {}",
+                fu.fmt_signed(b.build_force_n, 3),
+                fu.fmt_signed(b.walk_force_n, 3),
+                signed(b.tilt_inc_rad.to_degrees(), 4),
+                signed(b.tilt_azi_rad.to_degrees(), 4),
+                tu.fmt(b.torque_nm, 2)
+            ),
+            None => writeln!(
+                out,
+                "  bit: torque {}; side forces and tilt not computed (soft string: no bending)",
+                tu.fmt(self.bit_torque_nm, 2)
+            ),
+        }
+    }
+}
+
+/// Write the readable summary of the solve `s` of `case` to `out`: the whole string's
+/// (contacts near the bit, solver statistics) or another level's (cut, buckling, time).
+pub fn write_summary(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveView) -> std::io::Result<()> {
+    let lr = &s.level;
+    writeln!(out, "solve: {} ({})", case.name, view.case_file.display())?;
+    writeln!(out, "  fidelity {}: {}", lr.choice.level.name(), lr.choice.reason)?;
+    if lr.choice.level == Level::Whole {
+        write_whole(out, case, s, view)
+    } else {
+        write_level(out, case, s, view)
+    }
+}
+
+fn not_converged_line(out: &mut impl Write) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "  WARNING: NOT CONVERGED - results below are flagged and not valid"
+    )
+}
+
+fn wrote_line(out: &mut impl Write, view: &SolveView) -> std::io::Result<()> {
+    if let Some(dir) = view.out_dir {
+        writeln!(out, "  wrote {}/summary.json and string.csv", dir.display())?;
+    }
+    Ok(())
+}
+
+fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveView) -> std::io::Result<()> {
+    let lr = &s.level;
+    let Some(part) = &lr.fem else {
+        return Ok(());
+    };
+    let res = &part.results;
+    let (du, fu) = (view.units.depth(), view.units.force());
+    let b = &res.bit;
+    if !part.converged {
+        not_converged_line(out)?;
+    }
+    BitLines {
+        units: view.units,
+        case,
+        wob_n: b.wob_n,
+        bit: Some(b),
+        bit_torque_nm: b.torque_nm,
+    }
+    .write(out)?;
+    writeln!(
+        out,
+        "  surface: hook load {}, torque {}",
+        fu.fmt(res.hook_load_n, 1),
+        view.units.torque().fmt(res.surface_torque_nm, 2)
+    )?;
+    let contacts: Vec<_> = res
+        .nodes
+        .iter()
+        .filter(|n| n.contact_force_n > CONTACT_THRESHOLD_N)
+        .collect();
+    if let (Some(first), Some(last)) = (contacts.first(), contacts.last()) {
+        let near: Vec<String> = contacts
+            .iter()
+            .filter(|n| b.md_m - n.md_m < 60.0)
+            .take(6)
+            .map(|n| {
+                format!(
+                    "{}: {} at {} deg",
+                    du.fmt(b.md_m - n.md_m, 1),
+                    fu.fmt(n.contact_force_n, 2),
+                    fixed(n.contact_angle_deg, 0)
+                )
+            })
+            .collect();
+        writeln!(
+            out,
+            "  contacts: {} nodes between {} and {} MD; max {}",
+            contacts.len(),
+            du.fmt(last.md_m, 1),
+            du.fmt(first.md_m, 1),
+            fu.fmt(contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max), 2)
+        )?;
+        if !near.is_empty() {
+            writeln!(out, "  near the bit (distance above bit): {}", near.join("; "))?;
+        }
+    } else {
+        writeln!(out, "  contacts: none")?;
+    }
+    writeln!(out, "  solver: {} iterations, {} factorizations, {} DOF, {} elements, {:.3} s, equilibrium error {:.1e} of the largest force",
+        part.stats.iterations, part.stats.factorizations, part.model.dofs(), part.model.nodes() - 1, part.stats.seconds,
+        res.force_imbalance_n.norm() / res.largest_force_n.max(1.0))?;
+    wrote_line(out, view)
+}
+
+fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveView) -> std::io::Result<()> {
+    let lr = &s.level;
+    let (du, fu, tu) = (view.units.depth(), view.units.force(), view.units.torque());
+    if let Some(cut) = lr.cut_m {
+        writeln!(
+            out,
+            "  stiff model cut {} above the bit (on the wall, parallel to the hole); results reported up to {} above the bit",
+            du.fmt(cut, 1),
+            du.fmt(s.coupling_m.unwrap_or(cut), 1)
+        )?;
+    }
+    if !lr.converged {
+        not_converged_line(out)?;
+    }
+    BitLines {
+        units: view.units,
+        case,
+        wob_n: lr.wob_n,
+        bit: lr.bit.as_ref(),
+        bit_torque_nm: lr.bit_torque_nm,
+    }
+    .write(out)?;
+    match (lr.hook_load_n, lr.surface_torque_nm) {
+        (Some(h), Some(t)) => writeln!(out, "  surface: hook load {}, torque {}", fu.fmt(h, 1), tu.fmt(t, 2))?,
+        _ => writeln!(
+            out,
+            "  surface: not computed (bha: the stiff model ends at the cut; use hybrid or whole)"
+        )?,
+    }
+    let b = summarize(&s.marks);
+    writeln!(
+        out,
+        "  buckling: sinusoidal over {}, helical over {} (max compression {})",
+        du.fmt(b.sinusoidal_length_m, 1),
+        du.fmt(b.helical_length_m, 1),
+        fu.fmt(b.max_compression_n, 1)
+    )?;
+    writeln!(out, "  time {:.4} s", lr.seconds)?;
+    wrote_line(out, view)
+}
