@@ -4,7 +4,7 @@
 
 use drillpath::case::Case;
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use drillpath::predict::backanalysis::{error_stats, intervals, run_intervals, IntervalPlan};
+use drillpath::predict::backanalysis::{cut_intervals, error_stats, run_intervals, IntervalPlan};
 use drillpath::predict::calibrate::{calibrate, FitParameter};
 use drillpath::predict::march::{predict, MarchSettings, Prediction, StepScheme};
 use drillpath::predict::track::interval_rates;
@@ -311,7 +311,7 @@ fn calibration_round_trip_recovers_the_law() {
     }
     let start = "lateral_drillability = 0.6\nwalk_angle = \"0 deg\"";
     let case = case_with(&survey, PENDULUM, 100.0, start);
-    let list = intervals(
+    let list = cut_intervals(
         &case.well.path,
         &IntervalPlan {
             from_md_m: 200.0,

@@ -7,6 +7,7 @@ pub mod loads_output;
 pub mod plots;
 pub mod predict_output;
 pub mod predict_report;
+pub mod predict_text;
 pub mod schematic;
 pub mod solve_output;
 pub mod solve_report;

@@ -1,13 +1,16 @@
 //! Outputs of `predict` and `backanalyze`: `trajectory.csv` (interface.md columns) and the
 //! JSON summaries.
 
-use super::{finite, num};
+use super::{num, Finite};
+use crate::case::{Case, Choice};
 use crate::models::fem::results::BitResult;
-use crate::predict::backanalysis::{ErrorStats, IntervalResult};
+use crate::predict::backanalysis::{Backanalysis, BackanalysisPlan, ErrorStats, IntervalResult};
 use crate::predict::calibrate::{Calibration, FitParameter};
+use crate::predict::forecast::Forecast;
 use crate::predict::law::LawParams;
 use crate::predict::track::{IntervalRates, TrackingErrors, TrajectoryRow};
-use serde_json::{json, Value};
+use serde::Serialize;
+use std::path::Path;
 
 /// Header of `trajectory.csv` (interface.md).
 pub const TRAJECTORY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN";
@@ -79,83 +82,169 @@ pub fn backanalysis_csv(results: &[IntervalResult]) -> Result<String, String> {
     Ok(out)
 }
 
-/// The law's parameters as JSON (angles in degrees).
-pub fn law_json(law: &str, p: &LawParams, formations: usize) -> Result<Value, String> {
-    Ok(json!({
-        "law": law,
-        "lateral_drillability": finite(p.lateral_drillability)?,
-        "walk_angle_deg": finite(p.walk_angle_rad.to_degrees())?,
-        "rock_anisotropy": finite(p.rock_anisotropy)?,
-        "dip_deg": finite(p.dip_rad.to_degrees())?,
-        "dip_direction_deg": finite(p.dip_direction_rad.to_degrees())?,
-        "formation_intervals": formations,
-    }))
+/// The law's parameters (`bit_rock` key; angles in degrees).
+#[derive(Serialize)]
+pub struct LawJson {
+    law: String,
+    lateral_drillability: Finite,
+    walk_angle_deg: Finite,
+    rock_anisotropy: Finite,
+    dip_deg: Finite,
+    dip_direction_deg: Finite,
+    formation_intervals: usize,
 }
 
-/// Rates over an interval as JSON.
-pub fn rates_json(r: &IntervalRates) -> Result<Value, String> {
-    Ok(json!({
-        "length_m": finite(r.length_m)?,
-        "build_rate_deg_per_30m": finite(r.build_rate_rad_per_30m.to_degrees())?,
-        "walk_rate_deg_per_30m": finite(r.walk_rate_rad_per_30m.to_degrees())?,
-        "mean_build_force_kN": finite(r.mean_build_force_n / 1e3)?,
-        "mean_walk_force_kN": finite(r.mean_walk_force_n / 1e3)?,
-        "mean_tilt_inc_deg": finite(r.mean_tilt_inc_rad.to_degrees())?,
-        "mean_tilt_azi_deg": finite(r.mean_tilt_azi_rad.to_degrees())?,
-    }))
+impl LawJson {
+    /// The law named `law` with parameters `p` and `formations` formation intervals.
+    pub fn new(law: &str, p: &LawParams, formations: usize) -> LawJson {
+        LawJson {
+            law: law.to_string(),
+            lateral_drillability: Finite(p.lateral_drillability),
+            walk_angle_deg: Finite(p.walk_angle_rad.to_degrees()),
+            rock_anisotropy: Finite(p.rock_anisotropy),
+            dip_deg: Finite(p.dip_rad.to_degrees()),
+            dip_direction_deg: Finite(p.dip_direction_rad.to_degrees()),
+            formation_intervals: formations,
+        }
+    }
 }
 
-/// Tracking errors as JSON.
-pub fn tracking_json(e: &TrackingErrors) -> Result<Value, String> {
-    Ok(json!({
-        "stations_compared": e.stations,
-        "end_md_m": finite(e.end_md_m)?,
-        "end_inc_err_deg": finite(e.end_inc_err_rad.to_degrees())?,
-        "end_azi_err_deg": finite(e.end_azi_err_rad.to_degrees())?,
-        "inc_err_per_100m_deg": finite(e.inc_err_per_100m_rad.to_degrees())?,
-        "azi_err_per_100m_deg": finite(e.azi_err_per_100m_rad.to_degrees())?,
-        "max_abs_inc_err_deg": finite(e.max_abs_inc_err_rad.to_degrees())?,
-        "max_abs_azi_err_deg": finite(e.max_abs_azi_err_rad.to_degrees())?,
-    }))
+/// Rates over an interval (`rates` key).
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+pub struct RatesJson {
+    length_m: Finite,
+    build_rate_deg_per_30m: Finite,
+    walk_rate_deg_per_30m: Finite,
+    mean_build_force_kN: Finite,
+    mean_walk_force_kN: Finite,
+    mean_tilt_inc_deg: Finite,
+    mean_tilt_azi_deg: Finite,
 }
 
-/// Back-analysis error statistics as JSON (interface keys `inc_err_per_100m_deg` and
+impl From<&IntervalRates> for RatesJson {
+    fn from(r: &IntervalRates) -> RatesJson {
+        RatesJson {
+            length_m: Finite(r.length_m),
+            build_rate_deg_per_30m: Finite(r.build_rate_rad_per_30m.to_degrees()),
+            walk_rate_deg_per_30m: Finite(r.walk_rate_rad_per_30m.to_degrees()),
+            mean_build_force_kN: Finite(r.mean_build_force_n / 1e3),
+            mean_walk_force_kN: Finite(r.mean_walk_force_n / 1e3),
+            mean_tilt_inc_deg: Finite(r.mean_tilt_inc_rad.to_degrees()),
+            mean_tilt_azi_deg: Finite(r.mean_tilt_azi_rad.to_degrees()),
+        }
+    }
+}
+
+/// Tracking errors (`tracking` key).
+#[derive(Serialize)]
+pub struct TrackingJson {
+    stations_compared: usize,
+    end_md_m: Finite,
+    end_inc_err_deg: Finite,
+    end_azi_err_deg: Finite,
+    inc_err_per_100m_deg: Finite,
+    azi_err_per_100m_deg: Finite,
+    max_abs_inc_err_deg: Finite,
+    max_abs_azi_err_deg: Finite,
+}
+
+impl From<&TrackingErrors> for TrackingJson {
+    fn from(e: &TrackingErrors) -> TrackingJson {
+        TrackingJson {
+            stations_compared: e.stations,
+            end_md_m: Finite(e.end_md_m),
+            end_inc_err_deg: Finite(e.end_inc_err_rad.to_degrees()),
+            end_azi_err_deg: Finite(e.end_azi_err_rad.to_degrees()),
+            inc_err_per_100m_deg: Finite(e.inc_err_per_100m_rad.to_degrees()),
+            azi_err_per_100m_deg: Finite(e.azi_err_per_100m_rad.to_degrees()),
+            max_abs_inc_err_deg: Finite(e.max_abs_inc_err_rad.to_degrees()),
+            max_abs_azi_err_deg: Finite(e.max_abs_azi_err_rad.to_degrees()),
+        }
+    }
+}
+
+/// Back-analysis error statistics (interface keys `inc_err_per_100m_deg` and
 /// `azi_err_per_100m_deg` are the mean absolute errors per 100 m).
-pub fn error_stats_json(e: &ErrorStats) -> Result<Value, String> {
-    Ok(json!({
-        "intervals": e.intervals,
-        "inc_err_per_100m_deg": finite(e.inc_mean_abs_per_100m_rad.to_degrees())?,
-        "azi_err_per_100m_deg": finite(e.azi_mean_abs_per_100m_rad.to_degrees())?,
-        "inc_rms_per_100m_deg": finite(e.inc_rms_per_100m_rad.to_degrees())?,
-        "azi_rms_per_100m_deg": finite(e.azi_rms_per_100m_rad.to_degrees())?,
-    }))
+#[derive(Serialize)]
+pub struct ErrorStatsJson {
+    intervals: usize,
+    inc_err_per_100m_deg: Finite,
+    azi_err_per_100m_deg: Finite,
+    inc_rms_per_100m_deg: Finite,
+    azi_rms_per_100m_deg: Finite,
 }
 
-/// Calibration result as JSON (walk angle in degrees).
-pub fn calibration_json(c: &Calibration) -> Result<Value, String> {
-    let fitted: Vec<Value> = c
-        .fitted
-        .iter()
-        .map(|&(p, v, sd)| {
-            let (v, sd) = if p == FitParameter::WalkAngle {
-                (v.to_degrees(), sd.to_degrees())
-            } else {
-                (v, sd)
-            };
-            Ok(json!({
-                "name": if p == FitParameter::WalkAngle { "walk_angle_deg" } else { p.name() },
-                "value": finite(v)?,
-                "std_dev": if sd.is_finite() { json!(sd) } else { Value::Null },
-                "identifiable": sd.is_finite() && sd < if p == FitParameter::WalkAngle { p.identifiable_below().to_degrees() } else { p.identifiable_below() },
-            }))
-        })
-        .collect::<Result<_, String>>()?;
-    Ok(json!({
-        "fitted": fitted,
-        "ssr_start": finite(c.ssr_start)?,
-        "ssr_end": finite(c.ssr_end)?,
-        "iterations": c.iterations,
-    }))
+impl From<&ErrorStats> for ErrorStatsJson {
+    fn from(e: &ErrorStats) -> ErrorStatsJson {
+        ErrorStatsJson {
+            intervals: e.intervals,
+            inc_err_per_100m_deg: Finite(e.inc_mean_abs_per_100m_rad.to_degrees()),
+            azi_err_per_100m_deg: Finite(e.azi_mean_abs_per_100m_rad.to_degrees()),
+            inc_rms_per_100m_deg: Finite(e.inc_rms_per_100m_rad.to_degrees()),
+            azi_rms_per_100m_deg: Finite(e.azi_rms_per_100m_rad.to_degrees()),
+        }
+    }
+}
+
+/// One fitted parameter of a calibration (walk angle in degrees).
+#[derive(Serialize)]
+pub struct FittedJson {
+    name: &'static str,
+    value: Finite,
+    std_dev: Option<Finite>,
+    identifiable: bool,
+}
+
+/// A calibration's result (`calibration.parameters` key).
+#[derive(Serialize)]
+pub struct CalibrationJson {
+    fitted: Vec<FittedJson>,
+    ssr_start: Finite,
+    ssr_end: Finite,
+    iterations: usize,
+}
+
+/// A fitted parameter as shown: its name in the outputs, its value and standard deviation in
+/// output units (the walk angle in degrees; None when not finite) and whether the data
+/// identify it (standard deviation below [`FitParameter::identifiable_below`]).
+pub fn fitted_shown(p: FitParameter, value: f64, std_dev: f64) -> (&'static str, f64, Option<f64>, bool) {
+    let walk = p == FitParameter::WalkAngle;
+    let (v, sd, limit) = if walk {
+        (
+            value.to_degrees(),
+            std_dev.to_degrees(),
+            p.identifiable_below().to_degrees(),
+        )
+    } else {
+        (value, std_dev, p.identifiable_below())
+    };
+    let name = if walk { "walk_angle_deg" } else { p.name() };
+    (name, v, sd.is_finite().then_some(sd), sd.is_finite() && sd < limit)
+}
+
+impl From<&Calibration> for CalibrationJson {
+    fn from(c: &Calibration) -> CalibrationJson {
+        let fitted = c
+            .fitted
+            .iter()
+            .map(|&(p, v, sd)| {
+                let (name, value, std_dev, identifiable) = fitted_shown(p, v, sd);
+                FittedJson {
+                    name,
+                    value: Finite(value),
+                    std_dev: std_dev.map(Finite),
+                    identifiable,
+                }
+            })
+            .collect();
+        CalibrationJson {
+            fitted,
+            ssr_start: Finite(c.ssr_start),
+            ssr_end: Finite(c.ssr_end),
+            iterations: c.iterations,
+        }
+    }
 }
 
 /// The fitted `[bit_rock]` keys as TOML lines to paste into a case file.
@@ -172,4 +261,269 @@ pub fn fitted_toml(c: &Calibration) -> String {
         }
     }
     s
+}
+
+/// The fidelity asked for and run (`model.fidelity_choice` of `predict`, `fidelity` of
+/// `backanalyze`).
+#[derive(Serialize)]
+pub struct ChoiceJson {
+    requested: &'static str,
+    used: &'static str,
+    reason: String,
+}
+
+impl From<&Choice> for ChoiceJson {
+    fn from(c: &Choice) -> ChoiceJson {
+        ChoiceJson {
+            requested: c.requested.name(),
+            used: c.level.name(),
+            reason: c.reason.clone(),
+        }
+    }
+}
+
+/// The end of a prediction (`end` key).
+#[derive(Serialize)]
+struct EndJson {
+    md_m: Finite,
+    inc_deg: Finite,
+    azi_deg: Finite,
+    tvd_m: Finite,
+    north_m: Finite,
+    east_m: Finite,
+}
+
+/// The step error estimated by Richardson extrapolation (`step_extrapolation` key).
+#[derive(Serialize)]
+struct StepErrorJson {
+    coarse_step_m: Finite,
+    fine_step_m: Finite,
+    est_inc_err_deg: Finite,
+    est_azi_err_deg: Finite,
+}
+
+/// The model of a prediction (`model` key).
+#[derive(Serialize)]
+struct ModelJson {
+    fidelity: &'static str,
+    fidelity_choice: ChoiceJson,
+    cut_m: Finite,
+    dofs: usize,
+    steps: usize,
+    solver_iterations: usize,
+    seconds: Finite,
+}
+
+/// `summary.json` of one case of `drillpath predict`.
+#[derive(Serialize)]
+pub struct PredictSummary {
+    case: String,
+    case_file: String,
+    from_md_m: Finite,
+    to_md_m: Finite,
+    step_m: Finite,
+    ripple_deg: Finite,
+    end: EndJson,
+    rates: RatesJson,
+    tracking: Option<TrackingJson>,
+    bit_rock: LawJson,
+    step_extrapolation: Option<StepErrorJson>,
+    model: ModelJson,
+}
+
+impl PredictSummary {
+    /// The summary of the forecast `f` of `case` (file `case_file`) with the model `choice`.
+    pub fn new(case: &Case, case_file: &Path, choice: &Choice, f: &Forecast) -> PredictSummary {
+        let p = &f.prediction;
+        let end = p.steps.last().expect("a prediction has a start record");
+        PredictSummary {
+            case: case.name.clone(),
+            case_file: case_file.display().to_string(),
+            from_md_m: Finite(p.from_md_m),
+            to_md_m: Finite(p.to_md_m),
+            step_m: Finite(f.settings.step_m),
+            ripple_deg: Finite(p.ripple_deg),
+            end: EndJson {
+                md_m: Finite(end.md_m),
+                inc_deg: Finite(end.inc_rad.to_degrees()),
+                azi_deg: Finite(end.azi_rad.to_degrees().rem_euclid(360.0)),
+                tvd_m: Finite(end.position.z),
+                north_m: Finite(end.position.x),
+                east_m: Finite(end.position.y),
+            },
+            rates: RatesJson::from(&f.rates),
+            tracking: f.tracking.as_ref().map(TrackingJson::from),
+            bit_rock: LawJson::new(&case.bit_rock.law, &f.law, case.bit_rock.formations.len()),
+            step_extrapolation: f.step_error.as_ref().map(|e| StepErrorJson {
+                coarse_step_m: Finite(e.coarse_step_m),
+                fine_step_m: Finite(e.fine_step_m),
+                est_inc_err_deg: Finite(e.max_inc_rad.to_degrees()),
+                est_azi_err_deg: Finite(e.max_azi_rad.to_degrees()),
+            }),
+            model: ModelJson {
+                fidelity: choice.level.name(),
+                fidelity_choice: ChoiceJson::from(choice),
+                cut_m: Finite(p.cut_m),
+                dofs: p.dofs,
+                steps: p.steps.len() - 1,
+                solver_iterations: p.iterations,
+                seconds: Finite(p.seconds),
+            },
+        }
+    }
+}
+
+/// `summary.json` of several cases of `drillpath predict` (`cases` key).
+#[derive(Serialize)]
+pub struct ComparisonSummary<'a> {
+    /// One summary per case, in the order given.
+    pub cases: &'a [PredictSummary],
+}
+
+/// Header of `comparison.csv`.
+pub const COMPARISON_HEADER: &str = "case,from_md_m,to_md_m,build_rate_deg_per_30m,walk_rate_deg_per_30m,mean_build_force_kN,mean_walk_force_kN,mean_tilt_inc_deg,mean_tilt_azi_deg,end_inc_deg,end_azi_deg";
+
+/// `comparison.csv` of several cases' forecasts: one row per case.
+pub fn comparison_csv(runs: &[(&Case, &Forecast)]) -> Result<String, String> {
+    let mut out = format!("{COMPARISON_HEADER}\n");
+    for (case, f) in runs {
+        let (p, rt) = (&f.prediction, &f.rates);
+        let end = p.steps.last().expect("start record");
+        let name = case.name.replace([',', '"', '\n'], " ");
+        out.push_str(&format!(
+            "{},{},{},{},{},{},{},{},{},{},{}\n",
+            name,
+            num(p.from_md_m, 2)?,
+            num(p.to_md_m, 2)?,
+            num(rt.build_rate_rad_per_30m.to_degrees(), 4)?,
+            num(rt.walk_rate_rad_per_30m.to_degrees(), 4)?,
+            num(rt.mean_build_force_n / 1e3, 4)?,
+            num(rt.mean_walk_force_n / 1e3, 4)?,
+            num(rt.mean_tilt_inc_rad.to_degrees(), 5)?,
+            num(rt.mean_tilt_azi_rad.to_degrees(), 5)?,
+            num(end.inc_rad.to_degrees(), 4)?,
+            num(end.azi_rad.to_degrees().rem_euclid(360.0), 4)?,
+        ));
+    }
+    Ok(out)
+}
+
+/// An MD range (`calibrated_on`, `scored_on`).
+#[derive(Serialize)]
+struct RangeJson {
+    from_md_m: Finite,
+    to_md_m: Finite,
+}
+
+/// An interval the back-analysis could not predict.
+#[derive(Serialize)]
+struct SkippedJson {
+    from_md_m: Finite,
+    to_md_m: Finite,
+    reason: String,
+}
+
+/// The `calibration` key of a back-analysis.
+#[derive(Serialize)]
+struct BackCalibrationJson {
+    parameters: CalibrationJson,
+    calibrated_on: RangeJson,
+    scored_on: RangeJson,
+    in_sample_default: ErrorStatsJson,
+    in_sample_fitted: ErrorStatsJson,
+    out_of_sample_default: ErrorStatsJson,
+    out_of_sample_fitted: ErrorStatsJson,
+}
+
+/// `summary.json` of `drillpath backanalyze`.
+#[derive(Serialize)]
+pub struct BackanalysisSummary {
+    case: String,
+    case_file: String,
+    intervals: usize,
+    from_md_m: Finite,
+    to_md_m: Finite,
+    horizon_m: Finite,
+    step_m: Finite,
+    fidelity: ChoiceJson,
+    inc_err_per_100m_deg: Finite,
+    azi_err_per_100m_deg: Finite,
+    errors: ErrorStatsJson,
+    skipped_intervals: Vec<SkippedJson>,
+    bit_rock: LawJson,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    calibration: Option<BackCalibrationJson>,
+    seconds: Finite,
+}
+
+/// A back-analysis with what its outputs name: the case and its file, the plan, the march
+/// step and the model choice.
+#[derive(Clone, Copy)]
+pub struct BackanalysisRun<'a> {
+    /// The case.
+    pub case: &'a Case,
+    /// The case file as the user named it.
+    pub case_file: &'a Path,
+    /// The plan run.
+    pub plan: &'a BackanalysisPlan,
+    /// March step, m.
+    pub step_m: f64,
+    /// The model choice.
+    pub choice: &'a Choice,
+    /// The result.
+    pub result: &'a Backanalysis,
+}
+
+impl BackanalysisSummary {
+    /// The summary of the back-analysis `run`.
+    pub fn new(run: &BackanalysisRun) -> BackanalysisSummary {
+        let BackanalysisRun {
+            case,
+            case_file,
+            plan,
+            step_m,
+            choice,
+            result: b,
+        } = *run;
+        let (first, last) = b.range_md_m();
+        BackanalysisSummary {
+            case: case.name.clone(),
+            case_file: case_file.display().to_string(),
+            intervals: b.base.len(),
+            from_md_m: Finite(first),
+            to_md_m: Finite(last),
+            horizon_m: Finite(plan.horizon_m),
+            step_m: Finite(step_m),
+            fidelity: ChoiceJson::from(choice),
+            inc_err_per_100m_deg: Finite(b.stats.inc_mean_abs_per_100m_rad.to_degrees()),
+            azi_err_per_100m_deg: Finite(b.stats.azi_mean_abs_per_100m_rad.to_degrees()),
+            errors: ErrorStatsJson::from(&b.stats),
+            skipped_intervals: b
+                .skipped
+                .iter()
+                .map(|(iv, e)| SkippedJson {
+                    from_md_m: Finite(iv.from_md_m),
+                    to_md_m: Finite(iv.to_md_m),
+                    reason: e.to_string(),
+                })
+                .collect(),
+            bit_rock: LawJson::new(&case.bit_rock.law, &b.law, case.bit_rock.formations.len()),
+            calibration: b.calibration.as_ref().map(|c| BackCalibrationJson {
+                parameters: CalibrationJson::from(&c.calibration),
+                calibrated_on: RangeJson {
+                    from_md_m: Finite(first),
+                    to_md_m: Finite(c.split_md_m),
+                },
+                scored_on: RangeJson {
+                    from_md_m: Finite(c.split_md_m),
+                    to_md_m: Finite(last),
+                },
+                in_sample_default: ErrorStatsJson::from(&c.in_sample_default),
+                in_sample_fitted: ErrorStatsJson::from(&c.in_sample_fitted),
+                out_of_sample_default: ErrorStatsJson::from(&c.out_of_sample_default),
+                out_of_sample_fitted: ErrorStatsJson::from(&c.out_of_sample_fitted),
+            }),
+            seconds: Finite(b.seconds),
+        }
+    }
 }

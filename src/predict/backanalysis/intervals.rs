@@ -1,13 +1,13 @@
-//! Post-drill back-analysis (physics.md 7.7): for each interval of a survey, rebuild the hole
-//! from the measured stations behind it, predict to the interval's end and compare with the
-//! measured station there. Errors per 100 m are the seed paper's metric (end-of-interval error
-//! divided by the interval length).
+//! The intervals of a back-analysis: the survey cut into consecutive intervals, each predicted
+//! from the measured hole behind it to its end station and compared with the measured station
+//! there. Errors per 100 m are the seed paper's metric (end-of-interval error divided by the
+//! interval length).
 
-use super::march::{hole_to, predict_from, MarchSettings, PredictError, WarmStart};
 use crate::case::{BitRock, Case};
 use crate::geometry::survey::wrap_pi;
 use crate::geometry::{Vec3, WellPath};
 use crate::models::fem::results::BitResult;
+use crate::predict::march::{hole_to, predict_from, MarchSettings, PredictError, WarmStart};
 
 /// How the survey is cut into intervals.
 #[derive(Debug, Clone, Copy)]

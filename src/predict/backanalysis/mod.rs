@@ -1,0 +1,322 @@
+//! Post-drill back-analysis (`drillpath backanalyze`): the survey cut into intervals
+//! ([`intervals`]), each predicted from the measured hole behind it and compared with the
+//! measured station at its end; optionally the bit-rock law calibrated on the first part of
+//! the intervals and scored on the rest ([`crate::predict::calibrate`]).
+//!
+//! [`plan`] decides where the analysis starts (by default the first station inclined
+//! [`DEFAULT_MIN_INCLINATION_DEG`] or more, below the wider hole drilled by an earlier bit) and
+//! cuts the intervals; [`run`] predicts them, calibrates and scores.
+
+pub mod intervals;
+
+pub use intervals::{
+    error_stats, intervals as cut_intervals, run_intervals, run_intervals_skipping, ErrorStats, Interval, IntervalPlan,
+    IntervalResult,
+};
+
+use super::calibrate::{calibrate, Calibration, FitParameter};
+use super::law::LawParams;
+use super::march::{MarchSettings, PredictError, WarmStart, MIN_MODEL_LENGTH_M};
+use crate::case::Case;
+use std::time::Instant;
+
+/// By default back-analysis starts at the first station this inclined, deg: in a vertical
+/// hole the bit forces have no direction to predict (a kick-off is steered, not predicted).
+pub const DEFAULT_MIN_INCLINATION_DEG: f64 = 3.0;
+
+/// Hole above the first interval's start by default, m.
+pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
+
+/// Intervals a calibration needs: at least 2 to fit on and 2 to score on.
+pub const MIN_CALIBRATION_INTERVALS: usize = 4;
+
+/// A calibration asked of a back-analysis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CalibrationRequest {
+    /// The law's parameters to fit.
+    pub parameters: Vec<FitParameter>,
+    /// Share of the intervals (from the top) to fit on, in (0, 1); the rest is scored.
+    pub split: f64,
+}
+
+/// What a back-analysis is asked, SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BackanalysisRequest {
+    /// First interval starts at the first station at or below this MD, m (None: the default
+    /// start, see the module documentation).
+    pub from_md_m: Option<f64>,
+    /// No interval ends below this MD, m (None: the last station).
+    pub to_md_m: Option<f64>,
+    /// Shortest interval, m (0: station to station).
+    pub horizon_m: f64,
+    /// The calibration, if asked.
+    pub calibration: Option<CalibrationRequest>,
+}
+
+/// Where a back-analysis runs and on which intervals.
+#[derive(Debug, Clone)]
+pub struct BackanalysisPlan {
+    /// Start MD asked or decided, m.
+    pub from_md_m: f64,
+    /// End MD, m.
+    pub to_md_m: f64,
+    /// Shortest interval, m.
+    pub horizon_m: f64,
+    /// When the default start was used and wider hole lies above: the bottom of that hole,
+    /// m MD (the start is below it).
+    pub below_previous_hole_md_m: Option<f64>,
+    /// The intervals.
+    pub intervals: Vec<Interval>,
+    /// The calibration, if asked.
+    pub calibration: Option<CalibrationRequest>,
+}
+
+/// Why a back-analysis cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum BackanalysisError {
+    /// Too few intervals in the range.
+    #[error("only {found} survey interval(s) between {from_md_m:.1} m and {to_md_m:.1} m; back-analysis needs {needed}{}", if *.calibrate { " to calibrate on half and score on the other half" } else { "" })]
+    TooFewIntervals {
+        /// Intervals found.
+        found: usize,
+        /// Intervals needed.
+        needed: usize,
+        /// Start MD, m.
+        from_md_m: f64,
+        /// End MD, m.
+        to_md_m: f64,
+        /// Whether a calibration was asked.
+        calibrate: bool,
+    },
+    /// No interval could be predicted.
+    #[error("no interval could be predicted; the first ({from_md_m:.1}-{to_md_m:.1} m): {error}")]
+    NothingPredicted {
+        /// Start of the first interval, m.
+        from_md_m: f64,
+        /// End of the first interval, m.
+        to_md_m: f64,
+        /// Why it failed.
+        error: PredictError,
+    },
+    /// Too few intervals could be predicted to calibrate.
+    #[error("only {found} interval(s) could be predicted; calibration needs {needed}")]
+    TooFewPredicted {
+        /// Intervals predicted.
+        found: usize,
+        /// Intervals needed.
+        needed: usize,
+    },
+    /// The calibration or the scoring failed.
+    #[error(transparent)]
+    Predict(#[from] PredictError),
+}
+
+/// The plan of a back-analysis of `case`'s survey as `req` asks (see the module documentation).
+pub fn plan(case: &Case, req: &BackanalysisRequest) -> Result<BackanalysisPlan, BackanalysisError> {
+    let survey = &case.well.path;
+    // by default, only the hole this bit drilled: below the earlier (wider) hole sections (a
+    // string without a bit: the hole at the bottom of the survey gives the bit size)
+    let bit_diameter_m = case
+        .string
+        .bit_diameter_m()
+        .unwrap_or_else(|| case.well.hole.diameter_at(survey.md_end()));
+    let previous_hole = case.well.hole.previous_hole_bottom_md(bit_diameter_m);
+    let from = match req.from_md_m {
+        Some(md) => md,
+        None => survey
+            .stations()
+            .iter()
+            .find(|s| s.inc_rad >= DEFAULT_MIN_INCLINATION_DEG.to_radians() && s.md_m >= previous_hole.unwrap_or(0.0))
+            .map(|s| s.md_m)
+            .unwrap_or(survey.md_end())
+            .max(survey.md_start() + DEFAULT_START_DEPTH_M),
+    }
+    .max(survey.md_start() + MIN_MODEL_LENGTH_M);
+    let to = req.to_md_m.unwrap_or(survey.md_end());
+    let list = cut_intervals(
+        survey,
+        &IntervalPlan {
+            from_md_m: from,
+            to_md_m: to,
+            horizon_m: req.horizon_m,
+        },
+    );
+    let calibrate = req.calibration.is_some();
+    let needed = if calibrate { MIN_CALIBRATION_INTERVALS } else { 1 };
+    if list.len() < needed {
+        return Err(BackanalysisError::TooFewIntervals {
+            found: list.len(),
+            needed,
+            from_md_m: from,
+            to_md_m: to,
+            calibrate,
+        });
+    }
+    Ok(BackanalysisPlan {
+        from_md_m: from,
+        to_md_m: to,
+        horizon_m: req.horizon_m,
+        below_previous_hole_md_m: previous_hole.filter(|_| req.from_md_m.is_none()),
+        intervals: list,
+        calibration: req.calibration.clone(),
+    })
+}
+
+/// The calibration of a back-analysis and its scores.
+pub struct CalibrationOutcome {
+    /// The fit.
+    pub calibration: Calibration,
+    /// MD where the scored part starts (the calibrated part ends), m.
+    pub split_md_m: f64,
+    /// Errors of the calibration intervals with the case's law.
+    pub in_sample_default: ErrorStats,
+    /// Errors of the calibration intervals with the fitted law.
+    pub in_sample_fitted: ErrorStats,
+    /// Errors of the scored intervals with the case's law.
+    pub out_of_sample_default: ErrorStats,
+    /// Errors of the scored intervals with the fitted law.
+    pub out_of_sample_fitted: ErrorStats,
+}
+
+/// A back-analysis, SI.
+pub struct Backanalysis {
+    /// The intervals predicted with the case's law.
+    pub base: Vec<IntervalResult>,
+    /// The intervals that could not be predicted, with why.
+    pub skipped: Vec<(Interval, PredictError)>,
+    /// Errors of `base`.
+    pub stats: ErrorStats,
+    /// The law's parameters at the start.
+    pub law: LawParams,
+    /// The calibration, if asked.
+    pub calibration: Option<CalibrationOutcome>,
+    /// The intervals reported: `base`, or with a calibration the calibration intervals with
+    /// the fitted law followed by the scored ones.
+    pub results: Vec<IntervalResult>,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+}
+
+impl Backanalysis {
+    /// First and last MD of the predicted intervals, m.
+    pub fn range_md_m(&self) -> (f64, f64) {
+        let first = self.base.first().map(|r| r.interval.from_md_m).unwrap_or(0.0);
+        let last = self.base.last().map(|r| r.interval.to_md_m).unwrap_or(0.0);
+        (first, last)
+    }
+}
+
+/// What a back-analysis reports while it runs.
+pub enum Progress<'a> {
+    /// `done` of `of` intervals predicted with the case's law.
+    Interval {
+        /// Intervals done.
+        done: usize,
+        /// Intervals in all.
+        of: usize,
+    },
+    /// The calibration started.
+    CalibrationStarted,
+    /// A message of the calibration.
+    Calibration(&'a str),
+}
+
+/// Run the back-analysis `plan` of `case` with `settings`; `progress` hears how it goes.
+pub fn run(
+    case: &Case,
+    plan: &BackanalysisPlan,
+    settings: &MarchSettings,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Backanalysis, BackanalysisError> {
+    let t0 = Instant::now();
+    let mut warm = Vec::new();
+    let (base, skipped) = run_intervals_skipping(
+        case,
+        &case.bit_rock,
+        &plan.intervals,
+        settings,
+        &mut warm,
+        |done, of| progress(Progress::Interval { done, of }),
+        false,
+    );
+    if base.is_empty() {
+        let (iv, error) = skipped.into_iter().next().expect("an interval failed");
+        return Err(BackanalysisError::NothingPredicted {
+            from_md_m: iv.from_md_m,
+            to_md_m: iv.to_md_m,
+            error,
+        });
+    }
+    // calibration and scoring use the intervals that could be predicted with the case's law
+    let predicted = |iv: &Interval| !skipped.iter().any(|(s, _)| s.from_md_m == iv.from_md_m);
+    let warm: Vec<_> = plan
+        .intervals
+        .iter()
+        .zip(warm)
+        .filter(|(iv, _)| predicted(iv))
+        .map(|(_, w)| w)
+        .collect();
+    let stats = error_stats(&base);
+    let mut out = Backanalysis {
+        results: base.clone(),
+        stats,
+        law: LawParams::at(&case.bit_rock, plan.from_md_m),
+        calibration: None,
+        skipped,
+        base,
+        seconds: 0.0,
+    };
+    if let Some(req) = &plan.calibration {
+        let (outcome, scored) = calibrate_and_score(case, req, &out.base, warm, settings, progress)?;
+        out.results = outcome.calibration.results.clone();
+        out.results.extend(scored);
+        out.calibration = Some(outcome);
+    }
+    out.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Fit `req`'s parameters on the first part of the predicted intervals `base` (with their warm
+/// starts `warm`) and score the fitted law on the rest; returns the outcome and the scored
+/// intervals' results.
+fn calibrate_and_score(
+    case: &Case,
+    req: &CalibrationRequest,
+    base: &[IntervalResult],
+    mut warm: Vec<WarmStart>,
+    settings: &MarchSettings,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<(CalibrationOutcome, Vec<IntervalResult>), BackanalysisError> {
+    let list: Vec<Interval> = base.iter().map(|r| r.interval).collect();
+    if list.len() < MIN_CALIBRATION_INTERVALS {
+        return Err(BackanalysisError::TooFewPredicted {
+            found: list.len(),
+            needed: MIN_CALIBRATION_INTERVALS,
+        });
+    }
+    // at least 2 intervals to fit on and 2 to score on
+    let ncal = ((list.len() as f64 * req.split).round() as usize).clamp(2, list.len() - 2);
+    let (cal_list, score_list) = list.split_at(ncal);
+    progress(Progress::CalibrationStarted);
+    let calibration = calibrate(case, &req.parameters, cal_list, settings, |m| {
+        progress(Progress::Calibration(m))
+    })?;
+    let mut warm_scored = warm.split_off(ncal.min(warm.len()));
+    let scored = run_intervals(
+        case,
+        &calibration.bit_rock,
+        score_list,
+        settings,
+        &mut warm_scored,
+        |_, _| {},
+    )?;
+    let outcome = CalibrationOutcome {
+        split_md_m: list[ncal].from_md_m,
+        in_sample_default: error_stats(&base[..ncal]),
+        in_sample_fitted: error_stats(&calibration.results),
+        out_of_sample_default: error_stats(&base[ncal..]),
+        out_of_sample_fitted: error_stats(&scored),
+        calibration,
+    };
+    Ok((outcome, scored))
+}
