@@ -3,7 +3,7 @@
 //! re-prediction of all intervals per parameter), bounds by reparametrization, a weak prior
 //! toward the starting values, covariance `s^2 (J^T J)^-1` with `s^2 = SSR / (m - n)`.
 
-use super::backanalysis::intervals::{run_intervals, Interval, IntervalResult};
+use super::intervals::{run_intervals, Interval, IntervalResult};
 use super::march::{MarchSettings, PredictError, WarmStart};
 use crate::case::{BitRock, Case};
 use nalgebra::{DMatrix, DVector};

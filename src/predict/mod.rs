@@ -6,6 +6,7 @@ pub mod backanalysis;
 pub mod calibrate;
 pub mod extrapolate;
 pub mod forecast;
+pub mod intervals;
 pub mod law;
 pub mod march;
 pub mod track;

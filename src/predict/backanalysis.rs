@@ -1,5 +1,5 @@
 //! Post-drill back-analysis (`drillpath backanalyze`): the survey cut into intervals
-//! ([`intervals`]), each predicted from the measured hole behind it and compared with the
+//! ([`crate::predict::intervals`]), each predicted from the measured hole behind it and compared with the
 //! measured station at its end; optionally the bit-rock law calibrated on the first part of
 //! the intervals and scored on the rest ([`crate::predict::calibrate`]).
 //!
@@ -7,9 +7,7 @@
 //! [`DEFAULT_MIN_INCLINATION_DEG`] or more, below the wider hole drilled by an earlier bit) and
 //! cuts the intervals; [`run`] predicts them, calibrates and scores.
 
-pub mod intervals;
-
-pub use intervals::{
+pub use super::intervals::{
     error_stats, intervals as cut_intervals, run_intervals, run_intervals_skipping, ErrorStats, Interval, IntervalPlan,
     IntervalResult,
 };
