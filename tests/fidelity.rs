@@ -165,6 +165,53 @@ fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
 }
 
 #[test]
+fn bit_torque_is_the_same_in_every_model() {
+    // Reference: one bit-torque law for every model (Pessier & Fear `mu_b W D_b / 3` when
+    // drilling; the given `bit_torque`, the motor's reactive torque, when sliding), and the
+    // moment balance about the string axis: sliding, no wall friction acts around the axis (the
+    // friction of axial motion is axial), so the surface torque equals the bit torque in every
+    // model. Tolerances: 1e-9 relative between the levels' bit torques and on the soft
+    // string's surface torque (both exact); 0.5% on the stiff models' surface torque
+    // (discretization of a curved string; measured 0.05% for the whole string).
+    let mut case = example("j-shape");
+    let expect = case.bit_rock.bit_friction * case.operation.wob_n * case.string.bit_diameter_m().unwrap() / 3.0;
+    for level in [Level::Soft, Level::Bha, Level::Hybrid, Level::Whole] {
+        let r = at(&case, Fidelity::Level(level));
+        println!(
+            "drilling {:<6} bit torque {:.4} kN.m (law {:.4})",
+            level.name(),
+            r.bit_torque_nm / 1e3,
+            expect / 1e3
+        );
+        assert!(
+            (r.bit_torque_nm / expect - 1.0).abs() < 1e-9,
+            "{level:?} drilling: {}",
+            r.bit_torque_nm
+        );
+    }
+    case.operation.mode = Mode::Sliding;
+    case.operation.rop_m_s = 10.0 / 3600.0;
+    case.operation.bit_torque_nm = Some(3.0e3);
+    for level in [Level::Soft, Level::Bha, Level::Hybrid, Level::Whole] {
+        let r = at(&case, Fidelity::Level(level));
+        assert!(
+            (r.bit_torque_nm / 3.0e3 - 1.0).abs() < 1e-9,
+            "{level:?} sliding: bit torque {}",
+            r.bit_torque_nm
+        );
+        if let Some(t) = r.surface_torque_nm {
+            println!(
+                "sliding  {:<6} surface torque {:.4} kN.m (bit 3 kN.m)",
+                level.name(),
+                t / 1e3
+            );
+            let tol = if level == Level::Soft { 1e-9 } else { 5e-3 };
+            assert!((t / 3.0e3 - 1.0).abs() < tol, "{level:?} sliding: surface torque {t}");
+        }
+    }
+}
+
+#[test]
 fn fidelity_levels_report_only_what_they_compute() {
     // Reference: the level table of src/fidelity.rs: soft has no bit side forces, bha no
     // surface values; auto picks per command.

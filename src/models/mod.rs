@@ -1,11 +1,13 @@
 //! The mechanical models of the string in the hole, and the pieces of mechanics they share.
 //!
+//! - [`bit`]: the bit's loads (bit torque), the same for every model;
 //! - [`softstring`]: the soft string (torque and drag along the hole axis, no bending);
 //! - [`fem`]: the stiff string (co-rotational beams and contact-friction gap elements);
 //! - [`levels`]: one static solve at a fidelity level (soft, bha, hybrid, whole);
 //! - [`buckling`]: sinusoidal and helical buckling onsets and the buckled intervals;
 //! - [`diagnose`]: why a stiff solve may not converge (lock-up, helical buckling).
 
+pub mod bit;
 pub mod buckling;
 pub mod diagnose;
 pub mod fem;

@@ -33,7 +33,7 @@
 //! hole diameter (the cable lies on the axis), bending stiffness. See physics.md 6.6 for how
 //! the stiff FEM torque differs in straight sections (factor `1/sqrt(1 + f^2)`).
 
-use crate::case::{Case, Mode};
+use crate::case::Case;
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::string::{Component, DrillString};
 
@@ -255,21 +255,10 @@ pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
 /// - WOB: the operation's (0 off bottom). When the case gives the hook load instead of the
 ///   WOB (on bottom), the WOB is solved for (secant on the soft-string hook load, clamped at 0:
 ///   a hook load above the off-bottom value gives WOB 0).
-/// - Bit torque: drilling: the case's `bit_torque` if given, else Pessier & Fear (1992)
-///   `T_b = mu_b WOB D_b / 3` with `mu_b = case.bit_rock.bit_friction` and `D_b` the bit OD
-///   (the hole diameter at the bit if the string has no bit component); sliding: the case's
-///   `bit_torque` if given (motor reactive torque), else 0; off bottom: 0.
+/// - Bit torque: [`crate::models::bit::bit_torque_nm`] at the WOB.
 pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
     let op = &case.operation;
-    let d_b = case
-        .string
-        .bit_diameter_m()
-        .unwrap_or_else(|| case.well.hole.diameter_at(op.bit_md_m));
-    let bit_torque = |wob: f64| match op.mode {
-        Mode::Drilling => op.bit_torque_nm.unwrap_or(case.bit_rock.bit_friction * wob * d_b / 3.0),
-        Mode::Sliding => op.bit_torque_nm.unwrap_or(0.0),
-        _ => 0.0,
-    };
+    let bit_torque = |wob: f64| crate::models::bit::bit_torque_nm(case, wob);
     let run = |wob: f64| {
         soft_string(&SoftStringInput {
             path: &case.well.path,

@@ -11,7 +11,7 @@ use super::element::corotational::{element_forces, element_response_into, Elemen
 use super::linalg::band::BandMatrix;
 use super::linalg::band_lu::GeneralBand;
 use super::mesh::{build_mesh, Mesh};
-use crate::case::{Case, Mode};
+use crate::case::Case;
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::contact::gap::{evaluate, GapInput, GapResponse};
 use crate::string::DrillString;
@@ -104,19 +104,12 @@ pub enum TopCondition {
     },
 }
 
-/// Loads and kinematics of `case`'s operation: WOB or hook load, bit torque (given, or the
-/// bit law `T_b = mu_b W D_b / 3` when drilling with rotation), spin, axial speed, mud drag.
+/// Loads and kinematics of `case`'s operation: WOB or hook load, bit torque
+/// ([`crate::models::bit::bit_torque_nm`] at the case's WOB), spin, axial speed, mud drag.
 pub fn loads_from_case(case: &Case) -> Loads {
     let op = &case.operation;
     let omega = op.omega_rad_s();
-    let bit_torque = if op.mode == Mode::Drilling && omega > 0.0 {
-        op.bit_torque_nm.unwrap_or_else(|| {
-            let d_bit = case.string.components[0].contact_od_m;
-            case.bit_rock.bit_friction * op.wob_n * d_bit / 3.0
-        })
-    } else {
-        0.0
-    };
+    let bit_torque = crate::models::bit::bit_torque_nm(case, op.wob_n);
     Loads {
         wob_n: op.wob_n,
         hook_load_n: op.hook_load_n,
