@@ -20,6 +20,7 @@ pub mod geometry;
 pub mod io;
 pub mod loads;
 pub mod models;
+pub mod numerics;
 pub mod predict;
 pub mod report;
 pub mod string;

@@ -21,6 +21,9 @@ use super::chart::{case_at_depth, soft_row};
 use super::{set_row_operation, ChartOperation};
 use crate::case::{Case, Mode};
 use crate::geometry::{HoleSection, HoleSize};
+use crate::numerics::least_squares::{
+    forward_difference_jacobian, levenberg_marquardt, standard_deviations, LeastSquares, LmSettings,
+};
 use nalgebra::{DMatrix, DVector};
 
 /// One measured point, SI.
@@ -149,9 +152,6 @@ pub fn section_friction(case: &Case) -> Vec<f64> {
         .collect()
 }
 
-/// Modelled (hook load N, torque N.m) per point and the residual vector.
-type Evaluated = (Vec<(f64, f64)>, DVector<f64>);
-
 /// Modelled hook load and torque at each point.
 struct Evaluator {
     cases: Vec<Case>,
@@ -211,6 +211,66 @@ fn residuals(data: &[MeasuredPoint], loads: &[(f64, f64)]) -> Result<DVector<f64
     Ok(DVector::from_vec(r))
 }
 
+/// The friction fit as a least-squares problem in the fitted sections' friction factors.
+struct FrictionFit<'a> {
+    evaluator: Evaluator,
+    data: &'a [MeasuredPoint],
+    /// Friction of every section (the fitted ones replaced by the trial values).
+    all: Vec<f64>,
+    /// Fitted sections.
+    free: Vec<usize>,
+}
+
+impl FrictionFit<'_> {
+    /// Every section's friction with the fitted ones at `x`.
+    fn friction(&self, x: &[f64]) -> Vec<f64> {
+        let mut f = self.all.clone();
+        for (&k, &v) in self.free.iter().zip(x) {
+            f[k] = v;
+        }
+        f
+    }
+}
+
+impl LeastSquares for FrictionFit<'_> {
+    type Error = CalibrationError;
+    type Outcome = Vec<(f64, f64)>;
+    fn evaluate(&mut self, x: &[f64]) -> Result<(DVector<f64>, Vec<(f64, f64)>), CalibrationError> {
+        let l = self.evaluator.loads(&self.friction(x));
+        Ok((residuals(self.data, &l)?, l))
+    }
+    fn jacobian(&mut self, x: &[f64], r: &DVector<f64>) -> Result<DMatrix<f64>, CalibrationError> {
+        // steps away from the upper bound
+        let step = |k: usize, x: &[f64]| {
+            if x[k] + JACOBIAN_STEP > MAX_FRICTION {
+                -JACOBIAN_STEP
+            } else {
+                JACOBIAN_STEP
+            }
+        };
+        forward_difference_jacobian(x, r, step, |xp| self.evaluate(xp).map(|e| e.0))
+    }
+    fn constrain(&self, x: &mut [f64]) {
+        for v in x {
+            *v = v.clamp(0.0, MAX_FRICTION);
+        }
+    }
+}
+
+/// Levenberg-Marquardt settings of the friction fit (the initial damping is set from the
+/// Jacobian: 1e-3 of its largest squared column norm).
+pub const LM_SETTINGS: LmSettings = LmSettings {
+    max_iterations: 100,
+    max_damping_increases: 30,
+    initial_damping: 1e-3,
+    damping_decrease: 3.0,
+    damping_increase: 4.0,
+    min_damping: 1e-12,
+    max_step: None,
+    min_move: 1e-7,
+    min_relative_decrease: 1e-14,
+};
+
 /// Fit the friction factor per hole section of `case` to `data` (see the module
 /// documentation). `op` gives the WOB of on-bottom points without their own and the RPM;
 /// `max_element_m` the soft-string element length.
@@ -220,43 +280,27 @@ pub fn calibrate(
     op: &ChartOperation,
     max_element_m: f64,
 ) -> Result<Calibration, CalibrationError> {
-    let mut ev = Evaluator::new(case, data, op, max_element_m);
     let initial = section_friction(case);
     let np_all = initial.len();
-    let eval = |ev: &mut Evaluator, f: &[f64]| -> Result<Evaluated, CalibrationError> {
-        let l = ev.loads(f);
-        let r = residuals(data, &l)?;
-        Ok((l, r))
+    let mut fit = FrictionFit {
+        evaluator: Evaluator::new(case, data, op, max_element_m),
+        data,
+        all: initial.clone(),
+        free: (0..np_all).collect(),
     };
-    let (loads0, r0) = eval(&mut ev, &initial)?;
-    let m = r0.len();
     // which sections the data constrain
-    let jac = |ev: &mut Evaluator, f: &[f64], r: &DVector<f64>, free: &[usize]| {
-        let mut j = DMatrix::zeros(r.len(), free.len());
-        for (col, &k) in free.iter().enumerate() {
-            let mut g = f.to_vec();
-            // step away from the upper bound
-            let h = if g[k] + JACOBIAN_STEP > MAX_FRICTION {
-                -JACOBIAN_STEP
-            } else {
-                JACOBIAN_STEP
-            };
-            g[k] += h;
-            let (_, rg) = eval(ev, &g)?;
-            j.set_column(col, &((rg - r) / h));
-        }
-        Ok::<_, CalibrationError>(j)
-    };
-    let all: Vec<usize> = (0..np_all).collect();
-    let j_all = jac(&mut ev, &initial, &r0, &all)?;
+    let (r0, loads0) = fit.evaluate(&initial)?;
+    let m = r0.len();
+    let j_all = fit.jacobian(&initial, &r0)?;
     let norms: Vec<f64> = (0..np_all).map(|k| j_all.column(k).norm()).collect();
     let max_norm = norms.iter().copied().fold(0.0, f64::max);
     if max_norm.is_nan() || max_norm <= 0.0 {
         return Err(CalibrationError::Unconstrained);
     }
-    let free: Vec<usize> = (0..np_all)
+    fit.free = (0..np_all)
         .filter(|&k| norms[k] >= MIN_RELATIVE_SENSITIVITY * max_norm)
         .collect();
+    let free = fit.free.clone();
     let p = free.len();
     if m <= p {
         return Err(CalibrationError::TooFewData {
@@ -264,63 +308,19 @@ pub fn calibrate(
             parameters: p,
         });
     }
-    // Levenberg-Marquardt
-    let mut f = initial.clone();
-    let mut r = r0.clone();
-    let mut cost = r.norm_squared();
-    let mut j = j_all.select_columns(&free);
-    let mut lambda = 1e-3 * (0..p).map(|c| j.column(c).norm_squared()).fold(0.0, f64::max);
-    let mut iterations = 0;
-    let mut converged = false;
-    for it in 0..100 {
-        iterations = it + 1;
-        let jtj = j.transpose() * &j;
-        let g = j.transpose() * &r;
-        let mut accepted = false;
-        for _ in 0..30 {
-            let mut a = jtj.clone();
-            for d in 0..p {
-                a[(d, d)] += lambda * jtj[(d, d)].max(1e-12);
-            }
-            let Some(step) = a.cholesky().map(|c| c.solve(&(-&g))) else {
-                lambda *= 10.0;
-                continue;
-            };
-            let mut trial = f.clone();
-            for (c, &k) in free.iter().enumerate() {
-                trial[k] = (f[k] + step[c]).clamp(0.0, MAX_FRICTION);
-            }
-            let (_, rt) = eval(&mut ev, &trial)?;
-            let ct = rt.norm_squared();
-            if ct <= cost {
-                let moved = free.iter().map(|&k| (trial[k] - f[k]).abs()).fold(0.0, f64::max);
-                let dc = cost - ct;
-                f = trial;
-                r = rt;
-                cost = ct;
-                lambda = (lambda / 3.0).max(1e-12);
-                accepted = true;
-                if moved < 1e-7 || dc <= 1e-14 * cost.max(1e-30) {
-                    converged = true;
-                }
-                break;
-            }
-            lambda *= 4.0;
-        }
-        if !accepted {
-            // no decrease possible from here: a (local) minimum within the bounds
-            converged = true;
-        }
-        if converged {
-            break;
-        }
-        j = jac(&mut ev, &f, &r, &free)?;
-    }
+    let j0 = j_all.select_columns(&free);
+    let settings = LmSettings {
+        initial_damping: LM_SETTINGS.initial_damping * (0..p).map(|c| j0.column(c).norm_squared()).fold(0.0, f64::max),
+        ..LM_SETTINGS
+    };
+    let x0: Vec<f64> = free.iter().map(|&k| initial[k]).collect();
+    let lm = levenberg_marquardt(&mut fit, &x0, Some(j0), &settings)?;
+    let f = fit.friction(&lm.x);
+    let (iterations, converged) = (lm.iterations, lm.converged);
+    let loads1 = lm.outcome;
     // uncertainty at the solution
-    j = jac(&mut ev, &f, &r, &free)?;
-    let s2 = cost / (m - p) as f64;
-    let cov = (j.transpose() * &j).try_inverse();
-    let (loads1, _) = eval(&mut ev, &f)?;
+    let j = fit.jacobian(&lm.x, &lm.residuals)?;
+    let sd = standard_deviations(&j, lm.residuals.as_slice());
     let sections = case.well.hole.sections();
     let parameters = (0..np_all)
         .map(|k| {
@@ -336,7 +336,7 @@ pub fn calibrate(
                 diameter_m: sections[k].diameter_m,
                 initial: initial[k],
                 value: f[k],
-                std_error: col.and_then(|c| cov.as_ref().map(|cv| (s2 * cv[(c, c)]).max(0.0).sqrt())),
+                std_error: col.and_then(|c| sd.as_ref().map(|sd| sd[c])),
                 fitted: col.is_some(),
             }
         })

@@ -21,7 +21,7 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
     if case.string.components.is_empty() {
         return Vec::new();
     }
-    let soft = softstring::from_case(case, case.solver.element_length_m.max(1.0));
+    let soft = softstring::from_case(case, softstring::segment_length_m(&case.solver));
     let mut hints = Vec::new();
     let wob = -soft.points[0].tension_n;
     if soft.hook_load_n < 0.0 && case.operation.hook_load_n.is_none() {

@@ -6,6 +6,9 @@
 use super::intervals::{run_intervals, Interval, IntervalResult};
 use super::march::{MarchSettings, PredictError, WarmStart};
 use crate::case::{BitRock, Case};
+use crate::numerics::least_squares::{
+    forward_difference_jacobian, levenberg_marquardt, standard_deviations, sum_of_squares, LeastSquares, LmSettings,
+};
 use nalgebra::{DMatrix, DVector};
 
 /// A law parameter that calibration may fit.
@@ -163,137 +166,103 @@ pub fn residuals(results: &[IntervalResult]) -> Vec<f64> {
     r
 }
 
-/// Fit `params` of `case`'s law on `list` by Levenberg-Marquardt.
+/// The calibration as a least-squares problem in the unbounded variables: the data residuals
+/// of the re-predicted intervals plus the weak prior toward the start values.
+struct LawFit<'a, F: FnMut(&str)> {
+    case: &'a Case,
+    params: &'a [FitParameter],
+    list: &'a [Interval],
+    settings: &'a MarchSettings,
+    /// Natural values at the start (the prior's centre).
+    start_values: Vec<f64>,
+    /// Warm starts of the interval solves, carried from one evaluation to the next.
+    warm: Vec<WarmStart>,
+    progress: F,
+}
+
+impl<F: FnMut(&str)> LawFit<'_, F> {
+    /// The case's law with the parameters at the unbounded values `u`.
+    fn law(&self, u: &[f64]) -> BitRock {
+        let mut br = self.case.bit_rock.clone();
+        for (p, &x) in self.params.iter().zip(u) {
+            p.set(&mut br, p.natural(x));
+        }
+        br
+    }
+}
+
+impl<F: FnMut(&str)> LeastSquares for LawFit<'_, F> {
+    type Error = PredictError;
+    type Outcome = Vec<IntervalResult>;
+    fn evaluate(&mut self, u: &[f64]) -> Result<(DVector<f64>, Vec<IntervalResult>), PredictError> {
+        let law = self.law(u);
+        let res = run_intervals(self.case, &law, self.list, self.settings, &mut self.warm, |_, _| {})?;
+        let mut r = residuals(&res);
+        for (k, p) in self.params.iter().enumerate() {
+            r.push((p.natural(u[k]) - self.start_values[k]) / p.prior_sigma());
+        }
+        Ok((DVector::from_vec(r), res))
+    }
+    fn jacobian(&mut self, u: &[f64], r: &DVector<f64>) -> Result<DMatrix<f64>, PredictError> {
+        forward_difference_jacobian(u, r, |_, _| FD_STEP, |up| self.evaluate(up).map(|e| e.0))
+    }
+    fn accepted(&mut self, iteration: usize, cost: f64) {
+        (self.progress)(&format!(
+            "calibration iteration {iteration}: SSR {cost:.4e} (deg/100 m)^2"
+        ));
+    }
+}
+
+/// Levenberg-Marquardt settings of the law's calibration.
+pub const LM_SETTINGS: LmSettings = LmSettings {
+    max_iterations: MAX_LM_ITERATIONS,
+    max_damping_increases: MAX_LAMBDA_INCREASES,
+    initial_damping: 1e-3,
+    damping_decrease: 10.0,
+    damping_increase: 10.0,
+    min_damping: 1e-9,
+    max_step: Some(MAX_STEP_U),
+    min_move: 1e-4,
+    min_relative_decrease: SSR_RELATIVE_TOLERANCE,
+};
+
+/// Fit `params` of `case`'s law on `list` by Levenberg-Marquardt ([`LM_SETTINGS`]).
 pub fn calibrate(
     case: &Case,
     params: &[FitParameter],
     list: &[Interval],
     settings: &MarchSettings,
-    mut progress: impl FnMut(&str),
+    progress: impl FnMut(&str),
 ) -> Result<Calibration, PredictError> {
-    let np = params.len();
-    let start = case.bit_rock.clone();
-    let u0: Vec<f64> = params.iter().map(|p| p.unbounded(p.value(&start))).collect();
-    let v0: Vec<f64> = params.iter().map(|p| p.value(&start)).collect();
-    let mut warm: Vec<WarmStart> = Vec::new();
-    let law_of = |u: &[f64]| {
-        let mut br = start.clone();
-        for (p, &x) in params.iter().zip(u) {
-            p.set(&mut br, p.natural(x));
-        }
-        br
+    let start = &case.bit_rock;
+    let u0: Vec<f64> = params.iter().map(|p| p.unbounded(p.value(start))).collect();
+    let mut fit = LawFit {
+        case,
+        params,
+        list,
+        settings,
+        start_values: params.iter().map(|p| p.value(start)).collect(),
+        warm: Vec::new(),
+        progress,
     };
-    // full residual: data plus the weak prior (natural units over the prior sigma)
-    let full = |u: &[f64], res: &[IntervalResult]| -> Vec<f64> {
-        let mut r = residuals(res);
-        for (k, p) in params.iter().enumerate() {
-            r.push((p.natural(u[k]) - v0[k]) / p.prior_sigma());
-        }
-        r
-    };
-    let evaluate = |u: &[f64], warm: &mut Vec<WarmStart>| -> Result<(Vec<f64>, Vec<IntervalResult>), PredictError> {
-        let res = run_intervals(case, &law_of(u), list, settings, warm, |_, _| {})?;
-        Ok((full(u, &res), res))
-    };
-    let mut u = u0.clone();
-    let (mut r, mut res) = evaluate(&u, &mut warm)?;
-    let ssr = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
-    let ssr_start = ssr(&r);
-    let mut lambda = 1e-3;
-    let mut iterations = 0;
-    let mut jac = DMatrix::zeros(r.len(), np);
-    for it in 0..MAX_LM_ITERATIONS {
-        iterations = it + 1;
-        for c in 0..np {
-            let mut up = u.clone();
-            up[c] += FD_STEP;
-            let (rp, _) = evaluate(&up, &mut warm)?;
-            for k in 0..r.len() {
-                jac[(k, c)] = (rp[k] - r[k]) / FD_STEP;
-            }
-        }
-        let jt = jac.transpose();
-        let jtj = &jt * &jac;
-        let g = &jt * DVector::from_vec(r.clone());
-        let mut improved = false;
-        for _ in 0..MAX_LAMBDA_INCREASES {
-            let mut a = jtj.clone();
-            for d in 0..np {
-                a[(d, d)] += lambda * jtj[(d, d)].max(1e-12);
-            }
-            let Some(mut step) = a.lu().solve(&(-&g)) else {
-                lambda *= 10.0;
-                continue;
-            };
-            // trust region in the unbounded variables
-            if step.amax() > MAX_STEP_U {
-                step *= MAX_STEP_U / step.amax();
-            }
-            let un: Vec<f64> = u.iter().zip(step.iter()).map(|(a, b)| a + b).collect();
-            let (rn, resn) = evaluate(&un, &mut warm)?;
-            if ssr(&rn) < ssr(&r) {
-                let small = step.amax() < 1e-4 || (ssr(&r) - ssr(&rn)) < SSR_RELATIVE_TOLERANCE * ssr(&r).max(1e-30);
-                u = un;
-                r = rn;
-                res = resn;
-                lambda = (lambda / 10.0).max(1e-9);
-                improved = true;
-                progress(&format!(
-                    "calibration iteration {}: SSR {:.4e} (deg/100 m)^2",
-                    it + 1,
-                    ssr(&r)
-                ));
-                if small {
-                    return Ok(finish(params, &u, &jac, &r, res, law_of(&u), ssr_start, iterations));
-                }
-                break;
-            }
-            lambda *= 10.0;
-        }
-        if !improved {
-            break;
-        }
-    }
-    let br = law_of(&u);
-    Ok(finish(params, &u, &jac, &r, res, br, ssr_start, iterations))
-}
-
-#[allow(clippy::too_many_arguments)]
-fn finish(
-    params: &[FitParameter],
-    u: &[f64],
-    jac: &DMatrix<f64>,
-    r: &[f64],
-    results: Vec<IntervalResult>,
-    bit_rock: BitRock,
-    ssr_start: f64,
-    iterations: usize,
-) -> Calibration {
-    let np = params.len();
-    // data rows only for the covariance
-    let m = r.len() - np;
-    let jd = jac.rows(0, m).into_owned();
-    let ssr_data: f64 = r[..m].iter().map(|x| x * x).sum();
-    let dof = m.saturating_sub(np).max(1);
-    let s2 = ssr_data / dof as f64;
-    let cov = (jd.transpose() * &jd).try_inverse();
+    let lm = levenberg_marquardt(&mut fit, &u0, None, &LM_SETTINGS)?;
+    // the covariance of the data rows only (not the prior's)
+    let m = lm.residuals.len() - params.len();
+    let sd = standard_deviations(&lm.jacobian.rows(0, m).into_owned(), &lm.residuals.as_slice()[..m]);
     let fitted = params
         .iter()
         .enumerate()
         .map(|(k, p)| {
-            let sd_u = cov
-                .as_ref()
-                .map(|c| (s2 * c[(k, k)]).max(0.0).sqrt())
-                .unwrap_or(f64::INFINITY);
-            (*p, p.natural(u[k]), sd_u * p.slope(u[k]).abs())
+            let sd_u = sd.as_ref().map_or(f64::INFINITY, |s| s[k]);
+            (*p, p.natural(lm.x[k]), sd_u * p.slope(lm.x[k]).abs())
         })
         .collect();
-    Calibration {
-        bit_rock,
+    Ok(Calibration {
+        bit_rock: fit.law(&lm.x),
         fitted,
-        ssr_start,
-        ssr_end: r.iter().map(|x| x * x).sum(),
-        iterations,
-        results,
-    }
+        ssr_start: lm.initial_cost,
+        ssr_end: sum_of_squares(&lm.residuals),
+        iterations: lm.iterations,
+        results: lm.outcome,
+    })
 }

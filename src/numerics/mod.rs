@@ -1,0 +1,3 @@
+//! Small numerical routines shared by the models and the calibrations (no mechanics here).
+
+pub mod least_squares;
