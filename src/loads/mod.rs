@@ -7,7 +7,8 @@
 //! - [`stiff`]: the same rows from the whole-string FEM, warm-started;
 //! - [`limits`]: buckling onset (sinusoidal, helical) along the string and pipe-body yield
 //!   limits (tension, torsion, combined);
-//! - [`calibrate`]: least-squares fit of the friction factor per hole section.
+//! - [`calibrate`]: least-squares fit of the friction factor per hole section;
+//! - [`run`]: one chart as `drillpath loads` computes it (bit depths, calibration, rows).
 //!
 //! The case gives the string at its own bit depth. At another bit depth the string is the same
 //! from the bit upward and its topmost component is lengthened or shortened so that it reaches
@@ -18,6 +19,7 @@ pub mod calibrate;
 pub mod chart;
 pub mod limits;
 pub mod row;
+pub mod run;
 pub mod stiff;
 
 use crate::case::{Case, Mode};

@@ -1,7 +1,7 @@
 //! Outputs of `drillpath loads`: `loads.csv` (interface.md columns first, then extensions),
 //! the calibration overlay `calibration.csv` and `calibration.json`.
 
-use super::{finite, num};
+use super::{num, Finite};
 use crate::loads::calibrate::Calibration;
 use crate::loads::row::LoadRow;
 
@@ -88,28 +88,57 @@ pub fn overlay_csv(cal: &Calibration) -> Result<String, String> {
     Ok(out)
 }
 
+/// One hole section of `calibration.json`.
+#[derive(Debug, serde::Serialize)]
+struct SectionFit {
+    section: usize,
+    from_md_m: Finite,
+    to_md_m: Finite,
+    diameter_in: Finite,
+    initial_friction: Finite,
+    friction: Finite,
+    std_error: Option<Finite>,
+    fitted: bool,
+}
+
 /// `calibration.json`: fitted friction per hole section with standard errors, residual RMS.
-pub fn calibration_json(cal: &Calibration) -> Result<serde_json::Value, String> {
-    let mut sections = Vec::new();
-    for p in &cal.parameters {
-        sections.push(serde_json::json!({
-            "section": p.section,
-            "from_md_m": finite(p.from_md_m)?,
-            "to_md_m": finite(p.to_md_m)?,
-            "diameter_in": finite(p.diameter_m / 0.0254)?,
-            "initial_friction": finite(p.initial)?,
-            "friction": finite(p.value)?,
-            "std_error": p.std_error.map(finite).transpose()?,
-            "fitted": p.fitted,
-        }));
+#[allow(non_snake_case)]
+#[derive(Debug, serde::Serialize)]
+pub struct CalibrationSummary {
+    sections: Vec<SectionFit>,
+    points: usize,
+    residuals: usize,
+    rms_hook_load_kN: Finite,
+    rms_torque_kNm: Option<Finite>,
+    iterations: usize,
+    converged: bool,
+}
+
+impl CalibrationSummary {
+    /// The summary of `cal`.
+    pub fn new(cal: &Calibration) -> CalibrationSummary {
+        let sections = cal
+            .parameters
+            .iter()
+            .map(|p| SectionFit {
+                section: p.section,
+                from_md_m: Finite(p.from_md_m),
+                to_md_m: Finite(p.to_md_m),
+                diameter_in: Finite(p.diameter_m / 0.0254),
+                initial_friction: Finite(p.initial),
+                friction: Finite(p.value),
+                std_error: p.std_error.map(Finite),
+                fitted: p.fitted,
+            })
+            .collect();
+        CalibrationSummary {
+            sections,
+            points: cal.points.len(),
+            residuals: cal.residuals,
+            rms_hook_load_kN: Finite(cal.rms_hook_load_n / 1e3),
+            rms_torque_kNm: cal.rms_torque_nm.map(|t| Finite(t / 1e3)),
+            iterations: cal.iterations,
+            converged: cal.converged,
+        }
     }
-    Ok(serde_json::json!({
-        "sections": sections,
-        "points": cal.points.len(),
-        "residuals": cal.residuals,
-        "rms_hook_load_kN": finite(cal.rms_hook_load_n / 1e3)?,
-        "rms_torque_kNm": cal.rms_torque_nm.map(|t| finite(t / 1e3)).transpose()?,
-        "iterations": cal.iterations,
-        "converged": cal.converged,
-    }))
 }

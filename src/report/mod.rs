@@ -4,6 +4,7 @@ pub mod display_units;
 pub mod html;
 pub mod inputs;
 pub mod loads_output;
+pub mod loads_text;
 pub mod plots;
 pub mod predict_output;
 pub mod predict_report;

@@ -1,0 +1,282 @@
+//! The readable summary of `drillpath loads` on stdout: the level, the calibration, the soft
+//! string's table and limits, and the stiff columns' table.
+
+use super::display_units::{fixed, UnitSystem};
+use crate::case::{Case, Level, Mode};
+use crate::loads::calibrate::Calibration;
+use crate::loads::row::{LoadRow, RowLoads, Start, StiffOutcome};
+use crate::loads::run::{Chart, ChartPlan};
+use crate::loads::MODES;
+use std::io::Write;
+use std::path::Path;
+
+/// The whole summary of `chart` (computed by `plan` on `case`, read from `case_file`) in `units`.
+pub fn write_loads(
+    out: &mut impl Write,
+    case: &Case,
+    case_file: &Path,
+    plan: &ChartPlan,
+    chart: &Chart,
+    units: UnitSystem,
+) -> std::io::Result<()> {
+    write_header(out, case, case_file, plan)?;
+    if let Some(cal) = &chart.calibration {
+        write_calibration(out, cal, plan.measured.len(), units)?;
+    }
+    print_summary(&chart.rows, &plan.depths, chart.soft_seconds, units, out)?;
+    if plan.choice.level != Level::Soft {
+        print_stiff_summary(
+            &chart.rows,
+            &plan.depths,
+            plan.choice.level,
+            chart.stiff_seconds,
+            units,
+            out,
+        )?;
+    }
+    Ok(())
+}
+
+/// The case, the level and why, what the columns hold, and the operation's notes.
+fn write_header(out: &mut impl Write, case: &Case, case_file: &Path, plan: &ChartPlan) -> std::io::Result<()> {
+    let level = plan.choice.level;
+    writeln!(out, "loads: {} ({})", case.name, case_file.display())?;
+    writeln!(out, "  fidelity {}: {}", level.name(), plan.choice.reason)?;
+    if level != Level::Soft {
+        writeln!(
+            out,
+            "  loads.csv: hook_load_kN, surface_torque_kNm, max_contact_force_kN and the buckling and yield columns are the soft string's (computed for every row); the {} results are the stiff_* columns (stiff_model = {})",
+            level.name(),
+            level.name()
+        )?;
+    }
+    if case.operation.rpm <= 0.0 {
+        writeln!(
+            out,
+            "  note: the case gives no rpm; rotating rows use {} rpm",
+            fixed(plan.op.rpm, 0)
+        )?;
+    }
+    if plan.op.wob_n == 0.0 {
+        writeln!(
+            out,
+            "  note: WOB 0 for the drilling and sliding rows (give wob in the case or --wob)"
+        )?;
+    }
+    Ok(())
+}
+
+/// The fitted friction per section and the residuals.
+fn write_calibration(out: &mut impl Write, cal: &Calibration, points: usize, units: UnitSystem) -> std::io::Result<()> {
+    let (du, su, fu, tu) = (units.depth(), units.small_length(), units.force(), units.torque());
+    writeln!(
+        out,
+        "  calibration: {} points ({} residuals), {} iterations{}",
+        points,
+        cal.residuals,
+        cal.iterations,
+        if cal.converged { "" } else { " (NOT CONVERGED)" }
+    )?;
+    for p in &cal.parameters {
+        let what = match (p.fitted, p.std_error) {
+            (true, Some(s)) => format!("{:.3} +/- {:.3} (was {:.3})", p.value, s, p.initial),
+            (true, None) => format!(
+                "{:.3} (was {:.3}; no redundancy for an error estimate)",
+                p.value, p.initial
+            ),
+            (false, _) => format!("{:.3} kept (the data do not constrain this section)", p.value),
+        };
+        writeln!(
+            out,
+            "    section {} ({}-{}, {}): friction {}",
+            p.section + 1,
+            du.num(p.from_md_m, 0),
+            du.fmt(p.to_md_m, 0),
+            su.fmt(p.diameter_m, 1),
+            what
+        )?;
+    }
+    write!(out, "    residual RMS: hook load {}", fu.fmt(cal.rms_hook_load_n, 2))?;
+    match cal.rms_torque_nm {
+        Some(t) => writeln!(out, ", torque {}", tu.fmt(t, 3))?,
+        None => writeln!(out)?,
+    }
+    writeln!(out, "  the chart below uses the fitted friction factors")
+}
+
+/// Time, iterations and starts of the stiff rows, their table, and the rows that did not converge.
+fn print_stiff_summary(
+    rows: &[LoadRow],
+    depths: &[f64],
+    level: Level,
+    seconds: f64,
+    units: UnitSystem,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let count = |s: Start| {
+        rows.iter()
+            .filter(|r| matches!(r.stiff, Some(StiffOutcome::Converged { start, .. }) if start == s))
+            .count()
+    };
+    let iterations: usize = rows
+        .iter()
+        .filter_map(|r| r.stiff.as_ref())
+        .map(|o| o.iterations())
+        .sum();
+    let what = match level {
+        Level::Hybrid => "hybrid (stiff BHA + soft string above)",
+        _ => "whole-string FEM",
+    };
+    write!(
+        out,
+        "  {what}: {} rows in {seconds:.2} s, {iterations} Newton iterations",
+        rows.len()
+    )?;
+    if level == Level::Whole {
+        writeln!(
+            out,
+            "; started from the same load case one depth up {}, from the previous load case {}, cold {}",
+            count(Start::PreviousDepth),
+            count(Start::PreviousCase),
+            count(Start::Cold),
+        )?;
+    } else {
+        writeln!(out, " (each row cold-started)")?;
+    }
+    print_table(
+        rows,
+        depths,
+        units,
+        |r| r.stiff.as_ref().and_then(StiffOutcome::loads),
+        false,
+        out,
+    )?;
+    let bad: Vec<String> = rows
+        .iter()
+        .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
+        .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
+        .collect();
+    if !bad.is_empty() {
+        writeln!(
+            out,
+            "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
+            bad.len(),
+            bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+        )?;
+    }
+    Ok(())
+}
+
+/// The chart's table in `units`: per bit depth (at most about 40 lines) the hook loads of the
+/// five load cases and the rotating torques taken from `loads` of each row ("-" where it gives
+/// none, e.g. a stiff row that did not converge), with the sliding row's sinusoidally buckled
+/// length when `buckled_column`.
+fn print_table<'a>(
+    rows: &'a [LoadRow],
+    depths: &[f64],
+    units: UnitSystem,
+    loads: impl Fn(&'a LoadRow) -> Option<&'a RowLoads>,
+    buckled_column: bool,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    write!(
+        out,
+        "  bit MD {} | hook load {}: trip_in  trip_out  rot_off  drilling  sliding | torque {}: rot_off  drilling",
+        du.label, fu.label, tu.label
+    )?;
+    if buckled_column {
+        write!(out, " | buckled {} (sliding)", du.label)?;
+    }
+    writeln!(out)?;
+    let stride = depths.len().div_ceil(40).max(1);
+    for (k, d) in depths.iter().enumerate() {
+        if k % stride != 0 && k + 1 != depths.len() {
+            continue;
+        }
+        let value = |m, f: &dyn Fn(&RowLoads) -> String| loads(row(rows, k, m)).map_or("-".to_string(), f);
+        let h = |m| value(m, &|l| fu.num(l.hook_load_n, 1));
+        let t = |m| value(m, &|l| tu.num(l.surface_torque_nm, 2));
+        write!(
+            out,
+            "  {:>9} | {:>9} {:>9} {:>8} {:>9} {:>8} | {:>8} {:>9}",
+            du.num(*d, 1),
+            h(Mode::TripIn),
+            h(Mode::TripOut),
+            h(Mode::RotatingOffBottom),
+            h(Mode::Drilling),
+            h(Mode::Sliding),
+            t(Mode::RotatingOffBottom),
+            t(Mode::Drilling),
+        )?;
+        if buckled_column {
+            write!(
+                out,
+                " | {:>7}",
+                du.num(row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m, 1)
+            )?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
+}
+
+fn row(rows: &[LoadRow], k: usize, mode: Mode) -> &LoadRow {
+    let j = MODES.iter().position(|m| *m == mode).expect("all modes");
+    &rows[k * MODES.len() + j]
+}
+
+/// Readable table in `units`: hook loads of the five cases and the rotating torques per depth
+/// (at most about 40 lines), then the limits.
+fn print_summary(
+    rows: &[LoadRow],
+    depths: &[f64],
+    seconds: f64,
+    units: UnitSystem,
+    out: &mut impl Write,
+) -> std::io::Result<()> {
+    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    writeln!(
+        out,
+        "  {} bit depths x {} load cases, soft string in {:.3} s",
+        depths.len(),
+        MODES.len(),
+        seconds
+    )?;
+    print_table(rows, depths, units, |r| Some(&r.soft), true, out)?;
+    let worst = rows
+        .iter()
+        .filter_map(|r| r.yield_.max_stress_ratio.map(|s| (s, r)))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    match worst {
+        Some((s, r)) => writeln!(
+            out,
+            "  yield: largest von Mises / yield {} ({} at {}); top pipe body: tension {}, torque {}",
+            fixed(s, 3),
+            r.mode.name(),
+            du.fmt(r.bit_md_m, 0),
+            fu.fmt(r.yield_.tension_limit_n.unwrap_or(0.0), 0),
+            tu.fmt(r.yield_.torque_limit_nm.unwrap_or(0.0), 1)
+        )?,
+        None => writeln!(
+            out,
+            "  yield limits: not computed (give grade or yield_strength in the [[string]] components)"
+        )?,
+    }
+    let buckled: Vec<&LoadRow> = rows.iter().filter(|r| r.buckling.sinusoidal_length_m > 0.0).collect();
+    if let Some(first) = buckled.first() {
+        writeln!(
+            out,
+            "  buckling: {} rows with sinusoidal buckling (first: {} at {}), {} with helical",
+            buckled.len(),
+            first.mode.name(),
+            du.fmt(first.bit_md_m, 0),
+            rows.iter().filter(|r| r.buckling.helical_length_m > 0.0).count()
+        )
+    } else {
+        writeln!(
+            out,
+            "  buckling: none (compression below the sinusoidal onset everywhere)"
+        )
+    }
+}
