@@ -114,8 +114,7 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
         write_atomic(&dir.join("summary.json"), summary.as_bytes()).with_context(ctx)?;
     }
     if let Some(file) = &a.view.report {
-        let split = b.calibration.as_ref().map(|c| c.split_md_m);
-        crate::report::predict_report::write_backanalyze(file, &case, &b.results, split, a.view.units)?;
+        crate::report::predict_report::write_backanalyze(file, &case, &b, a.view.units)?;
     }
     let mut out = std::io::stdout().lock();
     if a.view.json {

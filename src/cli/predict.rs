@@ -231,7 +231,7 @@ pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
         write_atomic(&dir.join("summary.json"), summary.as_bytes()).with_context(ctx)?;
     }
     if let Some(file) = &a.view.report {
-        let list: Vec<_> = runs.iter().map(|r| (&r.case, &r.forecast.prediction)).collect();
+        let list: Vec<_> = runs.iter().map(|r| (&r.case, &r.forecast)).collect();
         crate::report::predict_report::write_predict(file, &list, a.view.units)?;
     }
     let mut out = std::io::stdout().lock();

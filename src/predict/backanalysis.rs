@@ -184,6 +184,9 @@ pub struct Backanalysis {
     pub skipped: Vec<(Interval, PredictError)>,
     /// Errors of `base`.
     pub stats: ErrorStats,
+    /// Errors of `results` (with a calibration: the calibration intervals with the fitted
+    /// law and the scored ones; else `stats`).
+    pub results_stats: ErrorStats,
     /// The law's parameters at the start.
     pub law: LawParams,
     /// The calibration, if asked.
@@ -257,6 +260,7 @@ pub fn run(
     let stats = error_stats(&base);
     let mut out = Backanalysis {
         results: base.clone(),
+        results_stats: stats.clone(),
         stats,
         law: LawParams::at(&case.bit_rock, plan.from_md_m),
         calibration: None,
@@ -268,6 +272,7 @@ pub fn run(
         let (outcome, scored) = calibrate_and_score(case, req, &out.base, warm, settings, progress)?;
         out.results = outcome.calibration.results.clone();
         out.results.extend(scored);
+        out.results_stats = error_stats(&out.results);
         out.calibration = Some(outcome);
     }
     out.seconds = t0.elapsed().as_secs_f64();

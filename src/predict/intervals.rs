@@ -63,6 +63,14 @@ impl IntervalResult {
     pub fn azi_err_rad(&self) -> f64 {
         wrap_pi(self.azi_rad - self.interval.measured.1)
     }
+    /// Inclination error per 100 m of interval (the seed paper's metric), rad.
+    pub fn inc_err_per_100m_rad(&self) -> f64 {
+        self.inc_err_rad() * 100.0 / self.length_m()
+    }
+    /// Azimuth error per 100 m of interval, rad.
+    pub fn azi_err_per_100m_rad(&self) -> f64 {
+        self.azi_err_rad() * 100.0 / self.length_m()
+    }
 }
 
 /// Consecutive intervals of `path` per `plan`.
@@ -181,9 +189,8 @@ pub fn error_stats(results: &[IntervalResult]) -> ErrorStats {
     if n == 0 {
         return ErrorStats::default();
     }
-    let per = |e: f64, r: &IntervalResult| e * 100.0 / r.length_m();
-    let fi: Vec<f64> = results.iter().map(|r| per(r.inc_err_rad(), r)).collect();
-    let fa: Vec<f64> = results.iter().map(|r| per(r.azi_err_rad(), r)).collect();
+    let fi: Vec<f64> = results.iter().map(IntervalResult::inc_err_per_100m_rad).collect();
+    let fa: Vec<f64> = results.iter().map(IntervalResult::azi_err_per_100m_rad).collect();
     let mean_abs = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>() / n as f64;
     let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / n as f64).sqrt();
     ErrorStats {

@@ -8,9 +8,9 @@ use super::inputs::echo_inputs;
 use super::plots::{render, Chart, Series, Style};
 use crate::case::Case;
 use crate::geometry::{Vec3, WellPath};
-use crate::predict::backanalysis::IntervalResult;
-use crate::predict::march::Prediction;
-use crate::predict::track::{interval_rates, tracking_errors, trajectory_rows};
+use crate::predict::backanalysis::Backanalysis;
+use crate::predict::forecast::Forecast;
+use crate::predict::intervals::IntervalResult;
 
 /// Ids of the figures of a predict report (the tests look for each).
 pub const PREDICT_FIGURES: &[&str] = &[
@@ -134,8 +134,9 @@ impl Trajectories<'_> {
 }
 
 /// The predict report's HTML text for one or several cases predicted over the same interval.
-pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Result<String, String> {
+pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<String, String> {
     let (first_case, first) = *runs.first().ok_or("no prediction to report")?;
+    let first = &first.prediction;
     let (du, fu) = (units.depth(), units.force());
     let title = if runs.len() == 1 {
         format!("drillpath predict: {}", first_case.name)
@@ -145,11 +146,9 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
     let mut page = Page::new(&title);
     page.heading("Key results");
     let mut rows = Vec::new();
-    for (case, pred) in runs {
-        let rt = interval_rates(pred);
+    for (case, forecast) in runs {
+        let (pred, rt, tr) = (&forecast.prediction, &forecast.rates, &forecast.tracking);
         let end = pred.steps.last().ok_or("empty prediction")?;
-        let trows = trajectory_rows(pred, Some(&case.well.path));
-        let tr = tracking_errors(&trows, pred.from_md_m);
         rows.push(vec![
             case.name.clone(),
             format!("{} - {}", du.fmt(pred.from_md_m, 1), du.fmt(pred.to_md_m, 1)),
@@ -189,7 +188,10 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
     page.note("build force + = toward the high side, walk force + = to the right; errors are predicted - measured.");
 
     let from = first.from_md_m;
-    let to = runs.iter().map(|r| r.1.to_md_m).fold(first.to_md_m, f64::max);
+    let to = runs
+        .iter()
+        .map(|r| r.1.prediction.to_md_m)
+        .fold(first.to_md_m, f64::max);
     let context = (to - from).max(30.0);
     let meas = measured(&first_case.well.path, from - context, to);
     let start = first.path.point_at(from);
@@ -212,7 +214,8 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
     );
     errors.zero_line = true;
     let mut any_error = false;
-    for (k, (case, pred)) in runs.iter().enumerate() {
+    for (k, (case, forecast)) in runs.iter().enumerate() {
+        let pred = &forecast.prediction;
         let label = |what: &str| {
             if runs.len() == 1 {
                 what.to_string()
@@ -297,8 +300,8 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
                 Style::LinePoints,
                 2 * k + 1,
             ));
-        let trows = trajectory_rows(pred, Some(&case.well.path));
-        let errs: Vec<(f64, (f64, f64))> = trows
+        let errs: Vec<(f64, (f64, f64))> = forecast
+            .rows
             .iter()
             .filter(|r| r.md_m > pred.from_md_m + 1e-6)
             .filter_map(|r| r.errors().map(|e| (r.md_m, e)))
@@ -358,8 +361,8 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
             "a pre-drill prediction has nothing to compare with",
         );
     }
-    for (case, pred) in runs {
-        echo_inputs(&mut page, case, pred.from_md_m, units)?;
+    for (case, forecast) in runs {
+        echo_inputs(&mut page, case, forecast.prediction.from_md_m, units)?;
     }
     let html = page.finish();
     check_finite_text(&html)?;
@@ -367,12 +370,9 @@ pub fn predict_report(runs: &[(&Case, &Prediction)], units: UnitSystem) -> Resul
 }
 
 /// The backanalyze report's HTML text; `split_md_m` marks where calibration ends (with --calibrate).
-pub fn backanalyze_report(
-    case: &Case,
-    results: &[IntervalResult],
-    split_md_m: Option<f64>,
-    units: UnitSystem,
-) -> Result<String, String> {
+pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -> Result<String, String> {
+    let (results, stats) = (&back.results, &back.results_stats);
+    let split_md_m = back.calibration.as_ref().map(|c| c.split_md_m);
     let (du, fu) = (units.depth(), units.force());
     let (f, l) = (
         results.first().ok_or("no interval to report")?,
@@ -380,7 +380,6 @@ pub fn backanalyze_report(
     );
     let mut page = Page::new(&format!("drillpath backanalyze: {}", case.name));
     page.heading("Key results");
-    let stats = crate::predict::backanalysis::error_stats(results);
     let mut kv = vec![
         ("intervals".to_string(), results.len().to_string()),
         (
@@ -501,7 +500,6 @@ pub fn backanalyze_report(
             1,
         ));
     tilt.zero_line = true;
-    let per100 = |e: f64, r: &IntervalResult| e.to_degrees() * 100.0 / r.length_m().max(1e-9);
     let mut errors = Chart::new(
         "Per-interval errors (predicted - measured) per 100 m",
         &md,
@@ -509,13 +507,19 @@ pub fn backanalyze_report(
     )
     .with(Series::new(
         "inclination error",
-        results.iter().map(|r| (end(r), per100(r.inc_err_rad(), r))).collect(),
+        results
+            .iter()
+            .map(|r| (end(r), r.inc_err_per_100m_rad().to_degrees()))
+            .collect(),
         Style::LinePoints,
         0,
     ))
     .with(Series::new(
         "azimuth error",
-        results.iter().map(|r| (end(r), per100(r.azi_err_rad(), r))).collect(),
+        results
+            .iter()
+            .map(|r| (end(r), r.azi_err_per_100m_rad().to_degrees()))
+            .collect(),
         Style::LinePoints,
         1,
     ));
@@ -586,7 +590,7 @@ pub fn backanalyze_report(
 }
 
 /// Build the predict report and write it atomically to `file`.
-pub fn write_predict(file: &std::path::Path, runs: &[(&Case, &Prediction)], units: UnitSystem) -> anyhow::Result<()> {
+pub fn write_predict(file: &std::path::Path, runs: &[(&Case, &Forecast)], units: UnitSystem) -> anyhow::Result<()> {
     let html = predict_report(runs, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
     super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
 }
@@ -595,11 +599,10 @@ pub fn write_predict(file: &std::path::Path, runs: &[(&Case, &Prediction)], unit
 pub fn write_backanalyze(
     file: &std::path::Path,
     case: &Case,
-    results: &[IntervalResult],
-    split_md_m: Option<f64>,
+    back: &Backanalysis,
     units: UnitSystem,
 ) -> anyhow::Result<()> {
-    let html = backanalyze_report(case, results, split_md_m, units)
-        .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
+    let html =
+        backanalyze_report(case, back, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
     super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
 }
