@@ -80,7 +80,7 @@ pub struct PredictArgs {
     /// Step length [default: the case's `[bit_rock]` step, 1 m].
     #[arg(long, value_name = "LENGTH")]
     pub step: Option<String>,
-    /// Distance from the bit where the stiff model is cut [default: automatic, see README].
+    /// Distance from the bit where the stiff model is cut [default: automatic, see docs/guide.md, "The stiff BHA model"].
     #[arg(long, value_name = "LENGTH")]
     pub cut: Option<String>,
     /// Richardson extrapolation in the step: march at --step and at half of it, combine the two

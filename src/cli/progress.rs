@@ -152,7 +152,7 @@ impl Drop for Progress {
 mod tests {
     use super::*;
 
-    /// Reference: the rule of the README (a bar only on a terminal, never with -q).
+    /// Reference: the rule of docs/guide.md, "Running drillpath" (a bar only on a terminal, never with -q).
     #[test]
     fn shown_only_on_a_terminal_and_not_quiet() {
         assert!(enabled(true, false));

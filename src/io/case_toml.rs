@@ -1,6 +1,6 @@
 //! TOML case files -> validated [`Case`] (interface.md "Case file").
 //!
-//! Default units of bare numbers (documented in the README): measured depths and lengths m,
+//! Default units of bare numbers (documented in docs/guide.md, "Case-file reference"): measured depths and lengths m,
 //! diameters (`od`, `id`, `body_od`, `tool_joint_od`, `diameter`) in, forces kN, torques kN.m,
 //! mud density sg, weight per length kg/m, ROP m/h, trip speed m/s, angles deg, moduli GPa,
 //! material density kg/m3, viscosity cP.

@@ -987,7 +987,7 @@ mod tests {
         a.add(3, 0, 1.0);
     }
 
-    /// Timing run: `cargo test --release --lib fem::band::tests::timings -- --ignored --nocapture`.
+    /// Timing run: `cargo test --release --lib models::fem::linalg::band::tests::timings -- --ignored --nocapture`.
     #[test]
     #[ignore]
     fn timings() {
