@@ -260,7 +260,7 @@ pub fn run(
     let stats = error_stats(&base);
     let mut out = Backanalysis {
         results: base.clone(),
-        results_stats: stats.clone(),
+        results_stats: stats,
         stats,
         law: LawParams::at(&case.bit_rock, plan.from_md_m),
         calibration: None,

@@ -414,7 +414,7 @@ fn d_tinv_t_m(theta: &Vec3, m: &Vec3) -> Matrix3<f64> {
 /// `E = e . dp = [w . dq - (q1 / l) w . dd] / c^2` (`q` the mean second axis, `w = r1 x q`,
 /// `c = |w|`, `q1 = q . r1`); each factor is then varied in turn.
 ///
-/// Hand-optimized (it was the largest single cost of a whole-string solve): the 12x12 is kept
+/// Hand-optimized (the largest single cost of a whole-string solve otherwise): the 12x12 is kept
 /// as 4x4 spatial 3x3 blocks; the chord map `ld = [-I, 0, I, 0]`, the node-spin maps and the
 /// `dq` map are block-sparse, so their products are formed block by block; `Omega` is applied
 /// as its 3x3 pattern plus the rank-one part `r1 e^T` (a matrix-vector product and an outer
@@ -614,7 +614,7 @@ pub fn perturbed(st: &ElementState, j: usize, h: f64) -> (Vec3, Vec3, Matrix3<f6
 }
 
 /// `(dB^T/dp_global) f_local` by central differences (f_local fixed): 24 evaluations of `B`.
-/// The test oracle of the analytic `geometric_tangent` (it was the production tangent before).
+/// The test oracle of the analytic `geometric_tangent`.
 pub fn geometric_tangent_by_differences(st: &ElementState, l0: f64, fl: &SVector<f64, 7>) -> Mat12 {
     let mut kg = Mat12::zeros();
     let h = 1e-7;

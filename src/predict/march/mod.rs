@@ -1,0 +1,439 @@
+//! The forward-marching loop (physics.md 7.6): solve the stiff bottom-hole assembly with the
+//! bit at `s`, apply the bit-rock law, extend the hole by one minimum-curvature arc to the
+//! drilling direction, move the bit, re-solve warm-started from the previous state.
+
+mod hole;
+mod ripple;
+mod step;
+
+pub use hole::{hole_for_prediction, hole_to};
+pub use ripple::{
+    ripple_safe_step_m, RIPPLE_FAIL_DEG, RIPPLE_GROWTH, RIPPLE_GROWTH_LENGTH_M, RIPPLE_STEPS_PER_WAVELENGTH,
+    RIPPLE_WARN_DEG, RIPPLE_WINDOW_M,
+};
+pub use step::{
+    bit_action, DIRECTION_TOLERANCE_RAD, MAX_DIRECTION_ITERATIONS, MAX_TURN_CHANGE_RAD, TURN_PERTURBATION_RAD,
+    TURN_TOLERANCE_RAD,
+};
+
+use super::law::{deviation, drilling_direction, LawParams};
+use crate::case::{BitRock, Case};
+use crate::geometry::{Frame, HoleSize, Vec3, WellPath};
+use crate::models::fem::bha::default_cut_m;
+use crate::models::fem::model::{Model, State};
+use crate::models::fem::results::BitResult;
+use crate::models::fem::solve::SolveControls;
+use hole::PredictedHole;
+use nalgebra::Matrix2;
+use ripple::RippleWatch;
+use std::time::Instant;
+use step::{implicit_step, solve_at, BitSolve, StepOutcome};
+
+pub use crate::case::bit_rock::MIN_STEP_M;
+
+/// Shortest string model (bit to cut or to the top of the hole), m.
+pub const MIN_MODEL_LENGTH_M: f64 = 10.0;
+
+/// Settings of a prediction.
+#[derive(Debug, Clone, Copy)]
+pub struct MarchSettings {
+    /// Step length, m.
+    pub step_m: f64,
+    /// Cut distance of the bottom-hole-assembly model above the bit, m (None: the default rule
+    /// of [`crate::models::fem::bha`]).
+    pub cut_m: Option<f64>,
+    /// Solver controls.
+    pub controls: SolveControls,
+    /// How a step extends the hole (see [`StepScheme`]).
+    pub scheme: StepScheme,
+}
+
+/// How a step of the march shapes the hole near the bit. In both, the chord of the new step
+/// follows the drilling direction the bit has at the end of the step (implicit, see
+/// [`predict_from`]) and an interior station's tangent lies between its two chords.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum StepScheme {
+    /// The tangent at the bit is the last chord: the last step bends half as much as a circle
+    /// through the chords, so the bottom-hole assembly sees a hole that lags its own path by
+    /// half a step near the bit. Error ~0.9 deg of inclination after 100 m at 1 m steps on the
+    /// j-shape example (docs/performance.md); kept for comparison.
+    Chord,
+    /// The tangent at the bit is extrapolated from the last two chords (from the start tangent
+    /// and the first chord on the first step) as on a circle: a hole of constant curvature is
+    /// represented exactly up to the bit. Error ~0.02 deg after 100 m at 1 m steps on j-shape.
+    #[default]
+    Arc,
+}
+
+impl MarchSettings {
+    /// Settings from `case`: `[bit_rock] step`, `[solver]` tolerance and iteration limit.
+    pub fn from_case(case: &Case) -> MarchSettings {
+        MarchSettings {
+            step_m: case.bit_rock.step_m,
+            cut_m: None,
+            controls: SolveControls::from_settings(&case.solver),
+            scheme: StepScheme::default(),
+        }
+    }
+}
+
+/// One solved bit position of a prediction.
+#[derive(Debug, Clone, Copy)]
+pub struct StepRecord {
+    /// Bit MD, m.
+    pub md_m: f64,
+    /// Hole inclination at the bit, rad.
+    pub inc_rad: f64,
+    /// Hole azimuth at the bit, rad.
+    pub azi_rad: f64,
+    /// Bit position (north, east, tvd), m.
+    pub position: Vec3,
+    /// Bit forces and tilt from the string solve.
+    pub bit: BitResult,
+    /// Drilling direction from the law (global unit vector; equal to the hole tangent after the
+    /// first record, within the implicit step's tolerance).
+    pub direction: Vec3,
+    /// Newton iterations of this step's solve.
+    pub iterations: usize,
+}
+
+/// A prediction from `from_md_m` to `to_md_m`.
+#[derive(Debug, Clone)]
+pub struct Prediction {
+    /// The hole: measured stations up to the start, then one predicted station per step.
+    pub path: WellPath,
+    /// Solved bit positions, the start first and the end last.
+    pub steps: Vec<StepRecord>,
+    /// Start MD, m.
+    pub from_md_m: f64,
+    /// End MD, m.
+    pub to_md_m: f64,
+    /// Cut distance of the model, m.
+    pub cut_m: f64,
+    /// Degrees of freedom of the model.
+    pub dofs: usize,
+    /// Newton iterations over all steps.
+    pub iterations: usize,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+    /// The model and solved state at the start (a warm start for predicting again from there).
+    pub start_warm: WarmStart,
+    /// Ripple of the predicted hole direction at the end, deg: the largest deviation of the
+    /// chord directions of the last [`RIPPLE_WINDOW_M`] from their straight-line trend in MD
+    /// (0 when the prediction is shorter than that). A warning is due from
+    /// [`RIPPLE_WARN_DEG`].
+    pub ripple_deg: f64,
+}
+
+/// Why a prediction stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum PredictError {
+    /// The string solve at a bit position did not converge.
+    #[error("the string solve with the bit at {md_m:.2} m MD did not converge after {iterations} iterations (residual {residual:.1e}, penetration {penetration:.1e} of the clearance){detail}")]
+    NotConverged {
+        /// Bit MD, m.
+        md_m: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// Last relative residual.
+        residual: f64,
+        /// Largest penetration relative to the clearance.
+        penetration: f64,
+        /// Chattering contacts, if any.
+        detail: String,
+    },
+    /// The string solve failed (singular system).
+    #[error("the string solve with the bit at {md_m:.2} m MD failed: {source}")]
+    Solve {
+        /// Bit MD, m.
+        md_m: f64,
+        /// The solver's error.
+        source: crate::models::fem::solve::SolveError,
+    },
+    /// The implicit step found no hole direction consistent with the law, also at the
+    /// shortest step the march tried (a failing step is halved while it stays at least
+    /// [`MIN_STEP_M`]).
+    #[error("no drilling direction consistent with the bit-rock law was found for the {step_m:.2} m step ending at {md_m:.2} m MD (deviation left {residual_rad:.1e} rad; a failing step is halved as long as it stays at least {MIN_STEP_M} m){hint}")]
+    NoDirection {
+        /// End MD of the step, m.
+        md_m: f64,
+        /// Deviation between drilling direction and hole tangent left, rad.
+        residual_rad: f64,
+        /// Length of the last step tried, m.
+        step_m: f64,
+        /// What the march saw that may explain it (empty when nothing), with its remedy.
+        hint: String,
+    },
+    /// The predicted hole ripples around its trend by more than [`RIPPLE_FAIL_DEG`], and the
+    /// ripple grows: the step resolves a directional instability of the bottom-hole assembly
+    /// with the bit-rock law (docs/performance.md, "Step convergence").
+    #[error("the predicted hole ripples around its trend by {ripple_deg:.2} deg at {md_m:.2} m MD{wavelength}, grown from {earlier_deg:.2} deg over the last {RIPPLE_GROWTH_LENGTH_M} m: at a {step_m} m step the march resolves a directional instability of this bottom-hole assembly with this bit-rock law and the trend is lost; use a step of at least {suggested_m} m (a quarter of the ripple's wavelength or more damps it)")]
+    Ripple {
+        /// Bit MD where the ripple was found, m.
+        md_m: f64,
+        /// Ripple, deg (see [`Prediction::ripple_deg`]).
+        ripple_deg: f64,
+        /// Ripple [`RIPPLE_GROWTH_LENGTH_M`] earlier, deg.
+        earlier_deg: f64,
+        /// ", wavelength about X m" when it could be measured, else empty.
+        wavelength: String,
+        /// Step of the prediction, m.
+        step_m: f64,
+        /// Step to use instead, m.
+        suggested_m: f64,
+    },
+    /// The step is shorter than [`MIN_STEP_M`].
+    #[error("the prediction step {step_m} m is shorter than the shortest step accepted, {MIN_STEP_M} m")]
+    StepTooShort {
+        /// The step asked for, m.
+        step_m: f64,
+    },
+    /// Too little hole above the bit for the string model.
+    #[error("the bit at {md_m:.2} m MD has only {length_m:.1} m of hole above it; the string model needs at least {MIN_MODEL_LENGTH_M} m")]
+    TooShallow {
+        /// Bit MD, m.
+        md_m: f64,
+        /// Hole length above the bit, m.
+        length_m: f64,
+    },
+    /// The hole could not be built (bad stations).
+    #[error("{0}")]
+    Geometry(String),
+}
+
+/// Warm-start memory between calls: the last model and its solved state.
+pub type WarmStart = Option<(Model, State)>;
+
+/// Predict from the end of `start` (the hole drilled so far; its last station is the bit) to
+/// `to_md_m`, with the law parameters of `bit_rock` (the case's unless overridden, for
+/// calibration). `warm` carries the last solved state between calls.
+///
+/// Each step is implicit (backward Euler on the bit's position): the bit moves from `s` to
+/// `s + ds` along the drilling direction it has when it arrives there. The unknown is the
+/// direction of the step's chord; Newton's method with a finite-difference Jacobian kept
+/// between steps (Broyden updates) drives the deviation between the law's drilling direction
+/// at the new bit position and the chord to zero. Station tangents follow the chords (see
+/// `PredictedHole`), so the hole is smooth; with [`StepScheme::Arc`] (the default) the tangent
+/// at the bit is that of the circle through the last two chords, so a hole of constant
+/// curvature is represented exactly up to the bit, where the stiff bit-to-stabilizer span makes
+/// the drilling direction most sensitive to the hole's shape (with [`StepScheme::Chord`] the
+/// tangent at the bit lags by half a step's turn, the main step error of that scheme). A step
+/// that fails (no direction found, or a string solve failing on the way) is retried at half
+/// the length, down to [`MIN_STEP_M`]. Why not simpler schemes: the bit side force
+/// answers a lateral move of the bit with a stiffness of order 3 EI / a^3 (a: bit to first
+/// stabilizer), so "new tangent = drilling direction computed before the step" (explicit) is
+/// unstable unless `ds < 4 W a^3 / (3 EI)` (centimetres for a near-bit stabilizer), and
+/// "new tangent = drilling direction after the step" with arcs between tangents (trapezoidal)
+/// leaves an undamped zig-zag of the station tangents.
+pub fn predict_from(
+    case: &Case,
+    bit_rock: &BitRock,
+    start: &WellPath,
+    to_md_m: f64,
+    settings: &MarchSettings,
+    warm: &mut WarmStart,
+    on_step: &mut dyn FnMut(f64),
+) -> Result<Prediction, PredictError> {
+    let t0 = Instant::now();
+    let from = start.md_end();
+    let hole = hole_for_prediction(case, to_md_m);
+    if settings.step_m.is_nan() || settings.step_m < MIN_STEP_M - 1e-9 {
+        return Err(PredictError::StepTooShort {
+            step_m: settings.step_m,
+        });
+    }
+    let step = settings.step_m;
+    let ctl = &settings.controls;
+    let cut = model_cut_m(case, start, &hole, settings)?;
+    let direction_at = |path: &WellPath, md: f64, bit: &BitResult| -> Vec3 {
+        let frame = path.frame_at(md);
+        drilling_direction(&frame, &bit_action(bit), &LawParams::at(bit_rock, md))
+    };
+    let mut s = from;
+    let first = solve_at(case, start, &hole, s, cut, warm, ctl)?;
+    let mut iterations = first.iterations;
+    let dofs = first.model.dofs();
+    let mut records = vec![(s, first.bit, direction_at(start, s, &first.bit), first.iterations)];
+    *warm = Some((first.model, first.state));
+    let start_warm = warm.clone();
+    let mut hole_pred = PredictedHole {
+        measured: start.stations().to_vec(),
+        origin: start.station_position(0),
+        start: (from, start.point_at(from).tangent),
+        chords: Vec::new(),
+        scheme: settings.scheme,
+    };
+    let mut jac: Option<Matrix2<f64>> = None;
+    let mut last_turn = [0.0f64; 2];
+    let mut last_ds = step;
+    // reference direction of the next chord: the last chord (the start tangent at first)
+    let mut last_chord = hole_pred.start.1;
+    let mut path = start.clone();
+    // the step in use: halved where the implicit step fails, grown back after a success
+    let mut cur_step = step;
+    let mut ripple = RippleWatch::new(from, step);
+    while s < to_md_m - 1e-9 {
+        // the last step ends exactly at the target; a sliver shorter than half the minimum
+        // step is merged into this one
+        let mut ds = cur_step.min(to_md_m - s);
+        if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
+            ds = to_md_m - s;
+        }
+        let s1 = s + ds;
+        let reference = Frame::from_tangent(&last_chord, path.point_at(s).azi_rad);
+        let x0 = path.point_at(s).position;
+        let chord_of = |turn: [f64; 2]| -> Vec3 {
+            (reference.t + reference.h * turn[0].tan() + reference.r * turn[1].tan()).normalize()
+        };
+        // residual: drilling direction at the new bit position minus the actual chord, in the
+        // reference frame (rad)
+        let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
+            let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
+            let sol = solve_at(case, &p, &hole, s1, cut, warm, ctl)?;
+            let d = direction_at(&p, s1, &sol.bit);
+            let chord = (p.point_at(s1).position - x0).normalize();
+            let (dh, dr) = deviation(&reference, &d);
+            let (ch, cr) = deviation(&reference, &chord);
+            Ok((p, sol, [dh - ch, dr - cr], d))
+        };
+        // predictor: the previous step's turn per length (constant curvature), except after
+        // the first step, whose turn is the start transient
+        let turn = if hole_pred.chords.len() >= 2 {
+            [last_turn[0] * ds / last_ds, last_turn[1] * ds / last_ds]
+        } else {
+            [0.0f64; 2]
+        };
+        let outcome = match implicit_step(&eval, turn, &mut jac, warm, s1) {
+            Ok(o) if o.converged => o,
+            failed => {
+                // a failed implicit step, or a string solve that failed on the way: a shorter step
+                if ds / 2.0 >= MIN_STEP_M {
+                    match &failed {
+                        Ok(_) => tracing::info!(md = s1, step = ds / 2.0, "implicit step failed; halving the step"),
+                        Err(e) => tracing::info!(md = s1, step = ds / 2.0, error = %e, "halving the step"),
+                    }
+                    cur_step = ds / 2.0;
+                    jac = None;
+                    continue;
+                }
+                return Err(failed_step_error(failed, s1, ds, ripple.hint()));
+            }
+        };
+        let StepOutcome {
+            turn,
+            path: p1,
+            solve: sol1,
+            direction: dir,
+            iterations: step_iterations,
+            ..
+        } = outcome;
+        iterations += step_iterations;
+        cur_step = (cur_step * 2.0).min(step);
+        last_turn = turn;
+        last_ds = ds;
+        last_chord = chord_of(turn);
+        hole_pred.chords.push((s1, last_chord));
+        ripple.after_step(s1, &hole_pred.chords)?;
+        path = p1;
+        s = s1;
+        records.push((s, sol1.bit, dir, step_iterations));
+        on_step(s);
+        *warm = Some((sol1.model, sol1.state));
+    }
+    ripple.warn_at_end();
+    let steps = step_records(records, &path);
+    Ok(Prediction {
+        path,
+        steps,
+        from_md_m: from,
+        to_md_m,
+        cut_m: cut,
+        dofs,
+        iterations,
+        seconds: t0.elapsed().as_secs_f64(),
+        start_warm,
+        ripple_deg: ripple.now.0.to_degrees(),
+    })
+}
+
+/// Cut distance of the string model above the bit at the start of `start` (the settings' or
+/// the default rule's, at most the hole above the bit), m; refused below
+/// [`MIN_MODEL_LENGTH_M`].
+fn model_cut_m(case: &Case, start: &WellPath, hole: &HoleSize, settings: &MarchSettings) -> Result<f64, PredictError> {
+    let from = start.md_end();
+    let cut = settings
+        .cut_m
+        .unwrap_or_else(|| {
+            let p = start.point_at(from);
+            default_cut_m(&case.string, hole.diameter_at(from), p.inc_rad, case.mud.density_kg_m3)
+        })
+        .min(from - start.md_start());
+    if cut < MIN_MODEL_LENGTH_M {
+        return Err(PredictError::TooShallow {
+            md_m: from,
+            length_m: cut,
+        });
+    }
+    Ok(cut)
+}
+
+/// The error of an implicit step ending at `md_m` that failed at the shortest step `step_m`:
+/// the string solve's own error (with the ripple's `hint` when it did not converge), or no
+/// direction found.
+fn failed_step_error(failed: Result<StepOutcome, PredictError>, md_m: f64, step_m: f64, hint: String) -> PredictError {
+    match failed {
+        Ok(o) => PredictError::NoDirection {
+            md_m,
+            residual_rad: o.residual[0].abs().max(o.residual[1].abs()),
+            step_m,
+            hint,
+        },
+        Err(PredictError::NotConverged {
+            md_m,
+            iterations,
+            residual,
+            penetration,
+            detail,
+        }) => PredictError::NotConverged {
+            md_m,
+            iterations,
+            residual,
+            penetration,
+            detail: detail + &hint,
+        },
+        Err(e) => e,
+    }
+}
+
+/// The step records on the final hole `path` from (bit MD, bit results, drilling direction,
+/// iterations) per solved step.
+fn step_records(records: Vec<(f64, BitResult, Vec3, usize)>, path: &WellPath) -> Vec<StepRecord> {
+    records
+        .into_iter()
+        .map(|(md, bit, direction, iterations)| {
+            let p = path.point_at(md);
+            StepRecord {
+                md_m: md,
+                inc_rad: p.inc_rad,
+                azi_rad: p.azi_rad,
+                position: p.position,
+                bit,
+                direction,
+                iterations,
+            }
+        })
+        .collect()
+}
+
+/// Predict `case` from `from_md_m` on its survey (the measured hole behind) to `to_md_m`;
+/// `on_step` hears each new bit MD (for progress).
+pub fn predict(
+    case: &Case,
+    from_md_m: f64,
+    to_md_m: f64,
+    settings: &MarchSettings,
+    on_step: &mut dyn FnMut(f64),
+) -> Result<Prediction, PredictError> {
+    let start = hole_to(&case.well.path, from_md_m)?;
+    predict_from(case, &case.bit_rock, &start, to_md_m, settings, &mut None, on_step)
+}

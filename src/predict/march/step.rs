@@ -1,0 +1,231 @@
+//! One step of the march: the string solved with the bit at a new depth (warm-started), and
+//! the implicit step's Newton iteration on the direction of the step's chord.
+
+use super::{PredictError, WarmStart};
+use crate::case::Case;
+use crate::geometry::{HoleSize, Vec3, WellPath};
+use crate::models::fem::bha::bha_model;
+use crate::models::fem::model::{Model, State};
+use crate::models::fem::results::{extract, BitResult};
+use crate::models::fem::solve::{solve, solve_ip_from, SolveControls};
+use crate::models::fem::warm::transport_state;
+use crate::predict::law::BitAction;
+use nalgebra::{Matrix2, Vector2};
+
+/// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
+/// full cold [`solve`] (its own start and fallbacks).
+fn solve_step(
+    model: &Model,
+    warm: Option<State>,
+    ctl: &SolveControls,
+) -> Result<crate::models::fem::solve::Solution, PredictError> {
+    let md = model.bit_md_m;
+    let wrap = |source| PredictError::Solve { md_m: md, source };
+    if let Some(state) = warm {
+        // a failed warm start (not converged, or a singular system from a poor start) falls
+        // back to the cold start below
+        match solve_ip_from(model, state, ctl) {
+            Ok(sol) if sol.converged => return Ok(sol),
+            Ok(_) => tracing::info!(md, "warm-started solve did not converge; solving from scratch"),
+            Err(e) => tracing::info!(md, error = %e, "warm-started solve failed; solving from scratch"),
+        }
+    }
+    let sol = solve(model, ctl).map_err(wrap)?;
+    if sol.converged {
+        return Ok(sol);
+    }
+    let detail = if sol.stats.chattering_nodes.is_empty() {
+        String::new()
+    } else {
+        let near: Vec<String> = sol
+            .stats
+            .chattering_nodes
+            .iter()
+            .take(8)
+            .map(|&i| format!("{:.2} m", model.md_ref[i]))
+            .collect();
+        format!("; contacts changing state at {}", near.join(", "))
+    };
+    Err(PredictError::NotConverged {
+        md_m: md,
+        iterations: sol.stats.iterations,
+        residual: sol.stats.residual_history.last().copied().unwrap_or(f64::NAN),
+        penetration: sol.stats.max_penetration,
+        detail,
+    })
+}
+
+/// The bit action seen by the law.
+pub fn bit_action(bit: &BitResult) -> BitAction {
+    BitAction {
+        wob_n: bit.wob_n,
+        build_force_n: bit.build_force_n,
+        walk_force_n: bit.walk_force_n,
+        tilt_inc_rad: bit.tilt_inc_rad,
+        tilt_azi_rad: bit.tilt_azi_rad,
+    }
+}
+
+/// Convergence tolerance of the implicit step on the deviation between the drilling direction
+/// and the hole tangent at the bit, rad.
+pub const DIRECTION_TOLERANCE_RAD: f64 = 1e-5;
+
+/// The implicit step also stops when its last update of the turn angles is below this (rad)
+/// and the deviation below 10 x [`DIRECTION_TOLERANCE_RAD`]: contact switching makes the
+/// deviation non-smooth at the 1e-5 rad level.
+pub const TURN_TOLERANCE_RAD: f64 = 2e-5;
+
+/// Newton iterations allowed per implicit step.
+pub const MAX_DIRECTION_ITERATIONS: usize = 12;
+
+/// Largest change of the step's turn angles per Newton iteration, rad.
+pub const MAX_TURN_CHANGE_RAD: f64 = 0.05;
+
+/// Finite-difference perturbation of the turn angles for the direction Jacobian, rad.
+pub const TURN_PERTURBATION_RAD: f64 = 1e-4;
+
+/// One solved bit position: the model, the solution's state and the bit results.
+pub(super) struct BitSolve {
+    /// The model.
+    pub(super) model: Model,
+    /// Its solved state.
+    pub(super) state: State,
+    /// Bit forces and tilt.
+    pub(super) bit: BitResult,
+    /// Newton iterations of the solve.
+    pub(super) iterations: usize,
+}
+
+/// Solve the string with the bit at `md_m` in `path`, warm-started from `warm`.
+pub(super) fn solve_at(
+    case: &Case,
+    path: &WellPath,
+    hole: &HoleSize,
+    md_m: f64,
+    cut_m: f64,
+    warm: &WarmStart,
+    ctl: &SolveControls,
+) -> Result<BitSolve, PredictError> {
+    let mut model = bha_model(case, path, hole, md_m, cut_m);
+    model.consistent_tangent = true;
+    let warm_state = warm
+        .as_ref()
+        .filter(|(m, _)| m.nodes() == model.nodes())
+        .map(|(m, st)| transport_state(m, st, &model));
+    let sol = solve_step(&model, warm_state, ctl)?;
+    let bit = extract(&model, &sol, case.mud.density_kg_m3).bit;
+    Ok(BitSolve {
+        model,
+        iterations: sol.stats.iterations,
+        state: sol.state,
+        bit,
+    })
+}
+
+/// Result of one implicit step's Newton iteration on the turn angles.
+pub(super) struct StepOutcome {
+    /// The deviation reached the tolerance.
+    pub(super) converged: bool,
+    /// Turn angles of the chord from the reference direction, rad.
+    pub(super) turn: [f64; 2],
+    /// The hole with this chord.
+    pub(super) path: WellPath,
+    /// The string solved in it.
+    pub(super) solve: BitSolve,
+    /// Deviation left, rad.
+    pub(super) residual: [f64; 2],
+    /// Drilling direction at the new bit position.
+    pub(super) direction: Vec3,
+    /// Newton iterations of the string solves.
+    pub(super) iterations: usize,
+}
+
+/// The deviation of one implicit step as a function of the turn angles: the hole, the string
+/// solved in it, the deviation (rad) and the drilling direction.
+pub(super) type StepResidual<'a> =
+    dyn Fn([f64; 2], &WarmStart) -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> + 'a;
+
+/// Newton's method on the turn angles of the step ending at `md_m` from `turn`, with the
+/// Jacobian `jac` kept between steps (finite differences where missing or after poor progress,
+/// Broyden updates otherwise).
+pub(super) fn implicit_step(
+    eval: &StepResidual,
+    mut turn: [f64; 2],
+    jac: &mut Option<Matrix2<f64>>,
+    warm: &WarmStart,
+    md_m: f64,
+) -> Result<StepOutcome, PredictError> {
+    let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
+    let mut step_iterations = sol1.iterations;
+    let mut converged = false;
+    let mut last_update = f64::INFINITY;
+    for _ in 0..MAX_DIRECTION_ITERATIONS {
+        tracing::debug!(
+            md = md_m,
+            turn_h = turn[0],
+            turn_r = turn[1],
+            res_h = res[0],
+            res_r = res[1],
+            "direction iteration"
+        );
+        let r_norm = res[0].abs().max(res[1].abs());
+        if r_norm < DIRECTION_TOLERANCE_RAD
+            || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
+        {
+            converged = true;
+            break;
+        }
+        let j = match *jac {
+            Some(j) => j,
+            None => {
+                let mut j = Matrix2::zeros();
+                for c in 0..2 {
+                    let mut tp = turn;
+                    tp[c] += TURN_PERTURBATION_RAD;
+                    let (_, sp, rp, _) = eval(tp, warm)?;
+                    step_iterations += sp.iterations;
+                    for r in 0..2 {
+                        j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
+                    }
+                }
+                *jac = Some(j);
+                j
+            }
+        };
+        let Some(jinv) = j.try_inverse() else {
+            *jac = None;
+            continue;
+        };
+        let mut dt = -(jinv * Vector2::new(res[0], res[1]));
+        let big = dt.amax();
+        if big > MAX_TURN_CHANGE_RAD {
+            dt *= MAX_TURN_CHANGE_RAD / big;
+        }
+        let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
+        last_update = dt.amax();
+        let (p, sol, r, d) = eval(new_turn, warm)?;
+        step_iterations += sol.iterations;
+        let norm = |x: &[f64; 2]| x[0].abs().max(x[1].abs());
+        if norm(&r) > 0.5 * norm(&res) {
+            // poor progress: rebuild the Jacobian by differences at the new point
+            *jac = None;
+        } else {
+            // Broyden update of the kept Jacobian
+            let dr = Vector2::new(r[0] - res[0], r[1] - res[1]);
+            let denom = dt.dot(&dt);
+            if denom > 0.0 {
+                *jac = Some(j + (dr - j * dt) * dt.transpose() / denom);
+            }
+        }
+        (turn, p1, sol1, res, dir) = (new_turn, p, sol, r, d);
+    }
+    Ok(StepOutcome {
+        converged,
+        turn,
+        path: p1,
+        solve: sol1,
+        residual: res,
+        direction: dir,
+        iterations: step_iterations,
+    })
+}
