@@ -254,7 +254,7 @@ mod tests {
         assert_relative_eq!(lookup("ppg").unwrap().to_si, 119.826_427, max_relative = 1e-7);
         assert_relative_eq!(lookup("lb/ft").unwrap().to_si, 1.488_163_9, max_relative = 1e-7);
         assert_relative_eq!(lookup("ft.lbf").unwrap().to_si, 1.355_817_9, max_relative = 1e-7);
-        // 1 deg/30 m = 1.016 deg/100 ft (physics.md 1.2).
+        // 1 deg/30 m = 1.016 deg/100 ft (docs/theory.md 2.1).
         let r = lookup("deg/30m").unwrap().to_si / lookup("deg/100ft").unwrap().to_si;
         assert_relative_eq!(r, 1.016, max_relative = 1e-12);
     }

@@ -81,7 +81,7 @@ fn max_roll_deg(res: &SolveResults) -> f64 {
 
 #[test]
 fn stiff_sinusoidal_onset_within_10_percent_of_dawson_paslay() {
-    // Reference: Dawson & Paslay (1984), F_s = 2 sqrt(EI w_b sin I / r) (physics.md 6.4, "FEM
+    // Reference: Dawson & Paslay (1984), F_s = 2 sqrt(EI w_b sin I / r) (docs/theory.md 7.1, "FEM
     // check": ramp compression on a long horizontal pipe with a tiny imperfection; it leaves the
     // low side near F_s). The compression is ramped in 1% steps, each solve warm-started from
     // the last (continuation keeps the stable branch). Onset: first load at which the contact
@@ -153,7 +153,7 @@ fn marks_below_onset_are_not_buckled() {
 /// every step converges with global equilibrium within 1e-6 of the largest force and
 /// penetration within the contact tolerance (1e-4 of the clearance); beyond the helical load
 /// the contact points spread round the wall, more than 60 deg either side of the low side
-/// (physics.md 6.4: the buckled pipe climbs the wall), while nodes stay inside the hole.
+/// (docs/theory.md 7.1: the buckled pipe climbs the wall), while nodes stay inside the hole.
 /// Measured: at 1.57 x helical the contact points roll 90 deg off the low side (contact angles
 /// 90-270 deg). Beyond about 1.8 x helical
 /// the quasi-static branch has a limit point (the snap to a full helix), where load

@@ -241,7 +241,7 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
 
 /// Design comparison: two BHAs (the case and a copy whose near-bit stabilizer is replaced by a
 /// collar, a pendulum-like string) over the same interval give one comparison table; the
-/// stabilized one builds more (textbook, physics.md 7.5).
+/// stabilized one builds more (textbook, docs/theory.md 9.3).
 #[test]
 fn predict_compares_several_bhas() {
     let dir = setup(CASE);

@@ -1,6 +1,6 @@
 //! Stability at the extremes (issue 5): the whole-string solve and the predictor on the
 //! corners of the input space. Each case either converges to a result that passes global
-//! equilibrium (physics.md 6.7: net external force below 1e-6 of the largest term) and contains
+//! equilibrium (docs/theory.md 10.4: net external force below 1e-6 of the largest term) and contains
 //! no NaN, or ends with a clear non-convergence (`converged == false` or an error) - never a
 //! panic, never garbage. Cases that are physically benign are also required to converge.
 //!
@@ -13,7 +13,7 @@ use drillpath::models::fem::results::extract;
 use drillpath::models::fem::solve::{solve, SolveControls};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-/// Equilibrium tolerance: net external force / largest external force (physics.md 6.7, the
+/// Equilibrium tolerance: net external force / largest external force (docs/theory.md 10.4, the
 /// solver issue's 1e-6).
 const EQUILIBRIUM_TOL: f64 = 1e-6;
 
@@ -387,7 +387,7 @@ fn predict_azimuths(azi_deg: f64) -> Vec<(f64, f64)> {
 #[test]
 fn extremes_predictor_azimuth_wraps_through_north() {
     // Reference: rotating the whole well in azimuth leaves the mechanics unchanged
-    // (physics.md 6.7), so a prediction starting at azimuth A0 + d equals the one at A0 shifted
+    // (docs/theory.md 10.4), so a prediction starting at azimuth A0 + d equals the one at A0 shifted
     // by d. The well at 90 deg gives the azimuth change D over 30 m; the second well starts at
     // -D/2 (mod 360) so that its prediction crosses north (0/360) half way. Tolerance: 1e-3 deg
     // on inclination and on the shifted azimuth (the solves' contact tolerance), and the

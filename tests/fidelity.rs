@@ -1,5 +1,5 @@
 //! Fidelity levels (issue 5) against independent references: the whole-string FEM (bit
-//! forces, hook load, torque), the exact hanging-weight hook load (physics.md 6.5 (a)).
+//! forces, hook load, torque), the exact hanging-weight hook load (docs/theory.md 10.5 (a)).
 //!
 //! Run with `cargo test --release --test fidelity -- --nocapture` to see the numbers.
 
@@ -80,7 +80,7 @@ fn fidelity_surface_values_against_whole() {
     // Reference: the whole-string FEM. Tolerances: hook load 0.2% (soft string and FEM agree
     // on the weight; friction differs by the contact pattern; measured < 0.06%). Surface torque:
     // soft 10% (Johancsik's soft string overstates the torque of rotating pipe lying in straight
-    // sections by sqrt(1 + f^2), physics.md 6.6, 3% at f = 0.25, and differs in curved ones;
+    // sections by sqrt(1 + f^2), docs/theory.md 4, 3% at f = 0.25, and differs in curved ones;
     // measured -2.4% to +2.4%). Hybrid 3% (its soft part balances the lateral load with the
     // normal force and the circumferential friction together, as the stiff model does; measured
     // -0.2% to +0.9%), except forge-16a, 8% (measured +6.8%): its real survey has short
@@ -123,11 +123,11 @@ fn fidelity_surface_values_against_whole() {
 
 #[test]
 fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
-    // Reference: physics.md 6.5 exact check (a): rotating with no axial motion, the hook load
+    // Reference: docs/theory.md 10.5 exact check (a): rotating with no axial motion, the hook load
     // is sum(w_b dTVD) over the string (exact for the soft string). Tolerance 1e-6 relative for
     // hybrid and soft (the FEM part's residual tolerance is 1e-7 of the load scale; its BHA lies
     // in the straight hold); the whole FEM is printed for comparison and held to 2e-4 (measured
-    // +8.2e-5 on this well: an open point, physics.md 6.5 calls the check exact for the FEM too).
+    // +8.2e-5 on this well: an open point, docs/theory.md 10.5 calls the check exact for the FEM too).
     let mut case = example("j-shape");
     case.operation.mode = Mode::RotatingOffBottom;
     case.operation.wob_n = 0.0;

@@ -617,7 +617,7 @@ proptest! {
 
     #[test]
     fn prop_point_at_station_returns_station(st in survey_deg()) {
-        // Reference: interpolation at a station's MD must return that station (physics.md 1.3):
+        // Reference: interpolation at a station's MD must return that station (docs/theory.md 2.2):
         // position == station_position(k), tangent == (sin I cos A, sin I sin A, cos I),
         // inclination and (non-vertical) azimuth as surveyed; 1e-9.
         let w = path_deg(&st, Vec3::new(-3.0, 2.0, 0.5));

@@ -88,7 +88,7 @@ fn stiff(case: &Case, bit_md: f64, mode: Mode) -> drillpath::loads::row::RowLoad
 
 #[test]
 fn straight_inclined_hole_trip_loads_match_closed_form() {
-    // Reference: physics.md 6.5 exact check (b), a straight section of length L from zero
+    // Reference: docs/theory.md 10.5 exact check (b), a straight section of length L from zero
     // tension: F = w_b L (cos i -/+ f sin i) (trip in -, trip out +). Tolerance 0.5% (soft and
     // stiff; the soft string is exact to round-off, asserted to 1e-9). The stiff string is held
     // on the hole axis at the bit and at the top and lifts off the low side over about
@@ -128,7 +128,7 @@ fn straight_inclined_hole_trip_loads_match_closed_form() {
     }
 }
 
-/// Independent Johancsik computation (scalar form, physics.md 6.5 with the sign of the lower -
+/// Independent Johancsik computation (scalar form, docs/theory.md 10.5 with the sign of the lower -
 /// upper differences): inclination and azimuth linear in MD between `knots` (exact for these
 /// constant-rate sections up to the minimum-curvature interpolation), TVD by the midpoint rule,
 /// 0.5 m elements, from the bit up. Returns (hook load N, torque N.m) for axial direction `dir`
@@ -217,7 +217,7 @@ fn curved_well_soft_chart_matches_independent_johancsik() {
 #[test]
 fn stiff_agrees_with_soft_in_smooth_well_and_exceeds_it_in_sharp_dogleg() {
     // References: (a) the soft string (Johancsik) in a smooth well (3 deg/30 m): stiff hook
-    // loads within 5% (issue 6); rotating torque within 5% too (physics.md 6.6 predicts -3% at
+    // loads within 5% (issue 6); rotating torque within 5% too (docs/theory.md 4 predicts -3% at
     // f = 0.25). (b) A 10 deg/30 m dogleg: the stiff string must bend, so its largest contact
     // force exceeds the soft string's per-joint force (asserted: at least 10% higher).
     let f = 0.25;

@@ -83,7 +83,7 @@ fn paper_scheme_matches_lubinski_and_the_default_scheme_on_the_pendulum() {
     // (analytical::pendulum), tolerance 0.5% on the bit side force and tilt; (2) the default
     // scheme on the same model, both run with a tight gap tolerance (1e-6 of the clearance) so
     // that the comparison measures the schemes and not the tolerance band: 1e-4 relative
-    // (measured <= 1e-5). Equilibrium of the whole string (physics.md 6.7): 1e-6.
+    // (measured <= 1e-5). Equilibrium of the whole string (docs/theory.md 10.4): 1e-6.
     let (ei, w_b, r) = collar_properties();
     for &(inc, wob) in &[(3.0_f64, 0.0), (10.0, 100.0), (30.0, 0.0), (60.0, 100.0)] {
         let case = pendulum_case(inc, wob);

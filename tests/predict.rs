@@ -156,7 +156,7 @@ fn build_rate(bha: &str, wob_kn: f64, step: f64) -> f64 {
     interval_rates(&p).build_rate_rad_per_30m.to_degrees()
 }
 
-/// Reference: textbook tendencies (Lubinski & Woods 1953; Millheim et al. 1978; physics.md 7.5,
+/// Reference: textbook tendencies (Lubinski & Woods 1953; Millheim et al. 1978; docs/theory.md 9.3,
 /// resultant-force law): fulcrum builds, pendulum drops, packed holds (|rate| much smaller);
 /// more WOB builds a fulcrum faster and makes a pendulum drop less. Rough sizes asserted:
 /// fulcrum and pendulum 0.2-5 deg/30 m in magnitude, packed below a quarter of both.
@@ -262,7 +262,7 @@ fn vertical_hole_with_slick_bha_stays_vertical() {
     }
 }
 
-/// Reference: physics.md 7.2. Bedding dipping 30 deg toward east with I_r > 0 draws a hole
+/// Reference: docs/theory.md 9.3. Bedding dipping 30 deg toward east with I_r > 0 draws a hole
 /// heading north at 20 deg toward the up-dip side (west: azimuth decreases); the walk rate is
 /// proportional to I_r for small I_r (ratio within 20% between I_r = 0.02 and 0.01) and is
 /// below 1e-3 deg/30 m at I_r = 0.

@@ -1,4 +1,4 @@
-//! Soft-string torque and drag (`drillpath::models::softstring`) against physics.md 6.5: the worked
+//! Soft-string torque and drag (`drillpath::models::softstring`) against docs/theory.md 10.5: the worked
 //! example (Johancsik, Friesen & Dawson 1984 model), the exact checks (a) hanging weight,
 //! (b) straight inclined section, (c) capstan, and the ordering property
 //! trip out >= rotating >= trip in.
@@ -46,7 +46,7 @@ fn pipe(len: f64, w_air: f64, tj: Option<f64>) -> Component {
     }
 }
 
-/// The straight section of physics.md 6.5 exact check (b): 1,200 m of 300 N/m pipe (contact
+/// The straight section of docs/theory.md 10.5 exact check (b): 1,200 m of 300 N/m pipe (contact
 /// radius `R_C`, its tool joints) hanging from 100 m MD in a straight 40 deg hole (azimuth
 /// 30 deg) of 8.5 in, 1.1 sg mud, friction `F`, bit at 1,300 m, no WOB or bit torque, 3.3 m
 /// elements.
@@ -105,7 +105,7 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
-/// physics.md 6.5 worked example written as a case (survey CSV + TOML) in a temp dir.
+/// docs/theory.md 10.5 worked example written as a case (survey CSV + TOML) in a temp dir.
 fn worked_example_case(dir: &Path) -> Case {
     std::fs::write(
         dir.join("survey.csv"),
@@ -115,7 +115,7 @@ fn worked_example_case(dir: &Path) -> Case {
     std::fs::write(
         dir.join("case.toml"),
         r#"
-name = "physics.md 6.5 worked example"
+name = "docs/theory.md 10.5 worked example"
 [well]
 survey = "survey.csv"
 hole = [ { to_md = "2500 m", diameter = "8.5 in" } ]
@@ -137,7 +137,7 @@ tool_joint_od = "6.625 in"
     load_case(&dir.join("case.toml"), &CaseOverrides::default()).unwrap()
 }
 
-/// The worked example's inputs built directly (R_c = 84.14 mm exactly as in physics.md).
+/// The worked example's inputs built directly (R_c = 84.14 mm exactly as in docs/theory.md).
 struct Worked {
     path: WellPath,
     hole: HoleSize,
@@ -181,10 +181,10 @@ const RPM60: f64 = TAU; // 60 rpm in rad/s
 const ROP12: f64 = 12.0 / 3600.0; // 12 m/h in m/s
 
 // ----------------------------------------------------------------------------------------------
-// 1. physics.md 6.5 worked example
+// 1. docs/theory.md 10.5 worked example
 // ----------------------------------------------------------------------------------------------
 
-/// physics.md 6.5: pulling out 617.85 kN, running in 381.20 kN, rotating 482.13 kN with
+/// docs/theory.md 10.5: pulling out 617.85 kN, running in 381.20 kN, rotating 482.13 kN with
 /// 9.827 kN.m (1 m elements); drilling (WOB 50 kN, T_b 2 kN.m, 60 rpm, 12 m/h) 431.45 kN and
 /// 10.99 kN.m. Tolerance 0.1 % (the published numbers have 4-5 digits).
 #[test]
@@ -218,7 +218,7 @@ fn worked_example_1m_elements() {
     assert!((out.points[0].md_m - 2500.0).abs() < 1e-12 && out.points[2500].md_m.abs() < 1e-9);
 }
 
-/// physics.md 6.5, 10 m elements: 617.50 / 381.31 / 482.13 kN, 9.810 kN.m (0.1 %); the
+/// docs/theory.md 10.5, 10 m elements: 617.50 / 381.31 / 482.13 kN, 9.810 kN.m (0.1 %); the
 /// 1 m -> 10 m change itself must have the published sign and size (pulling out drops by
 /// about 0.35 kN, running in rises by about 0.11 kN).
 #[test]
@@ -248,7 +248,7 @@ fn worked_example_10m_elements() {
 }
 
 /// The same example read from a case file (`load_case`, 6-5/8 in joints: R_c = 84.1375 mm)
-/// through `from_case` for every mode; 0.1 % of physics.md 6.5.
+/// through `from_case` for every mode; 0.1 % of docs/theory.md 10.5.
 #[test]
 fn worked_example_from_case_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -315,9 +315,9 @@ fn hanging_weight(p: &WellPath, s: &DrillString, mud: f64, bit_md: f64) -> f64 {
         .sum()
 }
 
-/// physics.md 6.5 exact check (a): rotating without axial motion, hook load = sum w_b dTVD
+/// docs/theory.md 10.5 exact check (a): rotating without axial motion, hook load = sum w_b dTVD
 /// (1e-9 relative) on the 3D j-shape well (mixed BHA, hole sections with their own friction,
-/// azimuth walk) and a 3D random-ish survey; the worked example gives 482.12 kN (physics.md:
+/// azimuth walk) and a 3D random-ish survey; the worked example gives 482.12 kN (docs/theory.md:
 /// 482.129 kN; 240.92 N/m x 2001.158 m = 482.12 kN).
 #[test]
 fn exact_hanging_weight_when_rotating() {
@@ -381,7 +381,7 @@ fn exact_hanging_weight_when_rotating() {
     assert!(rel(ex.hook_load_n, w_b * 2001.158) < 1e-6);
 }
 
-/// physics.md 6.5 exact check (b): straight section of length L at inclination I from zero
+/// docs/theory.md 10.5 exact check (b): straight section of length L at inclination I from zero
 /// tension: F = w_b L (cos I +/- f sin I), torque f w_b L sin I R_c (1e-9 relative).
 #[test]
 fn exact_straight_inclined_section() {
@@ -408,7 +408,7 @@ fn exact_straight_inclined_section() {
 }
 
 /// The stiff-contact variant used above the stiff part of `hybrid`
-/// (`soft_string_stiff_contact`): physics.md 6.6, rotating pipe lying in a straight inclined
+/// (`soft_string_stiff_contact`): docs/theory.md 4, rotating pipe lying in a straight inclined
 /// hole: the wall carries the lateral weight with the normal force and the circumferential
 /// friction together, so N = w_b sin I / sqrt(1 + f^2) and the torque is 1/sqrt(1 + f^2) of
 /// Johancsik's (1e-9); with a combined velocity only the circumferential share of the friction
@@ -435,7 +435,7 @@ fn stiff_contact_variant_straight_inclined_section() {
     assert!(rel(drill.hook_load_n, w_b * l * inc.cos() - drag) < 1e-9);
 }
 
-/// physics.md 6.5 exact check (c): weightless pipe around an arc of 90 deg, capstan law
+/// docs/theory.md 10.5 exact check (c): weightless pipe around an arc of 90 deg, capstan law
 /// F_out = F_in e^(f dtheta) = 1.4810 F_in for f = 0.25 pulling out (0.1 %; 0.1 m elements,
 /// discretisation error ~ f^2 dtheta dl kappa / 2 = 8e-5), and e^(-f dtheta) running in.
 #[test]

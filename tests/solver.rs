@@ -1,7 +1,7 @@
 //! Verification of the whole-string FEM (`drillpath solve`) against independent references.
 //!
 //! Each test states its reference and tolerance. The closed forms come from
-//! `drillpath::analytical` (written and tested separately from the FEM, physics.md 6).
+//! `drillpath::analytical` (written and tested separately from the FEM, docs/theory.md 10).
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
@@ -43,7 +43,7 @@ fn slick_collar(inc_deg: f64, azi_deg: f64, length_m: f64, wob_kn: f64, el_m: f6
 #[test]
 fn pendulum_bha_matches_lubinski_with_variable_axial_force() {
     // Reference: Lubinski (1953) pendulum, beam-column with the axial force varying with the
-    // axial weight, P(x) = WOB - w_b cos(I) x (physics.md 6.2, analytical::pendulum).
+    // axial weight, P(x) = WOB - w_b cos(I) x (docs/theory.md 9.2, analytical::pendulum).
     // Tolerance: 0.5% on side force and tilt (the issue asks 2%, aiming at 0.5%); measured
     // agreement is better than 0.05% with 0.25 m elements.
     let (ei, w_b, r) = collar_properties();
@@ -92,7 +92,7 @@ fn pendulum_bha_matches_lubinski_with_variable_axial_force() {
 
 #[test]
 fn global_equilibrium_holds() {
-    // Reference: statics of the whole string (physics.md 6.7). The sum of all external forces
+    // Reference: statics of the whole string (docs/theory.md 10.4). The sum of all external forces
     // (weight, wall, bit and top reactions, hook load) vanishes to 1e-6 of the largest term.
     let run = slick_collar(30.0, 120.0, 80.0, 100.0, 0.25, true);
     let rel = run.res.force_imbalance_n.norm() / run.res.largest_force_n;
@@ -138,7 +138,7 @@ fn mesh_convergence_of_bit_side_force() {
 
 #[test]
 fn vertical_hole_has_no_side_force_or_tilt() {
-    // Reference: symmetry (physics.md 6.7): vertical hole, no rotation -> zero build and walk
+    // Reference: symmetry (docs/theory.md 10.4): vertical hole, no rotation -> zero build and walk
     // force and tilt (< 1e-6 kN); hook load = buoyed weight - WOB exactly.
     let run = slick_collar(0.0, 0.0, 80.0, 50.0, 0.5, true);
     assert!(run.res.bit.build_force_n.abs() < 1e-3 && run.res.bit.walk_force_n.abs() < 1e-3);
@@ -155,7 +155,7 @@ fn vertical_hole_has_no_side_force_or_tilt() {
 
 #[test]
 fn azimuth_rotation_leaves_bit_forces_unchanged() {
-    // Reference: frame invariance (physics.md 6.7): rotating the whole well in azimuth leaves
+    // Reference: frame invariance (docs/theory.md 10.4): rotating the whole well in azimuth leaves
     // build force, walk force and tilts unchanged (tolerance 1e-6 relative).
     let a = slick_collar(25.0, 10.0, 80.0, 80.0, 0.5, true);
     let b = slick_collar(25.0, 247.0, 80.0, 80.0, 0.5, true);
@@ -253,8 +253,8 @@ element_length = "2 m"
 #[test]
 fn soft_string_limit_in_a_smooth_well() {
     // Reference: Johancsik et al. (1984) soft-string torque and drag (drillpath::models::softstring,
-    // verified separately against physics.md 6.5). Tolerance 5% (issue 3); a stiff string
-    // that rotates on the wall carries 1/sqrt(1+f^2) of the soft-string torque (physics.md 6.6,
+    // verified separately against docs/theory.md 10.5). Tolerance 5% (issue 3); a stiff string
+    // that rotates on the wall carries 1/sqrt(1+f^2) of the soft-string torque (docs/theory.md 4,
     // -3% at f = 0.25), hook loads agree much closer.
     for mode in ["rotating_off_bottom", "trip_in", "trip_out"] {
         let (case, fem) = pipe_in_build_and_hold(mode, 0.25);
@@ -278,7 +278,7 @@ fn soft_string_limit_in_a_smooth_well() {
 
 #[test]
 fn friction_acts_against_the_motion() {
-    // Reference: physics.md 4.2 / 6.5 exact checks. Rotation without axial motion: friction is
+    // Reference: docs/theory.md 6.1 / 6.5 exact checks. Rotation without axial motion: friction is
     // purely tangential, so the hook load equals the frictionless one (1%) while the surface
     // torque rises; running in with friction lowers the hook load, pulling out raises it.
     let (_, free) = pipe_in_build_and_hold("rotating_off_bottom", 0.0);
@@ -434,7 +434,7 @@ fn extremes_converge_or_fail_clearly() {
 #[test]
 fn compression_beyond_helical_buckling_keeps_the_pipe_in_the_hole() {
     // 5 in pipe in a horizontal 8.5 in hole under 3x the Chen-Lin-Cheatham helical load
-    // (physics.md 6.4: 230.9 kN at 90 deg): the pipe must lie in contact in changing
+    // (docs/theory.md 7.1: 230.9 kN at 90 deg): the pipe must lie in contact in changing
     // directions, never outside the hole.
     // a slightly wavy hole (+-0.2 deg every 10 m) seeds the buckling modes
     let mut survey = String::from("md_m,inc_deg,azi_deg\n");
@@ -477,7 +477,7 @@ weight = "29 kg/m"
 
 #[test]
 fn mirrored_well_flips_the_walk_force() {
-    // Reference: symmetry (physics.md 6.7): mirroring the well (azimuth -> -azimuth) with
+    // Reference: symmetry (docs/theory.md 10.4): mirroring the well (azimuth -> -azimuth) with
     // rotation off flips the walk force and the azimuthal tilt, leaves build force and
     // inclination tilt unchanged (tolerance 1e-6 relative to the side force).
     let a = "md_m,inc_deg,azi_deg\n0,20,10\n30,24,16\n60,28,22\n";

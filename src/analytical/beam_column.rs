@@ -1,4 +1,4 @@
-//! Simply supported beam-column under uniform lateral load and axial force (physics.md 6.3;
+//! Simply supported beam-column under uniform lateral load and axial force (docs/theory.md 10.3;
 //! Timoshenko & Gere 1961, Theory of Elastic Stability, section 1.11).
 //!
 //! Span `l` m, pinned at both ends, uniform lateral load `q` N/m, axial force `p` N,
@@ -90,7 +90,7 @@ fn checked_parameter(ei: f64, l: f64, q: f64, p: f64) -> Result<f64, AnalyticalE
 }
 
 /// Exact mid-span (maximum) deflection of the simply supported beam-column, m, in the
-/// direction of `q` (Timoshenko & Gere 1961; physics.md 6.3). `ei` N.m2, `l` m, `q` N/m,
+/// direction of `q` (Timoshenko & Gere 1961; docs/theory.md 10.3). `ei` N.m2, `l` m, `q` N/m,
 /// `p` N compression positive (must be below `pi^2 EI/l^2`).
 pub fn max_deflection(ei: f64, l: f64, q: f64, p: f64) -> Result<f64, AnalyticalError> {
     let s = checked_parameter(ei, l, q, p)?;
@@ -98,7 +98,7 @@ pub fn max_deflection(ei: f64, l: f64, q: f64, p: f64) -> Result<f64, Analytical
 }
 
 /// Exact mid-span (maximum) bending moment of the simply supported beam-column, N.m, sagging
-/// positive for `q > 0` (`(q EI / P)(sec u - 1)`; physics.md 6.3). Inputs as
+/// positive for `q > 0` (`(q EI / P)(sec u - 1)`; docs/theory.md 10.3). Inputs as
 /// [`max_deflection`].
 pub fn max_moment(ei: f64, l: f64, q: f64, p: f64) -> Result<f64, AnalyticalError> {
     let s = checked_parameter(ei, l, q, p)?;
@@ -106,7 +106,7 @@ pub fn max_moment(ei: f64, l: f64, q: f64, p: f64) -> Result<f64, AnalyticalErro
 }
 
 /// Approximate amplification `1 / (1 - P/P_E)`, `P_E = pi^2 EI/l^2` (dimensionless;
-/// physics.md 6.3). `p` N compression positive, below `P_E`.
+/// docs/theory.md 10.3). `p` N compression positive, below `P_E`.
 pub fn approximate_amplification(ei: f64, l: f64, p: f64) -> Result<f64, AnalyticalError> {
     checked_parameter(ei, l, 0.0, p)?;
     Ok(1.0 / (1.0 - p / euler_pinned(ei, l)))
@@ -117,7 +117,7 @@ mod tests {
     use super::*;
     use std::f64::consts::PI;
 
-    /// EI of the 6.5 in x 2-13/16 in collar (physics.md 2.1: 7.2850e6 N.m2), computed directly.
+    /// EI of the 6.5 in x 2-13/16 in collar (docs/theory.md 3.1: 7.2850e6 N.m2), computed directly.
     fn ei_collar() -> f64 {
         207e9 * PI * ((6.5f64 * 0.0254).powi(4) - (2.8125f64 * 0.0254).powi(4)) / 64.0
     }
@@ -127,7 +127,7 @@ mod tests {
         (x * s).round() / s
     }
 
-    /// Reference: physics.md 6.3 worked example (Timoshenko & Gere 1961): 6.5 in collar,
+    /// Reference: docs/theory.md 10.3 worked example (Timoshenko & Gere 1961): 6.5 in collar,
     /// l = 9 m, q = 388.1 N/m, P = 100 kN: u = 0.52723, delta0 = 4.5511 mm, factor 1.12740,
     /// delta_max = 5.1309 mm, M0 = 3929.5 N.m, M_max = 4442.6 N.m (x1.13057),
     /// 1/(1-P/P_E) = 1.12696. Tolerance: printed digits. Cross-check: the 16-element FE value

@@ -1,4 +1,4 @@
-//! Buckling loads of a pipe in a straight hole (physics.md 3.3 and 6.4).
+//! Buckling loads of a pipe in a straight hole (docs/theory.md 5.3 and 6.4).
 //!
 //! All forces here are **effective compressive** axial forces, N (compression positive; the
 //! crate's `F_eff` is tension positive, so compare with `-F_eff`). Inclined-hole criteria use
@@ -13,11 +13,10 @@
 //! Mitchell (1986) for the helix contact force and pitch.
 
 use super::{require_non_negative, require_positive, AnalyticalError};
-use crate::models::buckling as onset;
 use std::f64::consts::{PI, SQRT_2};
 
 /// Euler load of a pinned-pinned column `P_E = pi^2 EI / l^2`, N (compression), for bending
-/// stiffness `ei` N.m2 and span `l` m (physics.md 3.3, 6.3).
+/// stiffness `ei` N.m2 and span `l` m (docs/theory.md 5.3, 6.3).
 pub fn euler_pinned(ei: f64, l: f64) -> f64 {
     PI * PI * ei / (l * l)
 }
@@ -41,15 +40,14 @@ fn inclined_scale(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, An
 }
 
 /// Sinusoidal (lateral) buckling load in an inclined hole, Dawson & Paslay (1984):
-/// `F_s = 2 sqrt(EI w_b sin I / r)`, N compression (physics.md 6.4). Inputs: `ei` N.m2, `w_b`
+/// `F_s = 2 sqrt(EI w_b sin I / r)`, N compression (docs/theory.md 7.1). Inputs: `ei` N.m2, `w_b`
 /// N/m (> 0), `inclination` rad in (0, pi), `r` radial clearance m (> 0).
 pub fn sinusoidal_dawson_paslay(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, AnalyticalError> {
-    inclined_scale(ei, w_b, inclination, r)?;
-    Ok(onset::dawson_paslay(ei, w_b * inclination.sin(), r))
+    Ok(2.0 * inclined_scale(ei, w_b, inclination, r)?)
 }
 
 /// Wavelength of the critical sinusoidal mode, `2 pi (EI r / q)^(1/4)` with `q = w_b sin I`, m
-/// (from `k^4 = q/(r EI)`, physics.md 6.4). Inputs as [`sinusoidal_dawson_paslay`].
+/// (from `k^4 = q/(r EI)`, docs/theory.md 7.1). Inputs as [`sinusoidal_dawson_paslay`].
 pub fn sinusoidal_wavelength(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, AnalyticalError> {
     let s = inclined_scale(ei, w_b, inclination, r)?; // sqrt(EI q / r)
                                                       // (EI r / q)^(1/4) = sqrt(EI / s)
@@ -57,29 +55,38 @@ pub fn sinusoidal_wavelength(ei: f64, w_b: f64, inclination: f64, r: f64) -> Res
 }
 
 /// Helical buckling load, Chen, Lin & Cheatham (1990) (derived for horizontal holes, used with
-/// `sin I`): `F_h = 2 sqrt(2) sqrt(EI w_b sin I / r)`, N compression (physics.md 6.4).
+/// `sin I`): `F_h = 2 sqrt(2) sqrt(EI w_b sin I / r)`, N compression (docs/theory.md 7.1).
 pub fn helical_chen_lin_cheatham(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, AnalyticalError> {
-    inclined_scale(ei, w_b, inclination, r)?;
-    Ok(onset::chen_lin_cheatham(ei, w_b * inclination.sin(), r))
+    Ok(2.0 * SQRT_2 * inclined_scale(ei, w_b, inclination, r)?)
 }
 
 /// Helical buckling load, Wu & Juvkam-Wold (1993):
-/// `F_h = 2 (2 sqrt(2) - 1) sqrt(EI w_b sin I / r)`, N compression (physics.md 6.4).
+/// `F_h = 2 (2 sqrt(2) - 1) sqrt(EI w_b sin I / r)`, N compression (docs/theory.md 7.1).
 pub fn helical_wu_juvkam_wold(ei: f64, w_b: f64, inclination: f64, r: f64) -> Result<f64, AnalyticalError> {
     Ok(2.0 * (2.0 * SQRT_2 - 1.0) * inclined_scale(ei, w_b, inclination, r)?)
 }
 
-pub use crate::models::buckling::vertical_force_unit;
+/// Force unit of vertical-hole buckling `(EI w_b^2)^(1/3)`, N, for bending stiffness `ei` N.m2
+/// and buoyed weight `w_b` N/m (Lubinski 1950; Wu et al.).
+pub fn vertical_force_unit(ei: f64, w_b: f64) -> f64 {
+    (ei * w_b * w_b).powf(1.0 / 3.0)
+}
 
 /// Vertical hole, Lubinski (1950) first-order buckling: `1.94 (EI w_b^2)^(1/3)` (dimensionless
-/// coefficient). **\[uncertain\]** commonly quoted value (physics.md 6.4, 10), to confirm against
+/// coefficient). **\[uncertain\]** commonly quoted value (docs/theory.md 7.1, 10), to confirm against
 /// the original before a test relies on it.
 pub const LUBINSKI_VERTICAL_FIRST: f64 = 1.94;
 
-pub use crate::models::buckling::{WU_VERTICAL_HELICAL, WU_VERTICAL_SINUSOIDAL};
+/// Vertical hole, sinusoidal buckling after Wu et al.: `2.55 (EI w_b^2)^(1/3)` (dimensionless
+/// coefficient). **\[uncertain\]** commonly quoted value (docs/theory.md, buckling).
+pub const WU_VERTICAL_SINUSOIDAL: f64 = 2.55;
+
+/// Vertical hole, helical buckling after Wu et al.: `5.55 (EI w_b^2)^(1/3)` (dimensionless
+/// coefficient). **\[uncertain\]** commonly quoted value (docs/theory.md, buckling).
+pub const WU_VERTICAL_HELICAL: f64 = 5.55;
 
 /// Wall contact force per length of a weightless helically buckled pipe,
-/// `w_c = r F^2 / (4 EI)`, N/m (Lubinski, Althouse & Logan 1962; Mitchell 1986; physics.md 6.4).
+/// `w_c = r F^2 / (4 EI)`, N/m (Lubinski, Althouse & Logan 1962; Mitchell 1986; docs/theory.md 7.1).
 /// `r` radial clearance m, `f` effective compression N (>= 0), `ei` N.m2.
 pub fn helical_contact_force(ei: f64, r: f64, f: f64) -> Result<f64, AnalyticalError> {
     require_positive("ei", ei)?;
@@ -89,7 +96,7 @@ pub fn helical_contact_force(ei: f64, r: f64, f: f64) -> Result<f64, AnalyticalE
 }
 
 /// Pitch of the helix of a weightless buckled pipe, `pi sqrt(8 EI / F)`, m (Lubinski et al.
-/// 1962; physics.md 6.4). `ei` N.m2, `f` effective compression N (> 0).
+/// 1962; docs/theory.md 7.1). `ei` N.m2, `f` effective compression N (> 0).
 pub fn helical_pitch(ei: f64, f: f64) -> Result<f64, AnalyticalError> {
     require_positive("ei", ei)?;
     require_positive("f", f)?;
@@ -100,7 +107,7 @@ pub fn helical_pitch(ei: f64, f: f64) -> Result<f64, AnalyticalError> {
 mod tests {
     use super::*;
 
-    /// 5 in pipe of physics.md 6.4: EI = 1.2294e6 N.m2, w_b = 240.9 N/m, r = 44.45 mm.
+    /// 5 in pipe of docs/theory.md 7.1: EI = 1.2294e6 N.m2, w_b = 240.9 N/m, r = 44.45 mm.
     const EI: f64 = 1.2294e6;
     const W_B: f64 = 240.9;
     const R: f64 = 0.04445;
@@ -109,13 +116,13 @@ mod tests {
         (x / 100.0).round() / 10.0
     }
 
-    /// Reference: physics.md 6.4 example (Dawson & Paslay 1984; Chen, Lin & Cheatham 1990; Wu &
+    /// Reference: docs/theory.md 7.1 example (Dawson & Paslay 1984; Chen, Lin & Cheatham 1990; Wu &
     /// Juvkam-Wold 1993): I = 45 deg: 137.3 / 194.2 / 251.0 kN, I = 90 deg: 163.3 / 230.9 /
-    /// 298.5 kN. Tolerance: equality after rounding to 0.1 kN (printed digits). DISCREPANCY:
-    /// the CLC value at 45 deg is sqrt(2) * 137.278 = 194.141 kN, i.e. 194.1, not the printed
-    /// 194.2 (a rounding slip in physics.md; 194.2 is not reached with any of EI = 1.2294e6 or
-    /// 1.22943e6, w_b = 240.9 or 240.919), so 194.1 is asserted. Also checks
-    /// the inputs: 29.0 kg/m in 1.2 sg mud -> 240.9 N/m and r = (8.5 - 5)/2 in.
+    /// 298.5 kN. Tolerance: equality after rounding to 0.1 kN (printed digits). The CLC value at
+    /// 45 deg with the printed inputs (EI = 1.2294e6, w_b = 240.9) is 194.141 kN, i.e. 194.1;
+    /// the notes' 194.2 comes from the unrounded inputs (EI = 1.22943e6, w_b = 240.919:
+    /// 194.1507 kN) rounded up (docs/theory.md, "Corrections to the early notes"), so 194.1 is
+    /// asserted. Also checks the inputs: 29.0 kg/m in 1.2 sg mud -> 240.9 N/m and r = (8.5 - 5)/2 in.
     #[test]
     fn analytical_buckling_inclined_example_6_4() {
         let w: f64 = 29.0 * 9.80665 * (1.0 - 1200.0 / 7850.0);
@@ -130,7 +137,7 @@ mod tests {
         assert!(sinusoidal_dawson_paslay(EI, W_B, 0.0, R).is_err());
     }
 
-    /// Reference: physics.md 6.4 vertical example: (EI w_b^2)^(1/3) = 4.148 kN (3 decimals) and
+    /// Reference: docs/theory.md 7.1 vertical example: (EI w_b^2)^(1/3) = 4.148 kN (3 decimals) and
     /// 8.05 / 10.58 / 23.02 kN with the \[uncertain\] coefficients 1.94 / 2.55 / 5.55 (Lubinski
     /// 1950; Wu et al.). Tolerance: printed digits. Only the arithmetic is verified here, not
     /// the coefficients themselves.
@@ -144,7 +151,7 @@ mod tests {
         assert_eq!(kn2(WU_VERTICAL_HELICAL), 23.02);
     }
 
-    /// Reference: physics.md 6.4 derivation: F(k) = EI k^2 + q/(r k^2) is minimal at
+    /// Reference: docs/theory.md 7.1 derivation: F(k) = EI k^2 + q/(r k^2) is minimal at
     /// k^4 = q/(r EI) with value F_s, and the wavelength is 2 pi / k. Tolerance 1e-12 relative
     /// (and F(k) >= F_s on a grid).
     #[test]
@@ -163,7 +170,7 @@ mod tests {
         }
     }
 
-    /// Reference: physics.md 3.3, pinned-pinned 9 m 6.5 in collar (EI = 7.2850e6 N.m2 from
+    /// Reference: docs/theory.md 5.3, pinned-pinned 9 m 6.5 in collar (EI = 7.2850e6 N.m2 from
     /// 2.1): pi^2 EI / l^2 = 887.66 kN (printed digits, 0.01 kN); helix formulas of 6.4
     /// (Lubinski et al. 1962) checked against the helix geometry: a helix of radius r and
     /// pitch p has curvature kappa = r b^2/(r^2 b^2 + 1), b = 2 pi/p, and for r b << 1 the

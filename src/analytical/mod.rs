@@ -1,15 +1,16 @@
-//! Closed-form and quasi-closed-form references for verifying the FEM (physics.md sections 2,
+//! Closed-form and quasi-closed-form references for verifying the FEM (docs/theory.mdsections 2,
 //! 6.2, 6.3, 6.4).
 //!
-//! Everything here is written independently of [`crate::models::fem`], [`crate::string`] and
-//! [`crate::models::fem::contact`]: no code, constant or helper is shared with the finite element model, so
-//! that agreement between the two is evidence, not tautology. The module only depends on `std`.
+//! Everything here is written independently of the production mechanics ([`crate::models`],
+//! [`crate::string`], [`crate::geometry`]): each formula from its source, no code, constant or
+//! helper shared, so that agreement between the two is evidence, not tautology. The module
+//! only depends on `std`.
 //!
 //! Units are SI throughout (m, N, N.m, Pa, kg/m3, rad). Axial forces in this module are
 //! **compression positive** (`P`, WOB, `F` in the buckling formulas), as in the classical
 //! references; the rest of the crate uses effective tension positive, so `P = -F_eff`.
 //!
-//! - [`section`]: tube properties, buoyed weight (physics.md 2.1, 2.2).
+//! - [`section`]: tube properties, buoyed weight (docs/theory.md 3.1, 2.2).
 //! - [`pendulum`]: Lubinski pendulum BHA, constant and linearly varying compression (6.2).
 //! - [`beam_column`]: simply supported beam-column under uniform load (6.3).
 //! - [`buckling`]: Euler, sinusoidal and helical buckling loads in inclined holes (6.4).

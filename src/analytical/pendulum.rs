@@ -1,5 +1,5 @@
 //! Lubinski pendulum BHA: slick collar above a pinned bit in a straight inclined hole
-//! (physics.md 6.2; Lubinski & Woods 1953, Woods & Lubinski 1954).
+//! (docs/theory.md 9.2; Lubinski & Woods 1953, Woods & Lubinski 1954).
 //!
 //! Model: x measured up-hole from the bit, y lateral toward the **low side**. The bit is pinned
 //! on the hole axis and free to rotate (`y(0) = y''(0) = 0`); above the tangency point
@@ -55,7 +55,7 @@ pub fn lubinski_x(u: f64) -> f64 {
     }
 }
 
-/// Pendulum BHA with **constant** compression `p` = WOB (physics.md 6.2, Lubinski 1953).
+/// Pendulum BHA with **constant** compression `p` = WOB (docs/theory.md 9.2, Lubinski 1953).
 ///
 /// Inputs: `ei` bending stiffness N.m2, `q = w_b sin I` lateral load N/m (> 0, toward the low
 /// side), `r` radial clearance m (> 0), `p` compression N (>= 0).
@@ -200,7 +200,7 @@ fn solve_variable_fixed(
 }
 
 /// Pendulum BHA with **linearly varying** compression `P(x) = wob - axial_gradient * x`
-/// (physics.md 6.2 "Caution"; x up-hole from the bit, so `axial_gradient = w_b cos I` N/m is
+/// (docs/theory.md 9.2 "Caution"; x up-hole from the bit, so `axial_gradient = w_b cos I` N/m is
 /// the axial weight component the FEM carries).
 ///
 /// Solves `(EI y'')'' + (P y')' = q` with `y(0) = y''(0) = 0`, `y(L) = r`, `y'(L) = y''(L) = 0`,
@@ -254,7 +254,7 @@ mod tests {
     const G: f64 = 9.80665;
     const E: f64 = 207e9;
 
-    /// (EI, w_b) of a steel collar OD x 2-13/16 in, 7850 kg/m3, in 1.2 sg mud (physics.md 2.1;
+    /// (EI, w_b) of a steel collar OD x 2-13/16 in, 7850 kg/m3, in 1.2 sg mud (docs/theory.md 3.1;
     /// computed here directly, not via `section`, to keep the test self-contained).
     fn collar(od_in: f64) -> (f64, f64) {
         let (d_o, d_i) = (od_in * INCH, 2.8125 * INCH);
@@ -269,7 +269,7 @@ mod tests {
     }
 
     /// (collar OD in, hole in, inclination deg, WOB N, L m, F kN, tilt deg): every row of the
-    /// physics.md 6.2 table.
+    /// docs/theory.md 9.2 table.
     const TABLE: [(f64, f64, f64, f64, f64, f64, f64); 13] = [
         (8.0, 12.25, 10.0, 0.0, 16.187, 2.6049, 0.3821),
         (8.0, 12.25, 10.0, 100e3, 15.577, 2.1602, 0.3971),
@@ -294,7 +294,7 @@ mod tests {
         (ei, lateral_load(w_b, inc), axial_gradient(w_b, inc), row.3, r)
     }
 
-    /// Reference: physics.md 6.2 table (Lubinski 1953 closed form with constant P = WOB).
+    /// Reference: docs/theory.md 9.2 table (Lubinski 1953 closed form with constant P = WOB).
     /// Tolerance: equality after rounding to the printed digits (L 3 decimals in m, F 4
     /// decimals in kN, tilt 4 decimals in degrees); radial clearances 53.975 / 25.4 mm checked.
     #[test]
@@ -319,7 +319,7 @@ mod tests {
         assert!((r8 - 0.053975).abs() < 1e-15);
     }
 
-    /// Reference: physics.md 6.2, P = 0: L^4 = 24 EI r/q, F = qL/2, tilt = qL^3/(12EI) = 2r/L;
+    /// Reference: docs/theory.md 9.2, P = 0: L^4 = 24 EI r/q, F = qL/2, tilt = qL^3/(12EI) = 2r/L;
     /// and continuity as P -> 0+ (P = 1 uN, series branch of X). Tolerance 1e-14 / 1e-9 relative.
     #[test]
     fn analytical_pendulum_zero_force_closed_form() {
@@ -337,7 +337,7 @@ mod tests {
         assert!((lubinski_x(0.0099999) - 3.0 * (0.0099999f64.tan() - 0.0099999) / 0.0099999f64.powi(3)).abs() < 1e-8);
     }
 
-    /// Reference: physics.md 6.2 "Caution" note: 6.5 in, I = 3 deg, WOB 100 kN, variable
+    /// Reference: docs/theory.md 9.2 "Caution" note: 6.5 in, I = 3 deg, WOB 100 kN, variable
     /// P(x) = WOB - w_b cos(I) x gives 0.2883 kN (4 printed decimals); the side force is above
     /// the constant-P table by 0.8-1.1 % at 10 deg, 1.3-1.7 % for the 8 in case, 2.0-3.6 % at
     /// 3 deg and about 0.1 % at 60 deg (bands used as printed, with 0.05 % slack on the ends;
@@ -367,7 +367,7 @@ mod tests {
     }
 
     /// Reference: the brief's consistency requirement: with w_b cos I = 0 the variable-force
-    /// solution must equal the constant-force closed form (physics.md 6.2) to 1e-8 relative
+    /// solution must equal the constant-force closed form (docs/theory.md 9.2) to 1e-8 relative
     /// (L, F and tilt), for every table row.
     #[test]
     fn analytical_pendulum_variable_reduces_to_constant() {
@@ -396,7 +396,7 @@ mod tests {
 mod residual_tests {
     use super::*;
 
-    /// Reference: the un-integrated 4th-order form of physics.md 6.2, `EI y'''' + P y'' + P' y'
+    /// Reference: the un-integrated 4th-order form of docs/theory.md 9.2, `EI y'''' + P y'' + P' y'
     /// = q` with `P' = -w_b cos I`, integrated independently (state (y, y', y'', y''') , RK4,
     /// 20000 steps) from the solver's `y'(0)` and `y'''(0) = (V0 - P(0) y'(0))/EI`: the end
     /// conditions `y(L) = r`, `y'(L) = y''(L) = 0` must hold to 1e-8 (relative to r, r/L,

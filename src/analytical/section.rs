@@ -1,4 +1,4 @@
-//! Tube section properties and buoyed weight (physics.md 2.1, 2.2).
+//! Tube section properties and buoyed weight (docs/theory.md 3.1, 2.2).
 //!
 //! References: elementary strength of materials for area and moments; Cowper (1966), "The
 //! shear coefficient in Timoshenko's beam theory", J. Appl. Mech., for the hollow-circle shear
@@ -8,16 +8,16 @@
 use super::{require_non_negative, require_positive, AnalyticalError};
 use std::f64::consts::PI;
 
-/// Standard gravity, m/s2 (physics.md 0; repeated here so the references stand alone).
+/// Standard gravity, m/s2 (docs/theory.md 1; repeated here so the references stand alone).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
-/// Young's modulus of steel used in physics.md, Pa.
+/// Young's modulus of steel used in docs/theory.md, Pa.
 pub const STEEL_YOUNG_MODULUS: f64 = 207.0e9;
-/// Shear modulus of steel used in physics.md, Pa.
+/// Shear modulus of steel used in docs/theory.md, Pa.
 pub const STEEL_SHEAR_MODULUS: f64 = 79.6e9;
-/// Density of steel used in physics.md, kg/m3.
+/// Density of steel used in docs/theory.md, kg/m3.
 pub const STEEL_DENSITY: f64 = 7850.0;
 
-/// Poisson ratio from isotropic moduli, `nu = E/(2G) - 1` (dimensionless; steel of physics.md
+/// Poisson ratio from isotropic moduli, `nu = E/(2G) - 1` (dimensionless; steel of docs/theory.md
 /// 2.1: 0.300).
 pub fn poisson_ratio(young_modulus: f64, shear_modulus: f64) -> f64 {
     young_modulus / (2.0 * shear_modulus) - 1.0
@@ -46,22 +46,22 @@ impl Tube {
         Ok(Tube { od, id })
     }
 
-    /// Steel cross-section area `A_s = pi (D^2 - d^2)/4`, m2 (physics.md 2.1).
+    /// Steel cross-section area `A_s = pi (D^2 - d^2)/4`, m2 (docs/theory.md 3.1).
     pub fn area(&self) -> f64 {
         PI * (self.od * self.od - self.id * self.id) / 4.0
     }
 
-    /// Bore area `A_i = pi d^2/4`, m2 (physics.md 2.2).
+    /// Bore area `A_i = pi d^2/4`, m2 (docs/theory.md 3.3).
     pub fn inner_area(&self) -> f64 {
         PI * self.id * self.id / 4.0
     }
 
-    /// Area enclosed by the outer surface `A_o = pi D^2/4`, m2 (physics.md 2.2).
+    /// Area enclosed by the outer surface `A_o = pi D^2/4`, m2 (docs/theory.md 3.3).
     pub fn outer_area(&self) -> f64 {
         PI * self.od * self.od / 4.0
     }
 
-    /// Second moment of area about a diameter `I = pi (D^4 - d^4)/64`, m4 (physics.md 2.1).
+    /// Second moment of area about a diameter `I = pi (D^4 - d^4)/64`, m4 (docs/theory.md 3.1).
     pub fn second_moment(&self) -> f64 {
         PI * (self.od.powi(4) - self.id.powi(4)) / 64.0
     }
@@ -73,7 +73,7 @@ impl Tube {
 
     /// Timoshenko shear coefficient of a hollow circle, Cowper (1966), with `m = d/D`:
     /// `k_s = 6(1+nu)(1+m^2)^2 / [(7+6nu)(1+m^2)^2 + (20+12nu) m^2]` (dimensionless;
-    /// physics.md 2.1). Limits: solid `6(1+nu)/(7+6nu)`, thin wall `2(1+nu)/(4+3nu)`.
+    /// docs/theory.md 3.1). Limits: solid `6(1+nu)/(7+6nu)`, thin wall `2(1+nu)/(4+3nu)`.
     pub fn cowper_shear_coefficient(&self, poisson: f64) -> f64 {
         let m = self.id / self.od;
         let m2 = m * m;
@@ -86,7 +86,7 @@ impl Tube {
         rho_steel * STANDARD_GRAVITY * self.area()
     }
 
-    /// Buoyed weight per length with different mud densities inside and outside (physics.md
+    /// Buoyed weight per length with different mud densities inside and outside (docs/theory.md
     /// 2.2): `w_b = g (rho_s A_s + rho_i A_i - rho_o A_o)`, N/m, positive downward. Densities
     /// in kg/m3.
     pub fn buoyed_weight(&self, rho_steel: f64, rho_inside: f64, rho_outside: f64) -> f64 {
@@ -102,13 +102,13 @@ impl Tube {
 }
 
 /// Buoyed weight per length in a single mud, `w_b = w_air (1 - rho_mud/rho_steel)`, N/m
-/// (physics.md 2.2). `w_air` N/m may be an adjusted weight including tool joints; densities in
+/// (docs/theory.md 3.3). `w_air` N/m may be an adjusted weight including tool joints; densities in
 /// kg/m3. Positive downward.
 pub fn buoyed_weight_same_mud(w_air: f64, rho_mud: f64, rho_steel: f64) -> f64 {
     w_air * (1.0 - rho_mud / rho_steel)
 }
 
-/// Buoyed weight per length from areas and densities (physics.md 2.2, Lubinski effective
+/// Buoyed weight per length from areas and densities (docs/theory.md 3.3, Lubinski effective
 /// force): `w_b = g (rho_s A_s + rho_i A_i - rho_o A_o)`, N/m, positive downward. Areas in m2
 /// (steel, bore, outer), densities in kg/m3.
 pub fn buoyed_weight_two_densities(
@@ -146,7 +146,7 @@ mod tests {
         }
     }
 
-    /// Reference: physics.md 2.1 table (A_s, EI, GJ, EA, w_air, w_b, k_s), recomputed there from
+    /// Reference: docs/theory.md 3.1 table (A_s, EI, GJ, EA, w_air, w_b, k_s), recomputed there from
     /// the formulas of 2.1-2.2 (Cowper 1966 for k_s). Tolerance: equality after rounding to
     /// the printed significant digits (5 for A_s..w_air except 4 for the 3-figure w_b/w_air of
     /// the pipe, 3 decimals for k_s).
@@ -187,7 +187,7 @@ mod tests {
         assert_eq!((bf * 1e5).round() / 1e5, 0.84713);
     }
 
-    /// Reference: physics.md 2.2 example, 8 in x 2-13/16 in collar, 1.2 sg inside, 1.25 sg
+    /// Reference: docs/theory.md 3.3 example, 8 in x 2-13/16 in collar, 1.2 sg inside, 1.25 sg
     /// outside: 1837.6 N/m (instead of 1853.5). Tolerance: 0.05 N/m (printed digits).
     #[test]
     fn analytical_section_two_density_example() {
@@ -196,7 +196,7 @@ mod tests {
         assert!((wb - 1837.6).abs() < 0.05, "w_b = {wb}");
     }
 
-    /// Reference: Cowper (1966) limits quoted in physics.md 2.1: solid 6(1+nu)/(7+6nu), thin wall
+    /// Reference: Cowper (1966) limits quoted in docs/theory.md 3.1: solid 6(1+nu)/(7+6nu), thin wall
     /// 2(1+nu)/(4+3nu). Tolerance 1e-12 / 1e-6 (thin-wall limit approached at m = 1 - 1e-7).
     #[test]
     fn analytical_section_cowper_limits() {

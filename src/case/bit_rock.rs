@@ -11,7 +11,7 @@ pub struct Formation {
     pub from_md_m: f64,
     /// Bottom of the interval, m MD.
     pub to_md_m: f64,
-    /// Rock anisotropy index I_r (physics.md 7.2).
+    /// Rock anisotropy index I_r (docs/theory.md 9.3).
     pub rock_anisotropy: f64,
     /// Bedding dip, rad.
     pub dip_rad: f64,
@@ -19,7 +19,7 @@ pub struct Formation {
     pub dip_direction_rad: f64,
 }
 
-/// Bit-rock interaction law and its parameters (physics.md 7.2).
+/// Bit-rock interaction law and its parameters (docs/theory.md 9.3).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BitRock {
     /// Law name (`ho`).

@@ -3,7 +3,7 @@
 //! Global frame NED: x = north, y = east, z = true vertical depth (down); gravity along +z.
 //! `t` is the unit tangent down the hole, `h` the high side (perpendicular to `t`, pointing
 //! up-hole in the vertical plane through `t`), `r = t x h` the right side (toward increasing
-//! azimuth). physics.md 1.1; interface.md "Conventions".
+//! azimuth). docs/theory.md 2.4; interface.md "Conventions".
 
 use nalgebra::Vector3;
 
@@ -96,7 +96,7 @@ mod tests {
 
     #[test]
     fn frame_matches_physics_formulas() {
-        // physics.md 1.1: h = (cos I cos A, cos I sin A, -sin I), r = (-sin A, cos A, 0).
+        // docs/theory.md 2.4: h = (cos I cos A, cos I sin A, -sin I), r = (-sin A, cos A, 0).
         let (i, a) = (0.7_f64, 2.1_f64);
         let f = Frame::from_inc_azi(i, a);
         assert_orthonormal(&f);

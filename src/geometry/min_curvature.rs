@@ -1,7 +1,7 @@
 //! Minimum curvature: positions, dogleg, DLS, and the hole axis at any measured depth.
 //!
 //! Between two stations the axis is the circular arc tangent to both station tangents
-//! (physics.md 1.2): dogleg `beta = atan2(|t1 x t2|, t1.t2)`, ratio factor
+//! (docs/theory.md 2.1): dogleg `beta = atan2(|t1 x t2|, t1.t2)`, ratio factor
 //! `RF = (2/beta) tan(beta/2)` (series below 1e-4), `dp = (dM/2)(t1 + t2) RF`. Inside an
 //! interval the tangent is interpolated along the arc (spherical linear interpolation) and the
 //! position by the same formula on the sub-arc (1.3), so interpolating at a station returns the
@@ -333,7 +333,7 @@ impl WellPath {
     }
 
     /// Measured depth of the axis point nearest to `x` (the foot of the perpendicular from `x`
-    /// to the axis), found by Newton from `md_guess` (physics.md 1.3).
+    /// to the axis), found by Newton from `md_guess` (docs/theory.md 2.2).
     pub fn nearest_md(&self, x: &Vec3, md_guess: f64) -> f64 {
         self.nearest_md_from(x, md_guess).0
     }
@@ -399,7 +399,7 @@ mod tests {
 
     #[test]
     fn physics_md_worked_example() {
-        // physics.md 1.2: (1000 m, 10 deg, 338 deg) -> (1030 m, 15 deg, 340 deg).
+        // docs/theory.md 2.1: (1000 m, 10 deg, 338 deg) -> (1030 m, 15 deg, 340 deg).
         let w = path(&[(1000.0, 10.0, 338.0), (1030.0, 15.0, 340.0)]);
         let beta = w.dogleg_before(1).to_degrees();
         assert!((beta - 5.01797).abs() < 1e-5, "{beta}");

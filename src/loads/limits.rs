@@ -5,9 +5,9 @@
 //! buckling marks): Dawson & Paslay (1984) sinusoidal and Chen, Lin & Cheatham (1990) helical
 //! with the curved-hole wall load `q(F) = |w_b (e_D - t t_D) - F dt/ds|` (curvature raises the
 //! onset in a build and lowers it in a drop), the vertical-hole floors `2.55 / 5.55 (EI
-//! w_b^2)^(1/3)` \[uncertain coefficients, physics.md 6.4], and in the bottom-hole assembly the
+//! w_b^2)^(1/3)` \[uncertain coefficients, docs/theory.md 7.1], and in the bottom-hole assembly the
 //! span between stabilizers as a supported column ([`crate::models::buckling::span_sinusoidal_onset`]).
-//! The clearance uses the body OD (tool joints make `r` ambiguous, physics.md 6.4); components
+//! The clearance uses the body OD (tool joints make `r` ambiguous, docs/theory.md 7.1); components
 //! with less than [`MIN_BUCKLING_CLEARANCE_M`] of clearance (bit, gauge stabilizers) are taken
 //! as unable to buckle. The buckled length is the length where the soft-string effective
 //! compression exceeds the onset, interpolated linearly inside an element.
@@ -24,7 +24,7 @@
 //! ```
 //!
 //! `P` is the true axial force, `F_true = F_eff - p A` for the same mud inside and outside
-//! (physics.md 2.2, `p` the hydrostatic pressure at the point); at the surface `F_true = F_eff`.
+//! (docs/theory.md 3.3, `p` the hydrostatic pressure at the point); at the surface `F_true = F_eff`.
 //! Bending stress, internal/external pressure stresses and wear are not included: these are
 //! body limits of new pipe, not a design check.
 
@@ -219,7 +219,7 @@ mod tests {
         WellPath::new(&s, Vec3::zeros()).unwrap()
     }
 
-    /// Reference: physics.md 6.4 (5 in pipe, 29 kg/m, 1.2 sg, 8.5 in hole): I = 45 deg
+    /// Reference: docs/theory.md 7.1 (5 in pipe, 29 kg/m, 1.2 sg, 8.5 in hole): I = 45 deg
     /// F_s = 137.3 kN, F_h (CLC) = 194.1 kN; vertical: 2.55 / 5.55 (EI w_b^2)^(1/3) = 10.58 /
     /// 23.02 kN. Tolerance 0.1 kN (printed digits). The chart's onset is `onset_at` of
     /// buckling_marks, in a straight hole without supports.

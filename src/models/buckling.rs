@@ -2,7 +2,7 @@
 //! the stiff FEM alike: the onset loads at each node compared with the model's effective axial
 //! force there.
 //!
-//! Onset at a point (forces are effective compressions, N; physics.md 6.4), for a component
+//! Onset at a point (forces are effective compressions, N; docs/theory.md 7.1), for a component
 //! of bending stiffness `EI`, buoyed weight `w_b`, radial body clearance `r = (D_hole - D_body)/2`:
 //!
 //! ```text
@@ -16,9 +16,9 @@
 //! the wall force per length of the compressed pipe, which includes the curvature term
 //! `F dt/ds` (compression pushes the pipe to the outside of the bend: it raises the onset in a
 //! build, lowers it in a drop; the curved-hole form of He & Kyllingstad 1995) **\[uncertain:
-//! this form is not in physics.md; solved by fixed-point iteration, falling back to the
+//! this form is not in docs/theory.md; solved by fixed-point iteration, falling back to the
 //! straight-hole value when the iteration does not settle]**. The second terms are the
-//! vertical-hole forms (Wu et al., coefficients \[uncertain] in physics.md 6.4), which keep the
+//! vertical-hole forms (Wu et al., coefficients \[uncertain] in docs/theory.md 7.1), which keep the
 //! onset finite where `q -> 0`.
 //!
 //! **Stabilizers are supports.** Between the bit face and the stabilizers' blade centres (each
@@ -144,7 +144,7 @@ fn curved_onset(phi: impl Fn(f64) -> f64, g: Vec3, k: Vec3) -> f64 {
 
 /// Sinusoidal onset of a span `span_m` (m) between lateral supports (pinned: the bit face and
 /// stabilizer blades), for bending stiffness `ei` (N.m2), lateral wall load `q` (N/m, >= 0) and
-/// radial clearance `r` (m): the modes of physics.md 6.4's `EI y'''' + F y'' + (q/r) y = 0`
+/// radial clearance `r` (m): the modes of docs/theory.md 7.1's `EI y'''' + F y'' + (q/r) y = 0`
 /// that vanish at both supports are `sin(n pi x / L)`, `n = 1, 2, ...`, each needing
 /// `F_n = EI k_n^2 + q / (r k_n^2)`, `k_n = n pi / L`; the onset is the smallest, N. It is
 /// the Euler load `pi^2 EI / L^2` when `q = 0`, tends to Dawson-Paslay `2 sqrt(EI q / r)` for
@@ -177,7 +177,7 @@ pub fn support_span_m(string: &DrillString, s_m: f64) -> Option<f64> {
 /// `hole_diameter_m`, mud `mud_density_kg_m3`, in a span of `span_m` between supports (None: no
 /// support above, see [`support_span_m`]); None where it cannot buckle. In a span the
 /// sinusoidal onset is [`span_sinusoidal_onset`] with the curved-hole wall load (never below
-/// the unsupported value), and the helical onset is not below it **\[uncertain: physics.md has
+/// the unsupported value), and the helical onset is not below it **\[uncertain: docs/theory.mdhas
 /// no helical form for a supported span; a helix cannot form before the sinusoid]**.
 pub fn onset_at(
     c: &Component,
@@ -426,7 +426,7 @@ mod tests {
         WellPath::new(&s, Vec3::zeros()).unwrap()
     }
 
-    /// Reference: Dawson & Paslay and Chen-Lin-Cheatham (analytical::buckling, physics.md 6.4)
+    /// Reference: Dawson & Paslay and Chen-Lin-Cheatham (analytical::buckling, docs/theory.md 7.1)
     /// in a straight hole at 45 and 90 deg; tolerance 1e-12 relative.
     #[test]
     fn straight_hole_onsets_are_dawson_paslay_and_clc() {
@@ -444,7 +444,7 @@ mod tests {
         }
     }
 
-    /// Reference: the vertical-hole floor 2.55 / 5.55 (EI w_b^2)^(1/3) (physics.md 6.4) in a
+    /// Reference: the vertical-hole floor 2.55 / 5.55 (EI w_b^2)^(1/3) (docs/theory.md 7.1) in a
     /// vertical hole; and the curvature term: a build raises, a drop lowers the onset relative
     /// to the straight hole at the same inclination, and the fixed point satisfies its own
     /// equation to 1e-9.

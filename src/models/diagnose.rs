@@ -1,4 +1,4 @@
-//! Why a stiff solve may not have converged: what the soft string (physics.md 6.5, cheap and
+//! Why a stiff solve may not have converged: what the soft string (docs/theory.md 10.5, cheap and
 //! always convergent) says about the same operation. Two physical causes are recognised:
 //!
 //! - **lock-up**: the soft-string hook load is negative, i.e. the top would have to be pushed
@@ -114,7 +114,7 @@ weight = "29 kg/m"
         load_case(&dir.path().join("c.toml"), &CaseOverrides::default()).unwrap()
     }
 
-    /// Reference: the soft string of the same case (physics.md 6.5). 300 m vertical, a 90 deg
+    /// Reference: the soft string of the same case (docs/theory.md 10.5). 300 m vertical, a 90 deg
     /// build of 450 m and a 300 m lateral of 5 in pipe (w_b = 241 N/m): the hanging weight is
     /// about 300 x 241 + 450 x 241 x 2/pi = 141 kN, so sliding with 20 kN on the bit keeps the
     /// top in tension and below the helical onset (no hint), while 250 kN needs the top pushed

@@ -7,10 +7,10 @@
 //! cut's clamp) with `F = F_c` (the FEM's effective axial force there, tension positive) and
 //! `M = T_c` (the FEM's torque there), and runs up the string above it with the same friction,
 //! speeds and mud. Without axial motion and rotation the hook load is then
-//! `sum w_b dTVD - WOB` to round-off for both parts (physics.md 6.5 exact check (a)).
+//! `sum w_b dTVD - WOB` to round-off for both parts (docs/theory.md 10.5 exact check (a)).
 //! The soft part is [`softstring::soft_string_stiff_contact`]: its wall carries the lateral
 //! load with the normal force and the circumferential friction together, as in the stiff model
-//! (physics.md 6.6), so the torque above the cut is consistent with the stiff part below.
+//! (docs/theory.md 4), so the torque above the cut is consistent with the stiff part below.
 //! Against `whole` the surface torque of `hybrid` is then within 1% on the example wells,
 //! forge-16a aside (+6.8%: short doglegs of its real survey that the stiff pipe bridges);
 //! Johancsik's form gave +1% to +8.4% (tests/fidelity.rs).

@@ -1,4 +1,4 @@
-//! Calibration of the bit-rock law's parameters on a back-analysis (physics.md 7.7):
+//! Calibration of the bit-rock law's parameters on a back-analysis (docs/theory.md 9.6):
 //! Levenberg-Marquardt on the per-100 m interval errors, finite-difference Jacobian (one
 //! re-prediction of all intervals per parameter), bounds by reparametrization, a weak prior
 //! toward the starting values, covariance `s^2 (J^T J)^-1` with `s^2 = SSR / (m - n)`.
@@ -154,7 +154,7 @@ pub struct Calibration {
 }
 
 /// Data residuals of interval results: inclination and sin(I)-weighted azimuth errors per
-/// 100 m, in degrees (physics.md 7.7).
+/// 100 m, in degrees (docs/theory.md 9.6).
 pub fn residuals(results: &[IntervalResult]) -> Vec<f64> {
     let mut r = Vec::with_capacity(2 * results.len());
     for x in results {

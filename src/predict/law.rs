@@ -1,5 +1,5 @@
 //! Bit-rock interaction: the direction the bit drills from the forces on it, its tilt and the
-//! formation (physics.md 7.2, Ho-type anisotropic drillability law, full vector form).
+//! formation (docs/theory.md 9.3, Ho-type anisotropic drillability law, full vector form).
 //!
 //! ```text
 //! F    = W t + F_b h + F_w r                 bit on rock, hole frame at the bit
@@ -73,7 +73,7 @@ pub struct BitAction {
 }
 
 /// Unit normal to bedding dipping `dip_rad` toward azimuth `dip_direction_rad`, in (north,
-/// east, down) coordinates, pointing down and up-dip (physics.md 7.2).
+/// east, down) coordinates, pointing down and up-dip (docs/theory.md 9.3).
 pub fn bedding_normal(dip_rad: f64, dip_direction_rad: f64) -> Vec3 {
     let (sd, cd) = dip_rad.sin_cos();
     Vec3::new(-sd * dip_direction_rad.cos(), -sd * dip_direction_rad.sin(), cd)
@@ -125,7 +125,7 @@ mod tests {
 
     #[test]
     fn resultant_force_law_and_small_angle_form() {
-        // physics.md 7.2 small-angle form: psi_h = (1-beta) theta + beta F_b/W (I_r = 0)
+        // docs/theory.md 9.3 small-angle form: psi_h = (1-beta) theta + beta F_b/W (I_r = 0)
         let fr = frame(20.0, 40.0);
         let bit = BitAction {
             wob_n: 100e3,
@@ -143,7 +143,7 @@ mod tests {
             assert!((ph - eh).abs() < 2e-5, "beta {beta}: {ph} vs {eh}");
             assert!((pr - er).abs() < 2e-5, "beta {beta}: {pr} vs {er}");
         }
-        // physics.md 7.5 worked values for the pendulum: +0.0029, +0.0007, -0.0059, -0.0168 rad
+        // docs/theory.md 9.3 worked values for the pendulum: +0.0029, +0.0007, -0.0059, -0.0168 rad
         let bit = BitAction {
             wob_n: 100e3,
             build_force_n: -1.68e3,
@@ -177,7 +177,7 @@ mod tests {
         for ir in [0.0, 0.01, 0.05, 0.1] {
             p.rock_anisotropy = ir;
             let d = drilling_direction(&fr, &bit, &p);
-            // angle to the normal: tan(phi_d) = (1 - I_r) tan(phi) (the form physics.md reads)
+            // angle to the normal: tan(phi_d) = (1 - I_r) tan(phi) (the form docs/theory.mdreads)
             let phi = fr.t.dot(&nf).acos();
             let phi_d = d.dot(&nf).acos();
             assert!(((phi_d.tan()) - (1.0 - ir) * phi.tan()).abs() < 1e-9 * phi.tan().abs().max(1.0));
@@ -190,7 +190,7 @@ mod tests {
                 // n_f.h < 0 here: the normal (toward vertical, up-dip) lies on the low side, so
                 // the hole drops toward it, i.e. turns up-dip
                 assert!(ph < 0.0, "I_r {ir}: {ph}");
-                // small-angle form of physics.md 7.2: psi_h = I_r (n.t)(n.h) = -(I_r/2) sin 2phi
+                // small-angle form of docs/theory.md 9.3: psi_h = I_r (n.t)(n.h) = -(I_r/2) sin 2phi
                 if ir <= 0.01 {
                     let want = ir * nf.dot(&fr.t) * nf.dot(&fr.h);
                     assert!((want + ir / 2.0 * (2.0 * phi).sin()).abs() < 1e-12);

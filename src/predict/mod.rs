@@ -1,6 +1,6 @@
 //! Trajectory prediction: the bit-rock law, the forward-marching loop on the stiff
 //! bottom-hole-assembly model, tracking against a survey, back-analysis and calibration
-//! (physics.md 7).
+//! (docs/theory.md 9).
 
 pub mod backanalysis;
 pub mod calibrate;

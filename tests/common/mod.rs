@@ -1,5 +1,5 @@
 //! Fixtures shared by the integration tests: cases written to a temporary directory and read
-//! as users' cases are, and the slick 6.5 in collar of the closed-form checks (physics.md 6.2).
+//! as users' cases are, and the slick 6.5 in collar of the closed-form checks (docs/theory.md 9.2).
 //! Each test binary uses a part of this module.
 #![allow(dead_code)]
 

@@ -6,7 +6,7 @@
 //!
 //! Cut rule (documented default): `s_cut = s_stab + 6 L_t`, where `s_stab` is the distance from
 //! the bit to the highest stabilizer (0 without one) and `L_t = (24 EI r / (w sin I))^(1/4)` is
-//! Lubinski's tangency length of the component above it (physics.md 6.2; inclination at least
+//! Lubinski's tangency length of the component above it (docs/theory.md 9.2; inclination at least
 //! 5 deg in the formula so a vertical hole gets a finite length), clamped to
 //! [[`MIN_CUT_M`], [`MAX_CUT_M`]] and to the string length.
 

@@ -2,7 +2,7 @@
 //!
 //! Nodes sit at component boundaries, stabilizer blade centres and tool joints; elements are
 //! at most `bha_element_length` in the bottom-hole assembly and `element_length` above
-//! (physics.md 3.5). Each node knows its contact diameter: blade OD at a stabilizer centre,
+//! (docs/theory.md 5.2). Each node knows its contact diameter: blade OD at a stabilizer centre,
 //! tool-joint OD at a joint, body OD elsewhere; the bit node has no gap (it is centred).
 
 use crate::case::SolverSettings;

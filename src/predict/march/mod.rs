@@ -1,4 +1,4 @@
-//! The forward-marching loop (physics.md 7.6): solve the stiff bottom-hole assembly with the
+//! The forward-marching loop (docs/theory.md 9.4): solve the stiff bottom-hole assembly with the
 //! bit at `s`, apply the bit-rock law, extend the hole by one minimum-curvature arc to the
 //! drilling direction, move the bit, re-solve warm-started from the previous state.
 

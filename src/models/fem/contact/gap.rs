@@ -1,4 +1,4 @@
-//! The spatial multi-directional contact-friction gap element (the paper's Table 1, physics.md 4).
+//! The spatial multi-directional contact-friction gap element (the paper's Table 1, docs/theory.md 6).
 //!
 //! A node at position `x` whose nearest hole-axis point is `p` with tangent `t` has the lateral
 //! offset `d = x - p` (perpendicular to `t`), radial distance `s = |d|` and outward normal
@@ -45,7 +45,7 @@ pub struct GapInput {
     /// as a frictional pin: force `-(lambda_vec + k_n d)`, smooth through `d = 0`.
     pub lambda_vec: Vec3,
     /// Normal force used for friction, N: the multiplier of the previous outer iteration, so
-    /// friction is constant while Newton converges (physics.md 4.4: "lag the friction"), and
+    /// friction is constant while Newton converges (docs/theory.md 6.2: "lag the friction"), and
     /// exact at convergence where the multiplier equals the normal force. `None`: use the
     /// current normal force.
     pub friction_load: Option<f64>,

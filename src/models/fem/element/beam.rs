@@ -9,7 +9,7 @@
 //! U   = EA l0 eps^2 / 2 + EI/l0 (2 tA^2 + 2 tA tB + 2 tB^2) per plane + GJ/(2 l0) (tB1 - tA1)^2
 //! ```
 //! `N = EA eps` is the axial force (tension > 0). Its Hessian at `p = 0` gives the elastic
-//! stiffness plus the consistent geometric stiffness of physics.md 3.3 (2Nl/15, -Nl/30 on the
+//! stiffness plus the consistent geometric stiffness of docs/theory.md 5.3 (2Nl/15, -Nl/30 on the
 //! end rotations; the chord-rotation terms 6N/5l come from the co-rotational frame).
 
 /// Element section and length, SI.
@@ -122,7 +122,7 @@ mod tests {
 
     #[test]
     fn geometric_terms_match_physics_md() {
-        // physics.md 3.3: rotational block of K_G is N l (2/15, -1/30).
+        // docs/theory.md 5.3: rotational block of K_G is N l (2/15, -1/30).
         let s = BeamSection {
             l0: 2.0,
             ea: 1e9,

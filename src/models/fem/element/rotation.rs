@@ -1,7 +1,7 @@
 //! Finite rotations: exponential and logarithm maps of SO(3) and the inverse tangent operator.
 //!
 //! Nodal triads are updated multiplicatively, `R <- exp(dw) R` with `dw` a spatial spin
-//! (physics.md 3.4), never by adding rotation vectors.
+//! (docs/theory.md 5.3), never by adding rotation vectors.
 
 use nalgebra::Matrix3;
 
