@@ -336,7 +336,7 @@ fn predict_fidelity_levels() {
     assert!((rate[1] - rate[2]).abs() < 0.02, "whole {} vs bha {}", rate[1], rate[2]);
 }
 
-/// Accuracy presets set the prediction step (src/accuracy.rs table): `--accuracy fast` gives
+/// Accuracy presets set the prediction step (src/case/accuracy.rs table): `--accuracy fast` gives
 /// 2 m, `precise` 0.5 m, an explicit `--step` wins; in the case file `[solver] accuracy` gives
 /// the step only where `[bit_rock] step` is absent.
 #[test]

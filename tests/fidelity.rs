@@ -213,7 +213,7 @@ fn bit_torque_is_the_same_in_every_model() {
 
 #[test]
 fn fidelity_levels_report_only_what_they_compute() {
-    // Reference: the level table of src/fidelity.rs: soft has no bit side forces, bha no
+    // Reference: the level table of src/case/fidelity.rs: soft has no bit side forces, bha no
     // surface values; auto picks per command.
     let case = example("seed-daqing");
     let soft = at(&case, Fidelity::Level(Level::Soft));
@@ -337,7 +337,7 @@ fn fidelity_cli_levels_write_the_interface_files() {
 
 #[test]
 fn accuracy_preset_in_case_file_and_on_the_command_line() {
-    // Reference: the preset table of src/accuracy.rs; explicit keys win over `[solver]
+    // Reference: the preset table of src/case/accuracy.rs; explicit keys win over `[solver]
     // accuracy`; `--accuracy` wins over the case; unknown names are one clear error.
     use drillpath::case::accuracy::Accuracy;
     let src = Path::new("wells/seed-daqing");

@@ -222,7 +222,7 @@ mod tests {
     /// Reference: docs/theory.md 7.1 (5 in pipe, 29 kg/m, 1.2 sg, 8.5 in hole): I = 45 deg
     /// F_s = 137.3 kN, F_h (CLC) = 194.1 kN; vertical: 2.55 / 5.55 (EI w_b^2)^(1/3) = 10.58 /
     /// 23.02 kN. Tolerance 0.1 kN (printed digits). The chart's onset is `onset_at` of
-    /// buckling_marks, in a straight hole without supports.
+    /// models::buckling, in a straight hole without supports.
     #[test]
     fn onset_inclined_and_vertical() {
         let c = pipe();
@@ -238,7 +238,7 @@ mod tests {
         assert!(onset_at(&c, &inclined, 500.0, c.body_od_m + 1e-4, 1200.0, None).is_none());
     }
 
-    /// Reference, by hand (buckling_marks' curved-hole form, its test gives the numbers): 5 in
+    /// Reference, by hand (models::buckling's curved-hole form, its test gives the numbers): 5 in
     /// pipe at I = 45 deg in 8.5 in hole, onset 137.29 kN straight, 264.38 kN in a 10 deg/100 m
     /// build, 71.29 kN in the same drop. A constant compression of 200 kN over the 20 m from
     /// 60 m up to 40 m is buckled over all 20 m in the straight hole and the drop, over none in

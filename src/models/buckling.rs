@@ -15,9 +15,10 @@
 //! Lin & Cheatham (1990). In a curved hole the restoring load of the Dawson-Paslay derivation is
 //! the wall force per length of the compressed pipe, which includes the curvature term
 //! `F dt/ds` (compression pushes the pipe to the outside of the bend: it raises the onset in a
-//! build, lowers it in a drop; the curved-hole form of He & Kyllingstad 1995) **\[uncertain:
-//! this form is not in docs/theory.md; solved by fixed-point iteration, falling back to the
-//! straight-hole value when the iteration does not settle]**. The second terms are the
+//! build, lowers it in a drop): Dawson-Paslay with the curved-hole wall load, drillpath's own
+//! form (docs/theory.md 7.2) **\[uncertain: not checked against the published curved-hole
+//! criteria of He & Kyllingstad (1995) or Mitchell; solved by fixed-point iteration, falling
+//! back to the straight-hole value when the iteration does not settle]**. The second terms are the
 //! vertical-hole forms (Wu et al., coefficients \[uncertain] in docs/theory.md 7.1), which keep the
 //! onset finite where `q -> 0`.
 //!
@@ -563,7 +564,7 @@ mod tests {
 
     /// Reference, by hand: in a plane build of curvature kappa the wall load is w_b sin I + F
     /// kappa, and F = 2 sqrt(EI q(F) / r) solves to F = (2 EI kappa / r)(1 + sqrt(1 + r w_b sin
-    /// I / (EI kappa^2))) (the curved-hole form of He & Kyllingstad / Mitchell); in a drop
+    /// I / (EI kappa^2))) (Dawson-Paslay with the curved-hole wall load); in a drop
     /// q = w_b sin I - F kappa gives F = (2 EI kappa / r)(sqrt(1 + r w_b sin I / (EI kappa^2)) -
     /// 1). 5 in pipe (29 kg/m, 1.2 sg, 8.5 in hole: EI = 1.22943e6 N.m2, w_b = 240.919 N/m, r =
     /// 44.45 mm), I = 45 deg, kappa = 10 deg/100 m: build 264.38 kN, drop 71.29 kN, straight

@@ -4,7 +4,7 @@
 //! - **lock-up**: the soft-string hook load is negative, i.e. the top would have to be pushed
 //!   down to put the requested WOB on the bit (typical when sliding a long lateral); the
 //!   compressed pipe above then buckles, and the stiff model has no static state near the start;
-//! - **helical buckling**: compression above the helical onset (src/buckling_marks.rs, with the
+//! - **helical buckling**: compression above the helical onset ([`crate::models::buckling`], with the
 //!   hole curvature) over part of the string; the stiff model must find a post-buckled shape.
 //!
 //! Neither proves the stiff solve impossible, but both tell the user the case is at the edge

@@ -6,7 +6,7 @@ use crate::geometry::Vec3;
 
 /// Trailing length of predicted hole over which the ripple of the hole direction is measured,
 /// m: the chord directions of the last steps are fitted by a straight line in MD (the trend)
-/// and the ripple is the largest deviation from it (see [`Prediction::ripple_deg`]).
+/// and the ripple is the largest deviation from it (see [`super::Prediction::ripple_deg`]).
 pub const RIPPLE_WINDOW_M: f64 = 6.0;
 
 /// Ripple (deg) at which a prediction carries a warning: the end inclination and azimuth move

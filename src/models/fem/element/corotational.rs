@@ -29,7 +29,8 @@ pub type Mat12 = SMatrix<f64, 12, 12>;
 /// Current state of an element's two nodes.
 #[derive(Debug, Clone, Copy)]
 pub struct ElementState<'a> {
-    /// Position of node A (lower, toward the bit), m.
+    /// Position of node A (the upper node, away from the bit, in [`crate::models::fem::model::Model`]'s
+    /// assembly: the chord A -> B points down the hole), m.
     pub x_a: &'a Vec3,
     /// Position of node B, m.
     pub x_b: &'a Vec3,
