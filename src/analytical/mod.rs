@@ -1,5 +1,5 @@
-//! Closed-form and quasi-closed-form references for verifying the FEM (docs/theory.mdsections 2,
-//! 6.2, 6.3, 6.4).
+//! Closed-form and quasi-closed-form references for verifying the models (docs/theory.md 3,
+//! 9.2, 10.3 and 7.1).
 //!
 //! Everything here is written independently of the production mechanics ([`crate::models`],
 //! [`crate::string`], [`crate::geometry`]): each formula from its source, no code, constant or
