@@ -6,6 +6,7 @@
 pub mod accuracy;
 pub mod bit_rock;
 pub mod fidelity;
+pub mod fit;
 pub mod operation;
 pub mod solver;
 pub mod well;

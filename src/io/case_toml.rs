@@ -7,6 +7,7 @@
 
 use super::survey_csv::{read_survey_csv, SurveyUnits};
 use super::toml_reader::Section;
+use crate::case::fit::first_misfit;
 use crate::case::SurveyFile;
 use crate::case::*;
 use crate::error::{InputError, InputResult};
@@ -396,129 +397,170 @@ fn read_string(
     let mut comps: Vec<Component> = Vec::new();
     let mut missing_length: Option<usize> = None;
     for (k, c) in secs.iter().enumerate() {
-        c.check_known(COMPONENT_KEYS)?;
-        let kind_name = c
-            .string("type")?
-            .ok_or_else(|| c.error("type", format!("missing component type ({})", ComponentKind::NAMES)))?;
-        let kind = ComponentKind::parse(&kind_name).ok_or_else(|| {
-            c.error(
-                "type",
-                format!(
-                    "unknown component type `{kind_name}` (expected {})",
-                    ComponentKind::NAMES
-                ),
-            )
-        })?;
-        if kind == ComponentKind::Bit && k != 0 {
-            return Err(c.error(
-                "type",
-                "the bit must be the first component (components are listed from the bit upward)",
-            ));
-        }
-        let name = c.string("name")?.unwrap_or_else(|| kind.name().to_string());
-        let od = c
-            .positive("od", D::Length, "in", false)?
-            .ok_or_else(|| c.error("od", "missing outer diameter"))?;
-        let body_od = c.positive("body_od", D::Length, "in", false)?;
-        let body = match (kind, body_od) {
-            (ComponentKind::Stabilizer, None) => {
-                return Err(c.error("body_od", "a stabilizer needs body_od (od is the blade diameter)"))
-            }
-            (ComponentKind::Stabilizer, Some(b)) if b > od => {
-                return Err(c.error("body_od", "body_od is larger than the blade od"))
-            }
-            (_, Some(b)) => b,
-            (_, None) => od,
-        };
-        let id = match c.positive("id", D::Length, "in", true)? {
-            Some(id) => id,
-            None if kind == ComponentKind::Bit => 0.0,
-            None => return Err(c.error("id", "missing inner diameter (bore)")),
-        };
-        if id >= body {
-            return Err(c.error(
-                "id",
-                format!(
-                    "inner diameter {:.4} in is not smaller than the outer diameter {:.4} in",
-                    id / 0.0254,
-                    body / 0.0254
-                ),
-            ));
-        }
-        let length = c.positive("length", D::Length, "m", false)?;
-        let length = match length {
-            Some(l) => l,
-            None => {
-                if k + 1 != secs.len() {
-                    return Err(c.error(
-                        "length",
-                        "missing length (only the topmost component may leave it out to fill to surface)",
-                    ));
-                }
-                missing_length = Some(k);
-                0.0
-            }
-        };
-        let tj = c.positive("tool_joint_od", D::Length, "in", false)?;
-        if let Some(t) = tj {
-            if t < body {
-                return Err(c.error("tool_joint_od", "tool_joint_od is smaller than the body od"));
-            }
-        }
-        let joint_length = c
-            .positive("joint_length", D::Length, "m", false)?
-            .unwrap_or(DEFAULT_JOINT_LENGTH_M);
-        let mut material = match c.string("material")? {
-            Some(m) => material_by_name(&m).ok_or_else(|| {
-                c.error(
-                    "material",
-                    format!("unknown material `{m}` (expected {})", MATERIAL_NAMES.join(", ")),
-                )
-            })?,
-            None => steel(),
-        };
-        if let Some(e) = c.positive("youngs_modulus", D::Pressure, "GPa", false)? {
-            material.youngs_modulus_pa = e;
-        }
-        if let Some(g) = c.positive("shear_modulus", D::Pressure, "GPa", false)? {
-            material.shear_modulus_pa = g;
-        }
-        if let Some(r) = c.positive("material_density", D::Density, "kg/m3", false)? {
-            material.density_kg_m3 = r;
-        }
-        material.yield_strength_pa = read_yield_strength(c)?;
-        if mud.density_kg_m3 >= material.density_kg_m3 {
-            return Err(c.error(
-                "material_density",
-                "material density must exceed the mud density (the string would float)",
-            ));
-        }
-        let area = std::f64::consts::PI / 4.0 * (body * body - id * id);
-        let weight = match c.positive("weight", D::LinearMass, "kg/m", false)? {
-            Some(m) => m * G,
-            None => area * material.density_kg_m3 * G,
-        };
         let bottom = comps.last().map(|p: &Component| p.top_m()).unwrap_or(0.0);
-        let contact = match kind {
-            ComponentKind::Bit | ComponentKind::Stabilizer => od,
-            _ => body,
-        };
-        comps.push(Component {
-            kind,
-            name,
-            length_m: length,
-            bottom_m: bottom,
-            body_od_m: body,
-            contact_od_m: contact,
-            id_m: id,
-            tool_joint_od_m: tj,
-            joint_length_m: joint_length,
-            material,
-            weight_air_n_per_m: weight,
-        });
+        let (component, has_length) = read_component(c, k, k + 1 == secs.len(), mud, bottom)?;
+        if !has_length {
+            missing_length = Some(k);
+        }
+        comps.push(component);
     }
-    let total: f64 = comps.iter().map(|c| c.length_m).sum();
     let bit_md = op.bit_md_m;
+    fill_to_surface(&mut comps, missing_length, secs, top, bit_md)?;
+    // OD against the hole where each component sits (bit and stabilizers may be exactly gauge)
+    let string = DrillString { components: comps };
+    if let Some(m) = first_misfit(&string, hole, bit_md) {
+        return Err(secs[m.component].error(m.key, m.describe(&string)));
+    }
+    Ok(string)
+}
+
+/// Component `k` of the string from its table `c` (`last`: the topmost, which may leave out
+/// its length to fill to the surface), its bottom `bottom_m` above the bit; with whether the
+/// length was given (0 when not).
+fn read_component(c: &Section, k: usize, last: bool, mud: &Mud, bottom_m: f64) -> InputResult<(Component, bool)> {
+    c.check_known(COMPONENT_KEYS)?;
+    let kind = read_kind(c, k)?;
+    let name = c.string("name")?.unwrap_or_else(|| kind.name().to_string());
+    let (od, body, id) = read_diameters(c, kind)?;
+    let length = c.positive("length", D::Length, "m", false)?;
+    if length.is_none() && !last {
+        return Err(c.error(
+            "length",
+            "missing length (only the topmost component may leave it out to fill to surface)",
+        ));
+    }
+    let tj = c.positive("tool_joint_od", D::Length, "in", false)?;
+    if let Some(t) = tj {
+        if t < body {
+            return Err(c.error("tool_joint_od", "tool_joint_od is smaller than the body od"));
+        }
+    }
+    let joint_length = c
+        .positive("joint_length", D::Length, "m", false)?
+        .unwrap_or(DEFAULT_JOINT_LENGTH_M);
+    let material = read_material(c, mud)?;
+    let area = std::f64::consts::PI / 4.0 * (body * body - id * id);
+    let weight = match c.positive("weight", D::LinearMass, "kg/m", false)? {
+        Some(m) => m * G,
+        None => area * material.density_kg_m3 * G,
+    };
+    let contact = match kind {
+        ComponentKind::Bit | ComponentKind::Stabilizer => od,
+        _ => body,
+    };
+    let component = Component {
+        kind,
+        name,
+        length_m: length.unwrap_or(0.0),
+        bottom_m,
+        body_od_m: body,
+        contact_od_m: contact,
+        id_m: id,
+        tool_joint_od_m: tj,
+        joint_length_m: joint_length,
+        material,
+        weight_air_n_per_m: weight,
+    };
+    Ok((component, length.is_some()))
+}
+
+/// The component type of table `c`, the `k`-th from the bit (only the first may be the bit).
+fn read_kind(c: &Section, k: usize) -> InputResult<ComponentKind> {
+    let kind_name = c
+        .string("type")?
+        .ok_or_else(|| c.error("type", format!("missing component type ({})", ComponentKind::NAMES)))?;
+    let kind = ComponentKind::parse(&kind_name).ok_or_else(|| {
+        c.error(
+            "type",
+            format!(
+                "unknown component type `{kind_name}` (expected {})",
+                ComponentKind::NAMES
+            ),
+        )
+    })?;
+    if kind == ComponentKind::Bit && k != 0 {
+        return Err(c.error(
+            "type",
+            "the bit must be the first component (components are listed from the bit upward)",
+        ));
+    }
+    Ok(kind)
+}
+
+/// Outer (blade for a stabilizer), body and inner diameters of table `c`, m.
+fn read_diameters(c: &Section, kind: ComponentKind) -> InputResult<(f64, f64, f64)> {
+    let od = c
+        .positive("od", D::Length, "in", false)?
+        .ok_or_else(|| c.error("od", "missing outer diameter"))?;
+    let body_od = c.positive("body_od", D::Length, "in", false)?;
+    let body = match (kind, body_od) {
+        (ComponentKind::Stabilizer, None) => {
+            return Err(c.error("body_od", "a stabilizer needs body_od (od is the blade diameter)"))
+        }
+        (ComponentKind::Stabilizer, Some(b)) if b > od => {
+            return Err(c.error("body_od", "body_od is larger than the blade od"))
+        }
+        (_, Some(b)) => b,
+        (_, None) => od,
+    };
+    let id = match c.positive("id", D::Length, "in", true)? {
+        Some(id) => id,
+        None if kind == ComponentKind::Bit => 0.0,
+        None => return Err(c.error("id", "missing inner diameter (bore)")),
+    };
+    if id >= body {
+        return Err(c.error(
+            "id",
+            format!(
+                "inner diameter {:.4} in is not smaller than the outer diameter {:.4} in",
+                id / 0.0254,
+                body / 0.0254
+            ),
+        ));
+    }
+    Ok((od, body, id))
+}
+
+/// The material of table `c` (named, with any property overridden), heavier than the mud.
+fn read_material(c: &Section, mud: &Mud) -> InputResult<crate::string::material::Material> {
+    let mut material = match c.string("material")? {
+        Some(m) => material_by_name(&m).ok_or_else(|| {
+            c.error(
+                "material",
+                format!("unknown material `{m}` (expected {})", MATERIAL_NAMES.join(", ")),
+            )
+        })?,
+        None => steel(),
+    };
+    if let Some(e) = c.positive("youngs_modulus", D::Pressure, "GPa", false)? {
+        material.youngs_modulus_pa = e;
+    }
+    if let Some(g) = c.positive("shear_modulus", D::Pressure, "GPa", false)? {
+        material.shear_modulus_pa = g;
+    }
+    if let Some(r) = c.positive("material_density", D::Density, "kg/m3", false)? {
+        material.density_kg_m3 = r;
+    }
+    material.yield_strength_pa = read_yield_strength(c)?;
+    if mud.density_kg_m3 >= material.density_kg_m3 {
+        return Err(c.error(
+            "material_density",
+            "material density must exceed the mud density (the string would float)",
+        ));
+    }
+    Ok(material)
+}
+
+/// Give the component `missing_length` (when one left out its length) the length that brings
+/// the string from the bit at `bit_md` (m) to the surface; else check that the lengths do.
+fn fill_to_surface(
+    comps: &mut [Component],
+    missing_length: Option<usize>,
+    secs: &[Section],
+    top: &Section,
+    bit_md: f64,
+) -> InputResult<()> {
+    let total: f64 = comps.iter().map(|c| c.length_m).sum();
     if let Some(k) = missing_length {
         let fill = bit_md - total;
         if fill <= 0.0 {
@@ -539,38 +581,7 @@ fn read_string(
             format!("the string ({total:.2} m) does not reach the surface from the bit at {bit_md:.2} m MD; leave out the topmost length to fill"),
         ));
     }
-    // OD against the hole where each component sits (bit and stabilizers may be exactly gauge).
-    for (k, c) in comps.iter().enumerate() {
-        let top_md = bit_md - c.top_m();
-        let bottom_md = bit_md - c.bottom_m;
-        let mut md = top_md.max(0.0);
-        let widest = c.contact_od_m.max(c.tool_joint_od_m.unwrap_or(0.0));
-        let gauge_ok = matches!(c.kind, ComponentKind::Bit | ComponentKind::Stabilizer);
-        loop {
-            let d = hole.diameter_at(md);
-            let allowance = if gauge_ok { 1e-3 } else { 0.0 };
-            if widest > d + allowance {
-                return Err(secs[k].error(
-                    if c.tool_joint_od_m.is_some_and(|t| t > c.contact_od_m) {
-                        "tool_joint_od"
-                    } else {
-                        "od"
-                    },
-                    format!(
-                        "component `{}` ({:.3} in) is wider than the hole ({:.3} in) at MD {md:.1} m",
-                        c.name,
-                        widest / 0.0254,
-                        d / 0.0254
-                    ),
-                ));
-            }
-            if md >= bottom_md {
-                break;
-            }
-            md = (md + 1.0).min(bottom_md);
-        }
-    }
-    Ok(DrillString { components: comps })
+    Ok(())
 }
 
 /// Pipe-body yield strength from `grade` (API name) or `yield_strength` (pressure), if given.

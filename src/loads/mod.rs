@@ -23,7 +23,7 @@ pub mod run;
 pub mod stiff;
 
 use crate::case::{Case, Mode};
-use crate::string::{ComponentKind, DrillString};
+use crate::string::DrillString;
 
 /// The load cases of a chart, in the order of `loads.csv`.
 pub const MODES: [Mode; 5] = [
@@ -149,39 +149,17 @@ pub fn set_row_operation(case: &mut Case, bit_md_m: f64, mode: Mode, op: &ChartO
 /// the case reader does at the case's bit depth: a bit or stabilizer may be gauge within 1 mm);
 /// the error names the component, the MD and the diameters.
 pub fn check_fits(string: &DrillString, hole: &crate::geometry::HoleSize, bit_md_m: f64) -> Result<(), String> {
-    for c in &string.components {
-        let widest = c.contact_od_m.max(c.tool_joint_od_m.unwrap_or(0.0));
-        let allowance = if matches!(c.kind, ComponentKind::Bit | ComponentKind::Stabilizer) {
-            1e-3
-        } else {
-            0.0
-        };
-        let (top, bottom) = ((bit_md_m - c.top_m()).max(0.0), bit_md_m - c.bottom_m);
-        let mut md = top;
-        loop {
-            let d = hole.diameter_at(md);
-            if widest > d + allowance {
-                return Err(format!(
-                    "with the bit at {bit_md_m:.1} m, component `{}` ({:.3} in) is wider than the hole ({:.3} in) at MD {md:.1} m",
-                    c.name,
-                    widest / 0.0254,
-                    d / 0.0254
-                ));
-            }
-            if md >= bottom {
-                break;
-            }
-            md = (md + 1.0).min(bottom);
-        }
+    match crate::case::fit::first_misfit(string, hole, bit_md_m) {
+        Some(m) => Err(format!("with the bit at {bit_md_m:.1} m, {}", m.describe(string))),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::string::material::steel;
-    use crate::string::Component;
+    use crate::string::{Component, ComponentKind};
 
     fn comp(kind: ComponentKind, bottom: f64, len: f64) -> Component {
         Component {
