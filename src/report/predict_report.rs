@@ -11,6 +11,7 @@ use crate::geometry::{Vec3, WellPath};
 use crate::predict::backanalysis::Backanalysis;
 use crate::predict::forecast::Forecast;
 use crate::predict::intervals::IntervalResult;
+use crate::predict::march::StepRecord;
 
 /// Ids of the figures of a predict report (the tests look for each).
 pub const PREDICT_FIGURES: &[&str] = &[
@@ -135,15 +136,27 @@ impl Trajectories<'_> {
 
 /// The predict report's HTML text for one or several cases predicted over the same interval.
 pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<String, String> {
-    let (first_case, first) = *runs.first().ok_or("no prediction to report")?;
-    let first = &first.prediction;
-    let (du, fu) = (units.depth(), units.force());
+    let (first_case, _) = *runs.first().ok_or("no prediction to report")?;
     let title = if runs.len() == 1 {
         format!("drillpath predict: {}", first_case.name)
     } else {
         format!("drillpath predict: {} cases compared", runs.len())
     };
     let mut page = Page::new(&title);
+    predict_key_results(&mut page, runs, units)?;
+    predict_figures(&mut page, runs, units)?;
+    for (case, forecast) in runs {
+        echo_inputs(&mut page, case, forecast.prediction.from_md_m, units)?;
+    }
+    let html = page.finish();
+    check_finite_text(&html)?;
+    Ok(html)
+}
+
+/// The key results of a predict report: per case the interval, rates, end direction, mean bit
+/// forces and end errors.
+fn predict_key_results(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<(), String> {
+    let (du, fu) = (units.depth(), units.force());
     page.heading("Key results");
     let mut rows = Vec::new();
     for (case, forecast) in runs {
@@ -187,6 +200,14 @@ pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<
     );
     page.note("build force + = toward the high side, walk force + = to the right; errors are predicted - measured.");
 
+    Ok(())
+}
+
+/// The figures of a predict report: trajectory, bit forces and tilt, errors.
+fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<(), String> {
+    let (du, fu) = (units.depth(), units.force());
+    let (first_case, first) = *runs.first().ok_or("no prediction to report")?;
+    let first = &first.prediction;
     let from = first.from_md_m;
     let to = runs
         .iter()
@@ -261,45 +282,7 @@ pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<
             Style::Line,
             c,
         ));
-        let steps = &pred.steps;
-        forces = forces
-            .with(Series::new(
-                &label("build force"),
-                steps
-                    .iter()
-                    .map(|s| (du.show(s.md_m), fu.show(s.bit.build_force_n)))
-                    .collect(),
-                Style::LinePoints,
-                2 * k,
-            ))
-            .with(Series::new(
-                &label("walk force"),
-                steps
-                    .iter()
-                    .map(|s| (du.show(s.md_m), fu.show(s.bit.walk_force_n)))
-                    .collect(),
-                Style::LinePoints,
-                2 * k + 1,
-            ));
-        tilt = tilt
-            .with(Series::new(
-                &label("tilt inclination"),
-                steps
-                    .iter()
-                    .map(|s| (du.show(s.md_m), s.bit.tilt_inc_rad.to_degrees()))
-                    .collect(),
-                Style::LinePoints,
-                2 * k,
-            ))
-            .with(Series::new(
-                &label("tilt azimuth"),
-                steps
-                    .iter()
-                    .map(|s| (du.show(s.md_m), s.bit.tilt_azi_rad.to_degrees()))
-                    .collect(),
-                Style::LinePoints,
-                2 * k + 1,
-            ));
+        (forces, tilt) = bit_series(forces, tilt, &pred.steps, &label, k, units);
         let errs: Vec<(f64, (f64, f64))> = forecast
             .rows
             .iter()
@@ -322,7 +305,7 @@ pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<
             ));
     }
     trajectory_figures(
-        &mut page,
+        page,
         [&inc, &azi, &plan, &sec],
         "predicted (line) and measured survey stations (points)",
         "the start",
@@ -334,6 +317,72 @@ pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<
         &render(&tilt)?,
         "bit tilt against the hole axis at each solved step",
     );
+    errors_figure(page, errors, any_error, (from, to), units)
+}
+
+/// The bit's build and walk forces and its tilts at each solved step added to `forces` and
+/// `tilt` for the `k`-th case (`label` names a series).
+fn bit_series(
+    mut forces: Chart,
+    mut tilt: Chart,
+    steps: &[StepRecord],
+    label: &dyn Fn(&str) -> String,
+    k: usize,
+    units: UnitSystem,
+) -> (Chart, Chart) {
+    let (du, fu) = (units.depth(), units.force());
+    forces = forces
+        .with(Series::new(
+            &label("build force"),
+            steps
+                .iter()
+                .map(|s| (du.show(s.md_m), fu.show(s.bit.build_force_n)))
+                .collect(),
+            Style::LinePoints,
+            2 * k,
+        ))
+        .with(Series::new(
+            &label("walk force"),
+            steps
+                .iter()
+                .map(|s| (du.show(s.md_m), fu.show(s.bit.walk_force_n)))
+                .collect(),
+            Style::LinePoints,
+            2 * k + 1,
+        ));
+    tilt = tilt
+        .with(Series::new(
+            &label("tilt inclination"),
+            steps
+                .iter()
+                .map(|s| (du.show(s.md_m), s.bit.tilt_inc_rad.to_degrees()))
+                .collect(),
+            Style::LinePoints,
+            2 * k,
+        ))
+        .with(Series::new(
+            &label("tilt azimuth"),
+            steps
+                .iter()
+                .map(|s| (du.show(s.md_m), s.bit.tilt_azi_rad.to_degrees()))
+                .collect(),
+            Style::LinePoints,
+            2 * k + 1,
+        ));
+    (forces, tilt)
+}
+
+/// The "Errors" section: the `errors` chart, or when no case had a measured station in the
+/// interval `(from, to)` (m), an empty chart saying so.
+fn errors_figure(
+    page: &mut Page,
+    errors: Chart,
+    any_error: bool,
+    (from, to): (f64, f64),
+    units: UnitSystem,
+) -> Result<(), String> {
+    let du = units.depth();
+    let md = format!("MD [{}]", du.label);
     page.heading("Errors");
     if any_error {
         page.figure(
@@ -361,24 +410,29 @@ pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<
             "a pre-drill prediction has nothing to compare with",
         );
     }
-    for (case, forecast) in runs {
-        echo_inputs(&mut page, case, forecast.prediction.from_md_m, units)?;
-    }
+    Ok(())
+}
+
+/// The backanalyze report's HTML text (with a calibration, where it ends is marked).
+pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -> Result<String, String> {
+    let results = &back.results;
+    let f = results.first().ok_or("no interval to report")?;
+    let mut page = Page::new(&format!("drillpath backanalyze: {}", case.name));
+    backanalyze_key_results(&mut page, back, units);
+    interval_figures(&mut page, case, results, units)?;
+    interval_table(&mut page, results, units);
+    echo_inputs(&mut page, case, f.interval.from_md_m, units)?;
     let html = page.finish();
     check_finite_text(&html)?;
     Ok(html)
 }
 
-/// The backanalyze report's HTML text; `split_md_m` marks where calibration ends (with --calibrate).
-pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -> Result<String, String> {
+/// The key results of a backanalyze report: intervals, range, errors per 100 m, calibration.
+fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSystem) {
     let (results, stats) = (&back.results, &back.results_stats);
     let split_md_m = back.calibration.as_ref().map(|c| c.split_md_m);
-    let (du, fu) = (units.depth(), units.force());
-    let (f, l) = (
-        results.first().ok_or("no interval to report")?,
-        results.last().ok_or("no interval")?,
-    );
-    let mut page = Page::new(&format!("drillpath backanalyze: {}", case.name));
+    let du = units.depth();
+    let (f, l) = (&results[0], &results[results.len() - 1]);
     page.heading("Key results");
     let mut kv = vec![
         ("intervals".to_string(), results.len().to_string()),
@@ -414,6 +468,13 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
         ));
     }
     page.key_values(&kv);
+}
+
+/// The figures of a backanalyze report: trajectory at the interval ends, bit forces and tilt at
+/// their starts, errors per 100 m.
+fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], units: UnitSystem) -> Result<(), String> {
+    let (du, fu) = (units.depth(), units.force());
+    let (f, l) = (&results[0], &results[results.len() - 1]);
     let meas = measured(&case.well.path, f.interval.from_md_m, l.interval.to_md_m);
     let azi_ref = f.interval.measured.1;
     let tj = Trajectories {
@@ -525,7 +586,7 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
     ));
     errors.zero_line = true;
     trajectory_figures(
-        &mut page,
+        page,
         [&inc, &azi, &plan, &sec],
         "measured stations and the predicted value at each interval's end",
         "the last station",
@@ -543,6 +604,12 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
         &render(&errors)?,
         "error at each interval's end divided by its length",
     );
+    Ok(())
+}
+
+/// One row per interval: measured and predicted end direction, error, bit forces at the start.
+fn interval_table(page: &mut Page, results: &[IntervalResult], units: UnitSystem) {
+    let (du, fu) = (units.depth(), units.force());
     let rows: Vec<Vec<String>> = results
         .iter()
         .map(|r| {
@@ -583,10 +650,6 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
         ],
         &rows,
     );
-    echo_inputs(&mut page, case, f.interval.from_md_m, units)?;
-    let html = page.finish();
-    check_finite_text(&html)?;
-    Ok(html)
 }
 
 /// Build the predict report and write it atomically to `file`.

@@ -8,7 +8,7 @@ use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
 use crate::case::{Case, Level};
 use crate::models::buckling::{spans, BuckleState, Mark};
-use crate::models::fem::results::SolveResults;
+use crate::models::fem::results::{NodeResult, SolveResults};
 use crate::models::fem::solve::SolveStats;
 use crate::models::levels::StringSolve;
 
@@ -135,13 +135,6 @@ pub fn solve_report(
     scope: &ReportOptions,
 ) -> Result<String, String> {
     let units = scope.units;
-    let (du, su, fu, tu, pu) = (
-        units.depth(),
-        units.small_length(),
-        units.force(),
-        units.torque(),
-        units.stress(),
-    );
     let b = &res.bit;
     let mut page = Page::new(&format!("drillpath solve: {}", case.name));
     if !converged {
@@ -150,12 +143,34 @@ pub fn solve_report(
     if let Some(note) = &scope.note {
         page.note(note);
     }
-    page.heading("Key results");
-    let contacts: Vec<_> = res
+    let contacts: Vec<&NodeResult> = res
         .nodes
         .iter()
         .filter(|n| n.contact_force_n > CONTACT_THRESHOLD_N)
         .collect();
+    key_results(&mut page, res, &contacts, stats, converged, scope);
+    contact_zones(&mut page, case, b.md_m, &contacts, units);
+    echo_inputs(&mut page, case, b.md_m, units)?;
+    page.heading("Along the string");
+    string_figures(&mut page, case, res, marks, units)?;
+    let html = page.finish();
+    check_finite_text(&html)?;
+    Ok(html)
+}
+
+/// The key results: bit, surface, contacts, solver.
+fn key_results(
+    page: &mut Page,
+    res: &SolveResults,
+    contacts: &[&NodeResult],
+    stats: &SolveStats,
+    converged: bool,
+    scope: &ReportOptions,
+) {
+    let units = scope.units;
+    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    let b = &res.bit;
+    page.heading("Key results");
     let max_contact = contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     let mut kv = vec![
         ("bit MD".to_string(), du.fmt(b.md_m, 2)),
@@ -208,10 +223,16 @@ pub fn solve_report(
         ),
     ));
     page.key_values(&kv);
-    // contact zones in the shown bottom of the string: runs of neighbouring contact nodes
+}
+
+/// The contact zones in the shown bottom of the string (bit at `bit_md_m`): runs of
+/// neighbouring contact nodes, with their total and largest force.
+fn contact_zones(page: &mut Page, case: &Case, bit_md_m: f64, contacts: &[&NodeResult], units: UnitSystem) {
+    let (du, fu) = (units.depth(), units.force());
+    let b_md = bit_md_m;
     let shown = shown_length_m(&case.string);
-    let mut zones: Vec<Vec<&crate::models::fem::results::NodeResult>> = Vec::new();
-    for n in contacts.iter().filter(|n| b.md_m - n.md_m < shown) {
+    let mut zones: Vec<Vec<&NodeResult>> = Vec::new();
+    for n in contacts.iter().filter(|n| b_md - n.md_m < shown) {
         match zones.last_mut() {
             Some(z) if z.last().is_some_and(|p| (p.md_m - n.md_m).abs() < ZONE_GAP_M) => z.push(n),
             _ => zones.push(vec![n]),
@@ -220,7 +241,7 @@ pub fn solve_report(
     let near: Vec<Vec<String>> = zones
         .iter()
         .map(|z| {
-            let (lo, hi) = (b.md_m - z[0].md_m, b.md_m - z[z.len() - 1].md_m);
+            let (lo, hi) = (b_md - z[0].md_m, b_md - z[z.len() - 1].md_m);
             let total: f64 = z.iter().map(|n| n.contact_force_n).sum();
             let peak = z
                 .iter()
@@ -252,12 +273,27 @@ pub fn solve_report(
             &near,
         );
     }
+}
 
-    echo_inputs(&mut page, case, b.md_m, units)?;
-
-    page.heading("Along the string");
+/// The charts along the string: contact force, BHA deflection, axial force with the buckling
+/// marks, torque and stresses.
+fn string_figures(
+    page: &mut Page,
+    case: &Case,
+    res: &SolveResults,
+    marks: &[Mark],
+    units: UnitSystem,
+) -> Result<(), String> {
+    let (du, su, fu, tu, pu) = (
+        units.depth(),
+        units.small_length(),
+        units.force(),
+        units.torque(),
+        units.stress(),
+    );
+    let b = &res.bit;
     let md_label = format!("MD [{}]", du.label);
-    let along = |f: &dyn Fn(&crate::models::fem::results::NodeResult) -> f64| -> Vec<(f64, f64)> {
+    let along = |f: &dyn Fn(&NodeResult) -> f64| -> Vec<(f64, f64)> {
         res.nodes.iter().map(|n| (du.show(n.md_m), f(n))).collect()
     };
     let contact = Chart::new(
@@ -279,20 +315,19 @@ pub fn solve_report(
 
     let bha_len = shown_length_m(&case.string);
     let bha: Vec<_> = res.nodes.iter().filter(|n| b.md_m - n.md_m <= bha_len + 1e-9).collect();
-    let x = |n: &crate::models::fem::results::NodeResult| du.show(b.md_m - n.md_m);
+    let x = |n: &NodeResult| du.show(b.md_m - n.md_m);
     for (id, title, dir, f) in [
         (
             "deflection-high",
             "BHA deflection in the hole: high side",
             "toward the high side",
-            (|n: &crate::models::fem::results::NodeResult| n.disp_high_m)
-                as fn(&crate::models::fem::results::NodeResult) -> f64,
+            (|n: &NodeResult| n.disp_high_m) as fn(&NodeResult) -> f64,
         ),
         (
             "deflection-right",
             "BHA deflection in the hole: right side",
             "toward the right side",
-            |n: &crate::models::fem::results::NodeResult| n.disp_right_m,
+            |n: &NodeResult| n.disp_right_m,
         ),
     ] {
         let mut c = Chart::new(
@@ -363,9 +398,7 @@ pub fn solve_report(
         &render(&stress)?,
         "bending stress M (OD/2)/I of the body section; von Mises at the outer fibre",
     );
-    let html = page.finish();
-    check_finite_text(&html)?;
-    Ok(html)
+    Ok(())
 }
 
 /// Build the report and write it atomically to `file`.
