@@ -87,7 +87,7 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     apply_accuracy_option(a.accuracy.as_deref(), &mut case.solver)?;
     let req = request(&a, &case, options)?;
     let plan = plan(&case, &req).map_err(|e| chart_error(e, &a))?;
-    let du = a.units.depth();
+    let depth_unit = a.units.depth();
     let progress = (plan.choice.level != Level::Soft).then(|| {
         Progress::new(
             plan.depths.len() as u64,
@@ -97,7 +97,7 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     });
     let chart = run_chart(&case, &plan, &mut |k, d| {
         if let Some(p) = &progress {
-            p.set(k as u64, &format!("bit at {}", du.fmt(d, 1)));
+            p.set(k as u64, &format!("bit at {}", depth_unit.fmt(d, 1)));
         }
     });
     if let Some(p) = progress {

@@ -177,10 +177,10 @@ impl StepProgress {
             self.step_m
         };
         let k = ((md - self.from) / per - 1e-6).ceil().max(0.0) as u64;
-        let du = self.units.depth();
+        let depth_unit = self.units.depth();
         self.bar.set(
             (done_before + k).min(self.total),
-            &format!("bit at {} of {}", du.fmt(md, 1), du.fmt(self.to, 1)),
+            &format!("bit at {} of {}", depth_unit.fmt(md, 1), depth_unit.fmt(self.to, 1)),
         );
     }
     fn finish(self) {

@@ -7,7 +7,7 @@ use crate::case::Case;
 
 /// Add the well, BHA, mud and operation sections for `case` with the bit at `bit_md_m`.
 pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSystem) -> Result<(), String> {
-    let (du, su) = (units.depth(), units.small_length());
+    let (depth_unit, small_unit) = (units.depth(), units.small_length());
     let path = &case.well.path;
     let st = path.stations();
     let (dls, dls_md) = path.max_dls();
@@ -22,14 +22,21 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
         ("stations".into(), st.len().to_string()),
         (
             "survey MD range".into(),
-            format!("{} to {}", du.fmt(path.md_start(), 1), du.fmt(path.md_end(), 1)),
+            format!(
+                "{} to {}",
+                depth_unit.fmt(path.md_start(), 1),
+                depth_unit.fmt(path.md_end(), 1)
+            ),
         ),
         ("max inclination".into(), format!("{:.2} deg", max_inc.to_degrees())),
         (
             "max dogleg severity".into(),
-            format!("{} at {}", units.dogleg().fmt(dls, 2), du.fmt(dls_md, 1)),
+            format!("{} at {}", units.dogleg().fmt(dls, 2), depth_unit.fmt(dls_md, 1)),
         ),
-        ("TVD at the bit".into(), du.fmt(path.point_at(bit_md_m).position.z, 1)),
+        (
+            "TVD at the bit".into(),
+            depth_unit.fmt(path.point_at(bit_md_m).position.z, 1),
+        ),
     ]);
     let rows: Vec<Vec<String>> = case
         .well
@@ -38,8 +45,8 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
         .iter()
         .map(|s| {
             vec![
-                du.fmt(s.to_md_m, 1),
-                su.fmt(s.diameter_m, 1),
+                depth_unit.fmt(s.to_md_m, 1),
+                small_unit.fmt(s.diameter_m, 1),
                 s.friction
                     .map(|f| format!("{f:.3}"))
                     .unwrap_or_else(|| format!("{:.3} (operation)", case.operation.friction)),
@@ -66,11 +73,11 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
             vec![
                 c.kind.name().to_string(),
                 c.name.clone(),
-                du.fmt(c.bottom_m, 2),
-                du.fmt(c.length_m, 2),
-                su.fmt(c.body_od_m, 1),
-                su.fmt(c.contact_od_m, 1),
-                su.fmt(c.id_m, 1),
+                depth_unit.fmt(c.bottom_m, 2),
+                depth_unit.fmt(c.length_m, 2),
+                small_unit.fmt(c.body_od_m, 1),
+                small_unit.fmt(c.contact_od_m, 1),
+                small_unit.fmt(c.id_m, 1),
             ]
         })
         .collect();
@@ -94,8 +101,8 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
             &svg,
             &format!(
                 "bottom {} of the string; hole {} at the bit",
-                du.fmt(shown_length_m(&case.string), 1),
-                su.fmt(hole, 1)
+                depth_unit.fmt(shown_length_m(&case.string), 1),
+                small_unit.fmt(hole, 1)
             ),
         );
     }
@@ -112,7 +119,7 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
             format!("{:.1} cP", case.mud.plastic_viscosity_pa_s * 1e3),
         ),
         ("mode".into(), op.mode.name().to_string()),
-        ("bit MD".into(), du.fmt(bit_md_m, 2)),
+        ("bit MD".into(), depth_unit.fmt(bit_md_m, 2)),
     ];
     match op.hook_load_n {
         Some(h) => kv.push(("hook load (given)".into(), units.force().fmt(h, 1))),

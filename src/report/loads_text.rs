@@ -68,7 +68,8 @@ fn write_header(out: &mut impl Write, case: &Case, case_file: &Path, plan: &Char
 
 /// The fitted friction per section and the residuals.
 fn write_calibration(out: &mut impl Write, cal: &Calibration, points: usize, units: UnitSystem) -> std::io::Result<()> {
-    let (du, su, fu, tu) = (units.depth(), units.small_length(), units.force(), units.torque());
+    let (depth_unit, small_unit, force_unit, torque_unit) =
+        (units.depth(), units.small_length(), units.force(), units.torque());
     writeln!(
         out,
         "  calibration: {} points ({} residuals), {} iterations{}",
@@ -90,15 +91,19 @@ fn write_calibration(out: &mut impl Write, cal: &Calibration, points: usize, uni
             out,
             "    section {} ({}-{}, {}): friction {}",
             p.section + 1,
-            du.num(p.from_md_m, 0),
-            du.fmt(p.to_md_m, 0),
-            su.fmt(p.diameter_m, 1),
+            depth_unit.num(p.from_md_m, 0),
+            depth_unit.fmt(p.to_md_m, 0),
+            small_unit.fmt(p.diameter_m, 1),
             what
         )?;
     }
-    write!(out, "    residual RMS: hook load {}", fu.fmt(cal.rms_hook_load_n, 2))?;
+    write!(
+        out,
+        "    residual RMS: hook load {}",
+        force_unit.fmt(cal.rms_hook_load_n, 2)
+    )?;
     match cal.rms_torque_nm {
-        Some(t) => writeln!(out, ", torque {}", tu.fmt(t, 3))?,
+        Some(t) => writeln!(out, ", torque {}", torque_unit.fmt(t, 3))?,
         None => writeln!(out)?,
     }
     writeln!(out, "  the chart below uses the fitted friction factors")
@@ -179,14 +184,14 @@ fn print_table<'a>(
     buckled_column: bool,
     out: &mut impl Write,
 ) -> std::io::Result<()> {
-    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
     write!(
         out,
         "  bit MD {} | hook load {}: trip_in  trip_out  rot_off  drilling  sliding | torque {}: rot_off  drilling",
-        du.label, fu.label, tu.label
+        depth_unit.label, force_unit.label, torque_unit.label
     )?;
     if buckled_column {
-        write!(out, " | buckled {} (sliding)", du.label)?;
+        write!(out, " | buckled {} (sliding)", depth_unit.label)?;
     }
     writeln!(out)?;
     let stride = depths.len().div_ceil(40).max(1);
@@ -195,12 +200,12 @@ fn print_table<'a>(
             continue;
         }
         let value = |m, f: &dyn Fn(&RowLoads) -> String| loads(row(rows, k, m)).map_or("-".to_string(), f);
-        let h = |m| value(m, &|l| fu.num(l.hook_load_n, 1));
-        let t = |m| value(m, &|l| tu.num(l.surface_torque_nm, 2));
+        let h = |m| value(m, &|l| force_unit.num(l.hook_load_n, 1));
+        let t = |m| value(m, &|l| torque_unit.num(l.surface_torque_nm, 2));
         write!(
             out,
             "  {:>9} | {:>9} {:>9} {:>8} {:>9} {:>8} | {:>8} {:>9}",
-            du.num(*d, 1),
+            depth_unit.num(*d, 1),
             h(Mode::TripIn),
             h(Mode::TripOut),
             h(Mode::RotatingOffBottom),
@@ -213,7 +218,7 @@ fn print_table<'a>(
             write!(
                 out,
                 " | {:>7}",
-                du.num(row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m, 1)
+                depth_unit.num(row(rows, k, Mode::Sliding).buckling.sinusoidal_length_m, 1)
             )?;
         }
         writeln!(out)?;
@@ -235,7 +240,7 @@ fn print_summary(
     units: UnitSystem,
     out: &mut impl Write,
 ) -> std::io::Result<()> {
-    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
     writeln!(
         out,
         "  {} bit depths x {} load cases, soft string in {:.3} s",
@@ -254,9 +259,9 @@ fn print_summary(
             "  yield: largest von Mises / yield {} ({} at {}); top pipe body: tension {}, torque {}",
             fixed(s, 3),
             r.mode.name(),
-            du.fmt(r.bit_md_m, 0),
-            fu.fmt(r.yield_.tension_limit_n.unwrap_or(0.0), 0),
-            tu.fmt(r.yield_.torque_limit_nm.unwrap_or(0.0), 1)
+            depth_unit.fmt(r.bit_md_m, 0),
+            force_unit.fmt(r.yield_.tension_limit_n.unwrap_or(0.0), 0),
+            torque_unit.fmt(r.yield_.torque_limit_nm.unwrap_or(0.0), 1)
         )?,
         None => writeln!(
             out,
@@ -270,7 +275,7 @@ fn print_summary(
             "  buckling: {} rows with sinusoidal buckling (first: {} at {}), {} with helical",
             buckled.len(),
             first.mode.name(),
-            du.fmt(first.bit_md_m, 0),
+            depth_unit.fmt(first.bit_md_m, 0),
             rows.iter().filter(|r| r.buckling.helical_length_m > 0.0).count()
         )
     } else {

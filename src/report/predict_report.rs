@@ -85,29 +85,33 @@ impl Trajectories<'_> {
     }
     /// Inclination, azimuth, plan and section charts with the measured series added.
     fn charts(&self) -> [Chart; 4] {
-        let du = self.units.depth();
-        let md = format!("MD [{}]", du.label);
+        let depth_unit = self.units.depth();
+        let md = format!("MD [{}]", depth_unit.label);
         let m = self.measured;
         let inc = Chart::new("Inclination", &md, "inclination [deg]").with(Series::new(
             "measured",
-            m.iter().map(|s| (du.show(s.0), s.1.to_degrees())).collect(),
+            m.iter().map(|s| (depth_unit.show(s.0), s.1.to_degrees())).collect(),
             Style::Points,
             6,
         ));
         let azi = Chart::new("Azimuth", &md, "azimuth [deg]").with(Series::new(
             "measured",
-            m.iter().map(|s| (du.show(s.0), azi_deg(s.2, self.azi_ref))).collect(),
+            m.iter()
+                .map(|s| (depth_unit.show(s.0), azi_deg(s.2, self.azi_ref)))
+                .collect(),
             Style::Points,
             6,
         ));
         let mut plan = Chart::new(
             "Plan view",
-            &format!("east [{}]", du.label),
-            &format!("north [{}]", du.label),
+            &format!("east [{}]", depth_unit.label),
+            &format!("north [{}]", depth_unit.label),
         )
         .with(Series::new(
             "measured",
-            m.iter().map(|s| (du.show(s.3.y), du.show(s.3.x))).collect(),
+            m.iter()
+                .map(|s| (depth_unit.show(s.3.y), depth_unit.show(s.3.x)))
+                .collect(),
             Style::LinePoints,
             6,
         ));
@@ -118,12 +122,14 @@ impl Trajectories<'_> {
                 "Vertical section along azimuth {:.1} deg",
                 self.section_azi.to_degrees().rem_euclid(360.0)
             ),
-            &format!("vertical section [{}]", du.label),
-            &format!("TVD [{}]", du.label),
+            &format!("vertical section [{}]", depth_unit.label),
+            &format!("TVD [{}]", depth_unit.label),
         )
         .with(Series::new(
             "measured",
-            m.iter().map(|s| (du.show(self.vs(&s.3)), du.show(s.3.z))).collect(),
+            m.iter()
+                .map(|s| (depth_unit.show(self.vs(&s.3)), depth_unit.show(s.3.z)))
+                .collect(),
             Style::LinePoints,
             6,
         ));
@@ -156,7 +162,7 @@ pub fn predict_report(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<
 /// The key results of a predict report: per case the interval, rates, end direction, mean bit
 /// forces and end errors.
 fn predict_key_results(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<(), String> {
-    let (du, fu) = (units.depth(), units.force());
+    let (depth_unit, force_unit) = (units.depth(), units.force());
     page.heading("Key results");
     let mut rows = Vec::new();
     for (case, forecast) in runs {
@@ -164,7 +170,11 @@ fn predict_key_results(page: &mut Page, runs: &[(&Case, &Forecast)], units: Unit
         let end = pred.steps.last().ok_or("empty prediction")?;
         rows.push(vec![
             case.name.clone(),
-            format!("{} - {}", du.fmt(pred.from_md_m, 1), du.fmt(pred.to_md_m, 1)),
+            format!(
+                "{} - {}",
+                depth_unit.fmt(pred.from_md_m, 1),
+                depth_unit.fmt(pred.to_md_m, 1)
+            ),
             units.dogleg().fmt(rt.build_rate_rad_per_30m / 30.0, 3),
             units.dogleg().fmt(rt.walk_rate_rad_per_30m / 30.0, 3),
             format!(
@@ -172,8 +182,8 @@ fn predict_key_results(page: &mut Page, runs: &[(&Case, &Forecast)], units: Unit
                 end.inc_rad.to_degrees(),
                 end.azi_rad.to_degrees().rem_euclid(360.0)
             ),
-            fu.fmt(rt.mean_build_force_n, 3),
-            fu.fmt(rt.mean_walk_force_n, 3),
+            force_unit.fmt(rt.mean_build_force_n, 3),
+            force_unit.fmt(rt.mean_walk_force_n, 3),
             tr.map(|t| {
                 format!(
                     "{:+.3} / {:+.3} deg ({} stations)",
@@ -205,7 +215,7 @@ fn predict_key_results(page: &mut Page, runs: &[(&Case, &Forecast)], units: Unit
 
 /// The figures of a predict report: trajectory, bit forces and tilt, errors.
 fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSystem) -> Result<(), String> {
-    let (du, fu) = (units.depth(), units.force());
+    let (depth_unit, force_unit) = (units.depth(), units.force());
     let (first_case, first) = *runs.first().ok_or("no prediction to report")?;
     let first = &first.prediction;
     let from = first.from_md_m;
@@ -223,8 +233,8 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
         measured: &meas,
     };
     let [mut inc, mut azi, mut plan, mut sec] = tj.charts();
-    let md = format!("MD [{}]", du.label);
-    let mut forces = Chart::new("Bit side forces", &md, &format!("force [{}]", fu.label));
+    let md = format!("MD [{}]", depth_unit.label);
+    let mut forces = Chart::new("Bit side forces", &md, &format!("force [{}]", force_unit.label));
     forces.zero_line = true;
     let mut tilt = Chart::new("Bit tilt", &md, "tilt [deg]");
     tilt.zero_line = true;
@@ -254,14 +264,16 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
             .collect();
         inc = inc.with(Series::new(
             &label("predicted"),
-            pts.iter().map(|p| (du.show(p.md_m), p.inc_rad.to_degrees())).collect(),
+            pts.iter()
+                .map(|p| (depth_unit.show(p.md_m), p.inc_rad.to_degrees()))
+                .collect(),
             Style::Line,
             c,
         ));
         azi = azi.with(Series::new(
             &label("predicted"),
             pts.iter()
-                .map(|p| (du.show(p.md_m), azi_deg(p.azi_rad, tj.azi_ref)))
+                .map(|p| (depth_unit.show(p.md_m), azi_deg(p.azi_rad, tj.azi_ref)))
                 .collect(),
             Style::Line,
             c,
@@ -269,7 +281,7 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
         plan = plan.with(Series::new(
             &label("predicted"),
             pts.iter()
-                .map(|p| (du.show(p.position.y), du.show(p.position.x)))
+                .map(|p| (depth_unit.show(p.position.y), depth_unit.show(p.position.x)))
                 .collect(),
             Style::Line,
             c,
@@ -277,7 +289,7 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
         sec = sec.with(Series::new(
             &label("predicted"),
             pts.iter()
-                .map(|p| (du.show(tj.vs(&p.position)), du.show(p.position.z)))
+                .map(|p| (depth_unit.show(tj.vs(&p.position)), depth_unit.show(p.position.z)))
                 .collect(),
             Style::Line,
             c,
@@ -293,13 +305,17 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
         errors = errors
             .with(Series::new(
                 &label("inclination error"),
-                errs.iter().map(|(m, e)| (du.show(*m), e.0.to_degrees())).collect(),
+                errs.iter()
+                    .map(|(m, e)| (depth_unit.show(*m), e.0.to_degrees()))
+                    .collect(),
                 Style::LinePoints,
                 2 * k,
             ))
             .with(Series::new(
                 &label("azimuth error"),
-                errs.iter().map(|(m, e)| (du.show(*m), e.1.to_degrees())).collect(),
+                errs.iter()
+                    .map(|(m, e)| (depth_unit.show(*m), e.1.to_degrees()))
+                    .collect(),
                 Style::LinePoints,
                 2 * k + 1,
             ));
@@ -330,13 +346,13 @@ fn bit_series(
     k: usize,
     units: UnitSystem,
 ) -> (Chart, Chart) {
-    let (du, fu) = (units.depth(), units.force());
+    let (depth_unit, force_unit) = (units.depth(), units.force());
     forces = forces
         .with(Series::new(
             &label("build force"),
             steps
                 .iter()
-                .map(|s| (du.show(s.md_m), fu.show(s.bit.build_force_n)))
+                .map(|s| (depth_unit.show(s.md_m), force_unit.show(s.bit.build_force_n)))
                 .collect(),
             Style::LinePoints,
             2 * k,
@@ -345,7 +361,7 @@ fn bit_series(
             &label("walk force"),
             steps
                 .iter()
-                .map(|s| (du.show(s.md_m), fu.show(s.bit.walk_force_n)))
+                .map(|s| (depth_unit.show(s.md_m), force_unit.show(s.bit.walk_force_n)))
                 .collect(),
             Style::LinePoints,
             2 * k + 1,
@@ -355,7 +371,7 @@ fn bit_series(
             &label("tilt inclination"),
             steps
                 .iter()
-                .map(|s| (du.show(s.md_m), s.bit.tilt_inc_rad.to_degrees()))
+                .map(|s| (depth_unit.show(s.md_m), s.bit.tilt_inc_rad.to_degrees()))
                 .collect(),
             Style::LinePoints,
             2 * k,
@@ -364,7 +380,7 @@ fn bit_series(
             &label("tilt azimuth"),
             steps
                 .iter()
-                .map(|s| (du.show(s.md_m), s.bit.tilt_azi_rad.to_degrees()))
+                .map(|s| (depth_unit.show(s.md_m), s.bit.tilt_azi_rad.to_degrees()))
                 .collect(),
             Style::LinePoints,
             2 * k + 1,
@@ -381,8 +397,8 @@ fn errors_figure(
     (from, to): (f64, f64),
     units: UnitSystem,
 ) -> Result<(), String> {
-    let du = units.depth();
-    let md = format!("MD [{}]", du.label);
+    let depth_unit = units.depth();
+    let md = format!("MD [{}]", depth_unit.label);
     page.heading("Errors");
     if any_error {
         page.figure(
@@ -399,7 +415,7 @@ fn errors_figure(
         )
         .with(Series::new(
             "no measured stations",
-            vec![(du.show(from), 0.0), (du.show(to), 0.0)],
+            vec![(depth_unit.show(from), 0.0), (depth_unit.show(to), 0.0)],
             Style::Thin,
             7,
         ));
@@ -431,7 +447,7 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
 fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSystem) {
     let (results, stats) = (&back.results, &back.results_stats);
     let split_md_m = back.calibration.as_ref().map(|c| c.split_md_m);
-    let du = units.depth();
+    let depth_unit = units.depth();
     let (f, l) = (&results[0], &results[results.len() - 1]);
     page.heading("Key results");
     let mut kv = vec![
@@ -440,8 +456,8 @@ fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSyst
             "range".into(),
             format!(
                 "{} - {}",
-                du.fmt(f.interval.from_md_m, 1),
-                du.fmt(l.interval.to_md_m, 1)
+                depth_unit.fmt(f.interval.from_md_m, 1),
+                depth_unit.fmt(l.interval.to_md_m, 1)
             ),
         ),
         (
@@ -464,7 +480,7 @@ fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSyst
     if let Some(s) = split_md_m {
         kv.push((
             "calibration".into(),
-            format!("fitted on the intervals above {}, scored below", du.fmt(s, 1)),
+            format!("fitted on the intervals above {}, scored below", depth_unit.fmt(s, 1)),
         ));
     }
     page.key_values(&kv);
@@ -473,7 +489,7 @@ fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSyst
 /// The figures of a backanalyze report: trajectory at the interval ends, bit forces and tilt at
 /// their starts, errors per 100 m.
 fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], units: UnitSystem) -> Result<(), String> {
-    let (du, fu) = (units.depth(), units.force());
+    let (depth_unit, force_unit) = (units.depth(), units.force());
     let (f, l) = (&results[0], &results[results.len() - 1]);
     let meas = measured(&case.well.path, f.interval.from_md_m, l.interval.to_md_m);
     let azi_ref = f.interval.measured.1;
@@ -484,7 +500,7 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
         measured: &meas,
     };
     let [mut inc, mut azi, mut plan, mut sec] = tj.charts();
-    let end = |r: &IntervalResult| du.show(r.interval.to_md_m);
+    let end = |r: &IntervalResult| depth_unit.show(r.interval.to_md_m);
     inc = inc.with(Series::new(
         "predicted (interval ends)",
         results.iter().map(|r| (end(r), r.inc_rad.to_degrees())).collect(),
@@ -501,7 +517,7 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
         "predicted (interval ends)",
         results
             .iter()
-            .map(|r| (du.show(r.position.y), du.show(r.position.x)))
+            .map(|r| (depth_unit.show(r.position.y), depth_unit.show(r.position.x)))
             .collect(),
         Style::Points,
         1,
@@ -510,23 +526,23 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
         "predicted (interval ends)",
         results
             .iter()
-            .map(|r| (du.show(tj.vs(&r.position)), du.show(r.position.z)))
+            .map(|r| (depth_unit.show(tj.vs(&r.position)), depth_unit.show(r.position.z)))
             .collect(),
         Style::Points,
         1,
     ));
-    let md = format!("MD [{}]", du.label);
-    let start = |r: &IntervalResult| du.show(r.interval.from_md_m);
+    let md = format!("MD [{}]", depth_unit.label);
+    let start = |r: &IntervalResult| depth_unit.show(r.interval.from_md_m);
     let mut forces = Chart::new(
         "Bit side forces at the interval starts",
         &md,
-        &format!("force [{}]", fu.label),
+        &format!("force [{}]", force_unit.label),
     )
     .with(Series::new(
         "build force",
         results
             .iter()
-            .map(|r| (start(r), fu.show(r.bit_start.build_force_n)))
+            .map(|r| (start(r), force_unit.show(r.bit_start.build_force_n)))
             .collect(),
         Style::LinePoints,
         0,
@@ -535,7 +551,7 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
         "walk force",
         results
             .iter()
-            .map(|r| (start(r), fu.show(r.bit_start.walk_force_n)))
+            .map(|r| (start(r), force_unit.show(r.bit_start.walk_force_n)))
             .collect(),
         Style::LinePoints,
         1,
@@ -609,15 +625,15 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
 
 /// One row per interval: measured and predicted end direction, error, bit forces at the start.
 fn interval_table(page: &mut Page, results: &[IntervalResult], units: UnitSystem) {
-    let (du, fu) = (units.depth(), units.force());
+    let (depth_unit, force_unit) = (units.depth(), units.force());
     let rows: Vec<Vec<String>> = results
         .iter()
         .map(|r| {
             vec![
                 format!(
                     "{} - {}",
-                    du.fmt(r.interval.from_md_m, 1),
-                    du.fmt(r.interval.to_md_m, 1)
+                    depth_unit.fmt(r.interval.from_md_m, 1),
+                    depth_unit.fmt(r.interval.to_md_m, 1)
                 ),
                 format!(
                     "{:.3} / {:.3}",
@@ -634,8 +650,8 @@ fn interval_table(page: &mut Page, results: &[IntervalResult], units: UnitSystem
                     r.inc_err_rad().to_degrees(),
                     r.azi_err_rad().to_degrees()
                 ),
-                fu.fmt(r.bit_start.build_force_n, 3),
-                fu.fmt(r.bit_start.walk_force_n, 3),
+                force_unit.fmt(r.bit_start.build_force_n, 3),
+                force_unit.fmt(r.bit_start.walk_force_n, 3),
             ]
         })
         .collect();

@@ -16,7 +16,7 @@ pub fn write_forecast(
     f: &Forecast,
     units: UnitSystem,
 ) -> std::io::Result<()> {
-    let (du, fu, ru, eu) = (units.depth(), units.force(), units.dogleg(), units.per_100());
+    let (depth_unit, force_unit, ru, error_unit) = (units.depth(), units.force(), units.dogleg(), units.per_100());
     let p = &f.prediction;
     let rt = &f.rates;
     let first = &p.steps[0];
@@ -26,46 +26,46 @@ pub fn write_forecast(
     writeln!(
         out,
         "  from {} (I {} deg, A {} deg) to {}: I {} deg, A {} deg, TVD {}, N {}, E {}",
-        du.fmt(p.from_md_m, 2),
+        depth_unit.fmt(p.from_md_m, 2),
         fixed(first.inc_rad.to_degrees(), 3),
         fixed(first.azi_rad.to_degrees().rem_euclid(360.0), 3),
-        du.fmt(p.to_md_m, 2),
+        depth_unit.fmt(p.to_md_m, 2),
         fixed(end.inc_rad.to_degrees(), 3),
         fixed(end.azi_rad.to_degrees().rem_euclid(360.0), 3),
-        du.fmt(end.position.z, 2),
-        du.fmt(end.position.x, 2),
-        du.fmt(end.position.y, 2)
+        depth_unit.fmt(end.position.z, 2),
+        depth_unit.fmt(end.position.x, 2),
+        depth_unit.fmt(end.position.y, 2)
     )?;
     writeln!(
         out,
         "  build rate {}, walk rate {}; bit at start: build force {}, walk force {}, tilt {}/{} deg; mean over the steps: {}, {}",
         ru.fmt_signed(rt.build_rate_rad_per_30m / 30.0, 3),
         ru.fmt_signed(rt.walk_rate_rad_per_30m / 30.0, 3),
-        fu.fmt_signed(first.bit.build_force_n, 3),
-        fu.fmt_signed(first.bit.walk_force_n, 3),
+        force_unit.fmt_signed(first.bit.build_force_n, 3),
+        force_unit.fmt_signed(first.bit.walk_force_n, 3),
         signed(first.bit.tilt_inc_rad.to_degrees(), 4),
         signed(first.bit.tilt_azi_rad.to_degrees(), 4),
-        fu.fmt_signed(rt.mean_build_force_n, 3),
-        fu.fmt_signed(rt.mean_walk_force_n, 3)
+        force_unit.fmt_signed(rt.mean_build_force_n, 3),
+        force_unit.fmt_signed(rt.mean_walk_force_n, 3)
     )?;
     if let Some(t) = &f.tracking {
         writeln!(
             out,
             "  tracking: {} measured stations; at {} error inc {} deg, azi {} deg = {} and {} (seed paper metric)",
             t.stations,
-            du.fmt(t.end_md_m, 1),
+            depth_unit.fmt(t.end_md_m, 1),
             signed(t.end_inc_err_rad.to_degrees(), 3),
             signed(t.end_azi_err_rad.to_degrees(), 3),
-            eu.fmt(t.inc_err_per_100m_rad / 100.0, 3),
-            eu.fmt(t.azi_err_per_100m_rad / 100.0, 3)
+            error_unit.fmt(t.inc_err_per_100m_rad / 100.0, 3),
+            error_unit.fmt(t.azi_err_per_100m_rad / 100.0, 3)
         )?;
     }
     if let Some(e) = &f.step_error {
         writeln!(
             out,
             "  step extrapolation: marches at {} and {} combined (Richardson); step error left in the finer one, estimated: inc {} deg, azi {} deg",
-            du.fmt(e.coarse_step_m, 2),
-            du.fmt(e.fine_step_m, 2),
+            depth_unit.fmt(e.coarse_step_m, 2),
+            depth_unit.fmt(e.fine_step_m, 2),
             fixed(e.max_inc_rad.to_degrees(), 3),
             fixed(e.max_azi_rad.to_degrees(), 3)
         )?;
@@ -75,13 +75,13 @@ pub fn write_forecast(
             out,
             "  warning: the predicted hole ripples around its trend by {} deg at the end (over the last {}): the end inclination and azimuth move by up to that much with the ripple's phase; a longer step damps it (docs/performance.md, \"Step convergence\")",
             fixed(p.ripple_deg, 2),
-            du.fmt(RIPPLE_WINDOW_M, 0)
+            depth_unit.fmt(RIPPLE_WINDOW_M, 0)
         )?;
     }
     let model = if choice.level == Level::Whole {
         "stiff whole string".to_string()
     } else {
-        format!("stiff BHA cut {} above the bit", du.fmt(p.cut_m, 1))
+        format!("stiff BHA cut {} above the bit", depth_unit.fmt(p.cut_m, 1))
     };
     writeln!(
         out,
@@ -95,12 +95,12 @@ pub fn write_forecast(
 
 /// The comparison of several cases' forecasts as a readable table in `units` (the CSV stays SI).
 pub fn comparison_table(runs: &[(&Case, &Forecast)], units: UnitSystem) -> String {
-    let (du, fu, ru) = (units.depth(), units.force(), units.dogleg());
+    let (depth_unit, force_unit, ru) = (units.depth(), units.force(), units.dogleg());
     let mut out = format!(
         "case | from {d} | to {d} | build {r} | walk {r} | mean build force {f} | mean walk force {f} | end inc deg | end azi deg\n",
-        d = du.label,
+        d = depth_unit.label,
         r = ru.label,
-        f = fu.label
+        f = force_unit.label
     );
     for (case, f) in runs {
         let (p, rt) = (&f.prediction, &f.rates);
@@ -108,12 +108,12 @@ pub fn comparison_table(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Strin
         out.push_str(&format!(
             "{} | {} | {} | {} | {} | {} | {} | {} | {}\n",
             case.name,
-            du.num(p.from_md_m, 2),
-            du.num(p.to_md_m, 2),
+            depth_unit.num(p.from_md_m, 2),
+            depth_unit.num(p.to_md_m, 2),
             signed(ru.show(rt.build_rate_rad_per_30m / 30.0), ru.decimals(3)),
             signed(ru.show(rt.walk_rate_rad_per_30m / 30.0), ru.decimals(3)),
-            signed(fu.show(rt.mean_build_force_n), fu.decimals(3)),
-            signed(fu.show(rt.mean_walk_force_n), fu.decimals(3)),
+            signed(force_unit.show(rt.mean_build_force_n), force_unit.decimals(3)),
+            signed(force_unit.show(rt.mean_walk_force_n), force_unit.decimals(3)),
             fixed(end.inc_rad.to_degrees(), 3),
             fixed(end.azi_rad.to_degrees().rem_euclid(360.0), 3),
         ));
@@ -131,22 +131,22 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
         choice,
         result: b,
     } = *run;
-    let (du, eu) = (units.depth(), units.per_100());
+    let (depth_unit, error_unit) = (units.depth(), units.per_100());
     writeln!(out, "backanalyze: {} ({})", case.name, case_file.display())?;
     writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
     if let Some(shoe) = plan.below_previous_hole_md_m {
         writeln!(
             out,
             "  from: the hole below {} (the wider hole above was drilled by another bit; give --from to include it)",
-            du.fmt(shoe, 1)
+            depth_unit.fmt(shoe, 1)
         )?;
     }
     for (iv, e) in &b.skipped {
         writeln!(
             out,
             "  WARNING: interval {}-{} skipped (not in the errors): {e}",
-            du.num(iv.from_md_m, 1),
-            du.fmt(iv.to_md_m, 1)
+            depth_unit.num(iv.from_md_m, 1),
+            depth_unit.fmt(iv.to_md_m, 1)
         )?;
     }
     let (first, last) = b.range_md_m();
@@ -155,13 +155,13 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
         out,
         "  {} intervals from {} to {} (step {}): mean |error|: inclination {}, azimuth {} (RMS {} and {})",
         b.base.len(),
-        du.fmt(first, 1),
-        du.fmt(last, 1),
-        du.fmt(step_m, 2),
-        eu.fmt(s.inc_mean_abs_per_100m_rad / 100.0, 3),
-        eu.fmt(s.azi_mean_abs_per_100m_rad / 100.0, 3),
-        eu.fmt(s.inc_rms_per_100m_rad / 100.0, 3),
-        eu.fmt(s.azi_rms_per_100m_rad / 100.0, 3)
+        depth_unit.fmt(first, 1),
+        depth_unit.fmt(last, 1),
+        depth_unit.fmt(step_m, 2),
+        error_unit.fmt(s.inc_mean_abs_per_100m_rad / 100.0, 3),
+        error_unit.fmt(s.azi_mean_abs_per_100m_rad / 100.0, 3),
+        error_unit.fmt(s.inc_rms_per_100m_rad / 100.0, 3),
+        error_unit.fmt(s.azi_rms_per_100m_rad / 100.0, 3)
     )?;
     if let Some(c) = &b.calibration {
         for &(p, v, sd) in &c.calibration.fitted {
@@ -181,10 +181,10 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
         writeln!(
             out,
             "  calibrated on {}-{}, scored on {}-{}:",
-            du.num(first, 1),
-            du.fmt(c.split_md_m, 1),
-            du.num(c.split_md_m, 1),
-            du.fmt(last, 1)
+            depth_unit.num(first, 1),
+            depth_unit.fmt(c.split_md_m, 1),
+            depth_unit.num(c.split_md_m, 1),
+            depth_unit.fmt(last, 1)
         )?;
         for (stats, label) in [
             (&c.in_sample_default, "  calibration part, case law "),
@@ -195,8 +195,8 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
             writeln!(
                 out,
                 "  {label}: inclination {}, azimuth {}",
-                eu.fmt(stats.inc_mean_abs_per_100m_rad / 100.0, 3),
-                eu.fmt(stats.azi_mean_abs_per_100m_rad / 100.0, 3)
+                error_unit.fmt(stats.inc_mean_abs_per_100m_rad / 100.0, 3),
+                error_unit.fmt(stats.azi_mean_abs_per_100m_rad / 100.0, 3)
             )?;
         }
     }

@@ -25,16 +25,16 @@ pub fn shown_length_m(string: &DrillString) -> f64 {
 
 /// SVG of the bottom of `string` in a hole of `hole_diameter_m`.
 pub fn bha_svg(string: &DrillString, hole_diameter_m: f64, units: UnitSystem) -> Result<String, String> {
-    let (du, su) = (units.depth(), units.small_length());
+    let (depth_unit, small_unit) = (units.depth(), units.small_length());
     let len = shown_length_m(string);
     let mut blocks = Vec::new();
     for c in &string.components {
         if c.bottom_m >= len {
             break;
         }
-        let x0 = du.show(c.bottom_m);
-        let x1 = du.show(c.top_m().min(len));
-        let body = su.show(c.body_od_m / 2.0);
+        let x0 = depth_unit.show(c.bottom_m);
+        let x1 = depth_unit.show(c.top_m().min(len));
+        let body = small_unit.show(c.body_od_m / 2.0);
         blocks.push(Block {
             from: (x0, -body),
             to: (x1, body),
@@ -42,7 +42,7 @@ pub fn bha_svg(string: &DrillString, hole_diameter_m: f64, units: UnitSystem) ->
         });
         if c.contact_od_m > c.body_od_m + 1e-9 {
             // blades (or bit) over the middle 60 % of the component
-            let r = su.show(c.contact_od_m / 2.0);
+            let r = small_unit.show(c.contact_od_m / 2.0);
             let (a, b) = (x0 + 0.2 * (x1 - x0), x0 + 0.8 * (x1 - x0));
             blocks.push(Block {
                 from: (a, body),
@@ -56,12 +56,12 @@ pub fn bha_svg(string: &DrillString, hole_diameter_m: f64, units: UnitSystem) ->
             });
         }
     }
-    let r = su.show(hole_diameter_m / 2.0);
-    let xe = du.show(len);
+    let r = small_unit.show(hole_diameter_m / 2.0);
+    let xe = depth_unit.show(len);
     let mut chart = Chart::new(
         "BHA schematic (lengths to scale along the string, diameters to scale across)",
-        &format!("distance from the bit [{}]", du.label),
-        &format!("radius [{}]", su.label),
+        &format!("distance from the bit [{}]", depth_unit.label),
+        &format!("radius [{}]", small_unit.label),
     )
     .with(Series::new("hole wall", vec![(0.0, r), (xe, r)], Style::Thin, 6))
     .with(Series::new(

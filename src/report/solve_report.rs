@@ -52,18 +52,23 @@ pub const ONSET_SHOWN_UP_TO: f64 = 2.0;
 /// buckled MD intervals of `marks` shaded (sinusoidal, helical; only where there are any) and
 /// the onset loads drawn as compressive axial forces where the string is in compression and can
 /// buckle, up to [`ONSET_SHOWN_UP_TO`] times the largest compression.
-pub fn axial_force_chart(res: &SolveResults, marks: &[Mark], du: DisplayUnit, fu: DisplayUnit) -> Chart {
+pub fn axial_force_chart(
+    res: &SolveResults,
+    marks: &[Mark],
+    depth_unit: DisplayUnit,
+    force_unit: DisplayUnit,
+) -> Chart {
     let mut c = Chart::new(
         "Effective axial force (tension +) and buckling",
-        &format!("MD [{}]", du.label),
-        &format!("axial force [{}]", fu.label),
+        &format!("MD [{}]", depth_unit.label),
+        &format!("axial force [{}]", force_unit.label),
     );
     for (k, state) in [BuckleState::Sinusoidal, BuckleState::Helical].into_iter().enumerate() {
         c = c.with_band(Band {
             name: BUCKLING_SERIES[k].into(),
             spans: spans(marks, state)
                 .into_iter()
-                .map(|(a, b)| (du.show(a), du.show(b)))
+                .map(|(a, b)| (depth_unit.show(a), depth_unit.show(b)))
                 .collect(),
             color: if k == 0 { 4 } else { 1 },
         });
@@ -85,7 +90,7 @@ pub fn axial_force_chart(res: &SolveResults, marks: &[Mark], du: DisplayUnit, fu
                 .and_then(|m| onset(m).map(|f| (m.md_m, f)))
                 .filter(|&(_, f)| f <= ONSET_SHOWN_UP_TO * max_c);
             match shown {
-                Some((md, f)) => run.push((du.show(md), -fu.show(f))),
+                Some((md, f)) => run.push((depth_unit.show(md), -force_unit.show(f))),
                 None if !run.is_empty() => {
                     c.series.push(Series::new(
                         BUCKLING_SERIES[2 + k],
@@ -102,7 +107,7 @@ pub fn axial_force_chart(res: &SolveResults, marks: &[Mark], du: DisplayUnit, fu
         "axial force",
         res.nodes
             .iter()
-            .map(|n| (du.show(n.md_m), fu.show(n.axial_force_n)))
+            .map(|n| (depth_unit.show(n.md_m), force_unit.show(n.axial_force_n)))
             .collect(),
         Style::Line,
         0,
@@ -168,15 +173,15 @@ fn key_results(
     scope: &ReportOptions,
 ) {
     let units = scope.units;
-    let (du, fu, tu) = (units.depth(), units.force(), units.torque());
+    let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
     let b = &res.bit;
     page.heading("Key results");
     let max_contact = contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     let mut kv = vec![
-        ("bit MD".to_string(), du.fmt(b.md_m, 2)),
-        ("weight on bit".into(), fu.fmt(b.wob_n, 2)),
-        ("bit build force (+ = up)".into(), fu.fmt(b.build_force_n, 3)),
-        ("bit walk force (+ = right)".into(), fu.fmt(b.walk_force_n, 3)),
+        ("bit MD".to_string(), depth_unit.fmt(b.md_m, 2)),
+        ("weight on bit".into(), force_unit.fmt(b.wob_n, 2)),
+        ("bit build force (+ = up)".into(), force_unit.fmt(b.build_force_n, 3)),
+        ("bit walk force (+ = right)".into(), force_unit.fmt(b.walk_force_n, 3)),
         (
             "bit tilt, inclination".into(),
             format!("{} deg", signed(b.tilt_inc_rad.to_degrees(), 4)),
@@ -185,13 +190,13 @@ fn key_results(
             "bit tilt, azimuth".into(),
             format!("{} deg", signed(b.tilt_azi_rad.to_degrees(), 4)),
         ),
-        ("bit torque".into(), tu.fmt(b.torque_nm, 2)),
+        ("bit torque".into(), torque_unit.fmt(b.torque_nm, 2)),
         (
             "hook load".into(),
             if scope.no_surface_values {
                 "not computed (bha)".into()
             } else {
-                fu.fmt(res.hook_load_n, 1)
+                force_unit.fmt(res.hook_load_n, 1)
             },
         ),
         (
@@ -199,11 +204,11 @@ fn key_results(
             if scope.no_surface_values {
                 "not computed (bha)".into()
             } else {
-                tu.fmt(res.surface_torque_nm, 2)
+                torque_unit.fmt(res.surface_torque_nm, 2)
             },
         ),
         ("contact nodes".into(), contacts.len().to_string()),
-        ("largest contact force".into(), fu.fmt(max_contact, 2)),
+        ("largest contact force".into(), force_unit.fmt(max_contact, 2)),
     ];
     kv.push((
         "solver".into(),
@@ -228,7 +233,7 @@ fn key_results(
 /// The contact zones in the shown bottom of the string (bit at `bit_md_m`): runs of
 /// neighbouring contact nodes, with their total and largest force.
 fn contact_zones(page: &mut Page, case: &Case, bit_md_m: f64, contacts: &[&NodeResult], units: UnitSystem) {
-    let (du, fu) = (units.depth(), units.force());
+    let (depth_unit, force_unit) = (units.depth(), units.force());
     let b_md = bit_md_m;
     let shown = shown_length_m(&case.string);
     let mut zones: Vec<Vec<&NodeResult>> = Vec::new();
@@ -249,13 +254,13 @@ fn contact_zones(page: &mut Page, case: &Case, bit_md_m: f64, contacts: &[&NodeR
                 .fold(z[0], |a, n| if n.contact_force_n > a.contact_force_n { n } else { a });
             vec![
                 if z.len() == 1 {
-                    du.fmt(lo, 2)
+                    depth_unit.fmt(lo, 2)
                 } else {
-                    format!("{} - {}", du.fmt(lo, 2), du.fmt(hi, 2))
+                    format!("{} - {}", depth_unit.fmt(lo, 2), depth_unit.fmt(hi, 2))
                 },
                 z.len().to_string(),
-                fu.fmt(total, 2),
-                fu.fmt(peak.contact_force_n, 2),
+                force_unit.fmt(total, 2),
+                force_unit.fmt(peak.contact_force_n, 2),
                 format!("{:.0} deg", peak.contact_angle_deg),
             ]
         })
@@ -284,7 +289,7 @@ fn string_figures(
     marks: &[Mark],
     units: UnitSystem,
 ) -> Result<(), String> {
-    let (du, su, fu, tu, pu) = (
+    let (depth_unit, small_unit, force_unit, torque_unit, stress_unit) = (
         units.depth(),
         units.small_length(),
         units.force(),
@@ -292,18 +297,18 @@ fn string_figures(
         units.stress(),
     );
     let b = &res.bit;
-    let md_label = format!("MD [{}]", du.label);
+    let md_label = format!("MD [{}]", depth_unit.label);
     let along = |f: &dyn Fn(&NodeResult) -> f64| -> Vec<(f64, f64)> {
-        res.nodes.iter().map(|n| (du.show(n.md_m), f(n))).collect()
+        res.nodes.iter().map(|n| (depth_unit.show(n.md_m), f(n))).collect()
     };
     let contact = Chart::new(
         "Wall contact force",
         &md_label,
-        &format!("contact force [{}]", fu.label),
+        &format!("contact force [{}]", force_unit.label),
     )
     .with(Series::new(
         "contact force",
-        along(&|n| fu.show(n.contact_force_n)),
+        along(&|n| force_unit.show(n.contact_force_n)),
         Style::Line,
         1,
     ));
@@ -315,7 +320,7 @@ fn string_figures(
 
     let bha_len = shown_length_m(&case.string);
     let bha: Vec<_> = res.nodes.iter().filter(|n| b.md_m - n.md_m <= bha_len + 1e-9).collect();
-    let x = |n: &NodeResult| du.show(b.md_m - n.md_m);
+    let x = |n: &NodeResult| depth_unit.show(b.md_m - n.md_m);
     for (id, title, dir, f) in [
         (
             "deflection-high",
@@ -332,24 +337,24 @@ fn string_figures(
     ] {
         let mut c = Chart::new(
             title,
-            &format!("distance from the bit [{}]", du.label),
-            &format!("displacement {dir} [{}]", su.label),
+            &format!("distance from the bit [{}]", depth_unit.label),
+            &format!("displacement {dir} [{}]", small_unit.label),
         )
         .with(Series::new(
             "wall (+ radial clearance)",
-            bha.iter().map(|n| (x(n), su.show(n.clearance_m))).collect(),
+            bha.iter().map(|n| (x(n), small_unit.show(n.clearance_m))).collect(),
             Style::Thin,
             6,
         ))
         .with(Series::new(
             "wall (- radial clearance)",
-            bha.iter().map(|n| (x(n), -su.show(n.clearance_m))).collect(),
+            bha.iter().map(|n| (x(n), -small_unit.show(n.clearance_m))).collect(),
             Style::Thin,
             7,
         ))
         .with(Series::new(
             "string axis",
-            bha.iter().map(|n| (x(n), su.show(f(n)))).collect(),
+            bha.iter().map(|n| (x(n), small_unit.show(f(n)))).collect(),
             Style::LinePoints,
             0,
         ));
@@ -359,19 +364,19 @@ fn string_figures(
             &render(&c)?,
             &format!(
                 "displacement of the string axis from the hole axis, exaggerated: {} across against {} along",
-                su.label, du.label
+                small_unit.label, depth_unit.label
             ),
         );
     }
 
     page.figure(
         "axial-force",
-        &render(&axial_force_chart(res, marks, du, fu))?,
+        &render(&axial_force_chart(res, marks, depth_unit, force_unit))?,
         "effective axial force, negative is compression; shaded: buckled intervals (sinusoidal, helical); thin lines: the sinusoidal and helical onsets (Dawson-Paslay / Chen-Lin-Cheatham with the curved-hole wall load) drawn as compressive axial forces where the string is in compression (up to twice the largest compression): the string is buckled where the axial force is below them",
     );
-    let torque = Chart::new("Torque", &md_label, &format!("torque [{}]", tu.label)).with(Series::new(
+    let torque = Chart::new("Torque", &md_label, &format!("torque [{}]", torque_unit.label)).with(Series::new(
         "torque",
-        along(&|n| tu.show(n.torque_nm)),
+        along(&|n| torque_unit.show(n.torque_nm)),
         Style::Line,
         2,
     ));
@@ -379,17 +384,17 @@ fn string_figures(
     let stress = Chart::new(
         "Bending stress and von Mises stress",
         &md_label,
-        &format!("stress [{}]", pu.label),
+        &format!("stress [{}]", stress_unit.label),
     )
     .with(Series::new(
         "bending stress",
-        along(&|n| pu.show(bending_stress_pa(case, b.md_m - n.md_m, n.bending_moment_nm))),
+        along(&|n| stress_unit.show(bending_stress_pa(case, b.md_m - n.md_m, n.bending_moment_nm))),
         Style::Line,
         3,
     ))
     .with(Series::new(
         "von Mises",
-        along(&|n| pu.show(n.von_mises_pa)),
+        along(&|n| stress_unit.show(n.von_mises_pa)),
         Style::Line,
         4,
     ));

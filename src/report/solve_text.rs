@@ -37,7 +37,7 @@ pub struct BitLines<'a> {
 impl BitLines<'_> {
     /// Write the two lines to `out`.
     pub fn write(&self, out: &mut impl Write) -> std::io::Result<()> {
-        let (du, fu, tu) = (self.units.depth(), self.units.force(), self.units.torque());
+        let (depth_unit, force_unit, torque_unit) = (self.units.depth(), self.units.force(), self.units.torque());
         let op = &self.case.operation;
         // the string turns only when the mode rotates it (sliding and tripping: the rpm of the
         // case is not applied, Operation::omega_rad_s)
@@ -50,23 +50,23 @@ impl BitLines<'_> {
             out,
             "  mode {}, bit at {} MD, WOB {}, {rotation}",
             op.mode.name(),
-            du.fmt(op.bit_md_m, 2),
-            fu.fmt(self.wob_n, 1),
+            depth_unit.fmt(op.bit_md_m, 2),
+            force_unit.fmt(self.wob_n, 1),
         )?;
         match self.bit {
             Some(b) => writeln!(
                 out,
                 "  bit: build force {}, walk force {}, tilt inc {} deg, tilt azi {} deg, torque {}",
-                fu.fmt_signed(b.build_force_n, 3),
-                fu.fmt_signed(b.walk_force_n, 3),
+                force_unit.fmt_signed(b.build_force_n, 3),
+                force_unit.fmt_signed(b.walk_force_n, 3),
                 signed(b.tilt_inc_rad.to_degrees(), 4),
                 signed(b.tilt_azi_rad.to_degrees(), 4),
-                tu.fmt(b.torque_nm, 2)
+                torque_unit.fmt(b.torque_nm, 2)
             ),
             None => writeln!(
                 out,
                 "  bit: torque {}; side forces and tilt not computed (soft string: no bending)",
-                tu.fmt(self.bit_torque_nm, 2)
+                torque_unit.fmt(self.bit_torque_nm, 2)
             ),
         }
     }
@@ -105,7 +105,7 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
         return Ok(());
     };
     let res = &part.results;
-    let (du, fu) = (view.units.depth(), view.units.force());
+    let (depth_unit, force_unit) = (view.units.depth(), view.units.force());
     let b = &res.bit;
     if !part.converged {
         not_converged_line(out)?;
@@ -121,7 +121,7 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
     writeln!(
         out,
         "  surface: hook load {}, torque {}",
-        fu.fmt(res.hook_load_n, 1),
+        force_unit.fmt(res.hook_load_n, 1),
         view.units.torque().fmt(res.surface_torque_nm, 2)
     )?;
     let contacts: Vec<_> = res
@@ -137,8 +137,8 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
             .map(|n| {
                 format!(
                     "{}: {} at {} deg",
-                    du.fmt(b.md_m - n.md_m, 1),
-                    fu.fmt(n.contact_force_n, 2),
+                    depth_unit.fmt(b.md_m - n.md_m, 1),
+                    force_unit.fmt(n.contact_force_n, 2),
                     fixed(n.contact_angle_deg, 0)
                 )
             })
@@ -147,9 +147,9 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
             out,
             "  contacts: {} nodes between {} and {} MD; max {}",
             contacts.len(),
-            du.fmt(last.md_m, 1),
-            du.fmt(first.md_m, 1),
-            fu.fmt(contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max), 2)
+            depth_unit.fmt(last.md_m, 1),
+            depth_unit.fmt(first.md_m, 1),
+            force_unit.fmt(contacts.iter().map(|n| n.contact_force_n).fold(0.0, f64::max), 2)
         )?;
         if !near.is_empty() {
             writeln!(out, "  near the bit (distance above bit): {}", near.join("; "))?;
@@ -165,13 +165,13 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
 
 fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveView) -> std::io::Result<()> {
     let lr = &s.level;
-    let (du, fu, tu) = (view.units.depth(), view.units.force(), view.units.torque());
+    let (depth_unit, force_unit, torque_unit) = (view.units.depth(), view.units.force(), view.units.torque());
     if let Some(cut) = lr.cut_m {
         writeln!(
             out,
             "  stiff model cut {} above the bit (on the wall, parallel to the hole); results reported up to {} above the bit",
-            du.fmt(cut, 1),
-            du.fmt(s.coupling_m.unwrap_or(cut), 1)
+            depth_unit.fmt(cut, 1),
+            depth_unit.fmt(s.coupling_m.unwrap_or(cut), 1)
         )?;
     }
     if !lr.converged {
@@ -186,7 +186,12 @@ fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
     }
     .write(out)?;
     match (lr.hook_load_n, lr.surface_torque_nm) {
-        (Some(h), Some(t)) => writeln!(out, "  surface: hook load {}, torque {}", fu.fmt(h, 1), tu.fmt(t, 2))?,
+        (Some(h), Some(t)) => writeln!(
+            out,
+            "  surface: hook load {}, torque {}",
+            force_unit.fmt(h, 1),
+            torque_unit.fmt(t, 2)
+        )?,
         _ => writeln!(
             out,
             "  surface: not computed (bha: the stiff model ends at the cut; use hybrid or whole)"
@@ -196,9 +201,9 @@ fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
     writeln!(
         out,
         "  buckling: sinusoidal over {}, helical over {} (max compression {})",
-        du.fmt(b.sinusoidal_length_m, 1),
-        du.fmt(b.helical_length_m, 1),
-        fu.fmt(b.max_compression_n, 1)
+        depth_unit.fmt(b.sinusoidal_length_m, 1),
+        depth_unit.fmt(b.helical_length_m, 1),
+        force_unit.fmt(b.max_compression_n, 1)
     )?;
     writeln!(out, "  time {:.4} s", lr.seconds)?;
     wrote_line(out, view)
