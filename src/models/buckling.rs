@@ -178,7 +178,7 @@ pub fn support_span_m(string: &DrillString, s_m: f64) -> Option<f64> {
 /// `hole_diameter_m`, mud `mud_density_kg_m3`, in a span of `span_m` between supports (None: no
 /// support above, see [`support_span_m`]); None where it cannot buckle. In a span the
 /// sinusoidal onset is [`span_sinusoidal_onset`] with the curved-hole wall load (never below
-/// the unsupported value), and the helical onset is not below it **\[uncertain: docs/theory.mdhas
+/// the unsupported value), and the helical onset is not below it **\[uncertain: docs/theory.md 7.3 has
 /// no helical form for a supported span; a helix cannot form before the sinusoid]**.
 pub fn onset_at(
     c: &Component,

@@ -177,7 +177,7 @@ mod tests {
         for ir in [0.0, 0.01, 0.05, 0.1] {
             p.rock_anisotropy = ir;
             let d = drilling_direction(&fr, &bit, &p);
-            // angle to the normal: tan(phi_d) = (1 - I_r) tan(phi) (the form docs/theory.mdreads)
+            // angle to the normal: tan(phi_d) = (1 - I_r) tan(phi) (the form docs/theory.md 9.3 reads)
             let phi = fr.t.dot(&nf).acos();
             let phi_d = d.dot(&nf).acos();
             assert!(((phi_d.tan()) - (1.0 - ir) * phi.tan()).abs() < 1e-9 * phi.tan().abs().max(1.0));
