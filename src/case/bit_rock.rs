@@ -41,3 +41,58 @@ pub struct BitRock {
     /// Bit friction coefficient mu_b of the bit torque law T_b = mu_b W D_b / 3.
     pub bit_friction: f64,
 }
+
+/// A parameter of the bit-rock law that calibration and tracking may estimate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LawParameter {
+    /// The lateral drillability beta_b, in (0, 1].
+    LateralDrillability,
+    /// The walk angle chi_w, rad.
+    WalkAngle,
+    /// The rock anisotropy I_r, in (-0.5, 0.5) (the `[bit_rock]` default and every formation
+    /// interval take the same value).
+    RockAnisotropy,
+}
+
+impl LawParameter {
+    /// Name as in `[bit_rock]`.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawParameter::LateralDrillability => "lateral_drillability",
+            LawParameter::WalkAngle => "walk_angle",
+            LawParameter::RockAnisotropy => "rock_anisotropy",
+        }
+    }
+    /// Parse a name of `[bit_rock]`.
+    pub fn parse(s: &str) -> Option<LawParameter> {
+        Some(match s {
+            "lateral_drillability" => LawParameter::LateralDrillability,
+            "walk_angle" => LawParameter::WalkAngle,
+            "rock_anisotropy" => LawParameter::RockAnisotropy,
+            _ => return None,
+        })
+    }
+    /// Accepted names, for messages.
+    pub const NAMES: &'static str = "lateral_drillability, walk_angle, rock_anisotropy";
+    /// Its value in `br` (natural units: rad for the walk angle).
+    pub fn value(self, br: &BitRock) -> f64 {
+        match self {
+            LawParameter::LateralDrillability => br.lateral_drillability,
+            LawParameter::WalkAngle => br.walk_angle_rad,
+            LawParameter::RockAnisotropy => br.rock_anisotropy,
+        }
+    }
+    /// Set it in `br` (the rock anisotropy in every formation interval too).
+    pub fn set(self, br: &mut BitRock, v: f64) {
+        match self {
+            LawParameter::LateralDrillability => br.lateral_drillability = v,
+            LawParameter::WalkAngle => br.walk_angle_rad = v,
+            LawParameter::RockAnisotropy => {
+                br.rock_anisotropy = v;
+                for f in &mut br.formations {
+                    f.rock_anisotropy = v;
+                }
+            }
+        }
+    }
+}

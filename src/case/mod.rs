@@ -9,6 +9,7 @@ pub mod fidelity;
 pub mod fit;
 pub mod operation;
 pub mod solver;
+pub mod tracking;
 pub mod well;
 
 pub use accuracy::Accuracy;
@@ -16,6 +17,7 @@ pub use bit_rock::{BitRock, Formation};
 pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
 pub use operation::{Mode, Mud, Operation};
 pub use solver::{Method, SolverSettings};
+pub use tracking::TrackingSettings;
 pub use well::{SurveyFile, Well};
 
 use crate::string::DrillString;
@@ -42,6 +44,8 @@ pub struct Case {
     pub bit_rock: BitRock,
     /// Solver settings.
     pub solver: SolverSettings,
+    /// Survey assimilation settings (`[tracking]`).
+    pub tracking: TrackingSettings,
 }
 
 /// How far the string may reach above the first survey station before the straight

@@ -7,6 +7,7 @@
 
 use super::survey_csv::{read_survey_csv, SurveyUnits};
 use super::toml_reader::Section;
+use super::tracking_toml::read_tracking;
 use crate::case::fit::first_misfit;
 use crate::case::SurveyFile;
 use crate::case::*;
@@ -107,6 +108,10 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         .unwrap_or_else(|| Section::new(path, "bit_rock", &empty));
     let default_step_m = solver.accuracy.map(|p| p.knobs().step_m).unwrap_or(DEFAULT_STEP_M);
     let bit_rock = read_bit_rock(&br_sec, default_step_m)?;
+    let tr_sec = top
+        .table("tracking")?
+        .unwrap_or_else(|| Section::new(path, "tracking", &empty));
+    let tracking = read_tracking(&tr_sec, wellpath.md_end() - wellpath.md_start())?;
 
     let case = Case {
         name,
@@ -123,6 +128,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         string,
         bit_rock,
         solver,
+        tracking,
     };
     if let Some(note) = case.string_above_survey_note() {
         tracing::warn!("{}: {note}", path.display());
@@ -319,6 +325,7 @@ const TOP_KEYS: &[&str] = &[
     "string",
     "bit_rock",
     "solver",
+    "tracking",
 ];
 /// Keys accepted in the well table (checked before any is read, so a typo is named).
 const WELL_KEYS: &[&str] = &["survey", "survey_md_unit", "origin", "hole", "caliper"];

@@ -4,3 +4,4 @@ pub mod case_toml;
 pub mod measured_csv;
 pub mod survey_csv;
 pub mod toml_reader;
+pub mod tracking_toml;

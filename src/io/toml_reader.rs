@@ -132,6 +132,28 @@ impl<'a> Section<'a> {
         }
     }
 
+    /// Optional array of strings (a single string is accepted as a list of one); each bad
+    /// item is reported as `key[i]`.
+    pub fn strings(&self, key: &str) -> InputResult<Option<Vec<String>>> {
+        match self.get(key) {
+            None => Ok(None),
+            Some(Value::String(s)) => Ok(Some(vec![s.clone()])),
+            Some(Value::Array(items)) => items
+                .iter()
+                .enumerate()
+                .map(|(i, item)| match item {
+                    Value::String(s) => Ok(s.clone()),
+                    other => Err(self.error(
+                        &format!("{key}[{i}]"),
+                        format!("expected a string, found {}", type_name(other)),
+                    )),
+                })
+                .collect::<InputResult<Vec<String>>>()
+                .map(Some),
+            Some(other) => Err(self.error(key, format!("expected an array of strings, found {}", type_name(other)))),
+        }
+    }
+
     /// Optional sub-table.
     pub fn table(&self, key: &str) -> InputResult<Option<Section<'a>>> {
         match self.get(key) {

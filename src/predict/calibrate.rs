@@ -11,59 +11,13 @@ use crate::numerics::least_squares::{
 };
 use nalgebra::{DMatrix, DVector};
 
-/// A law parameter that calibration may fit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FitParameter {
-    /// beta_b in (0, 1], through `beta = 1e-3 + (1 - 1e-3) logistic(u)`.
-    LateralDrillability,
-    /// chi_w, rad, unbounded.
-    WalkAngle,
-    /// I_r in (-0.5, 0.5), through `I_r = 0.5 tanh(u)` (the `[bit_rock]` default and every
-    /// formation interval take the same value).
-    RockAnisotropy,
-}
+pub use crate::case::bit_rock::LawParameter as FitParameter;
 
+/// The reparametrization and prior of a law parameter in a fit: beta_b through
+/// `beta = 1e-3 + (1 - 1e-3) logistic(u)`, chi_w unbounded, I_r through `I_r = 0.5 tanh(u)`.
 impl FitParameter {
-    /// Name as in `[bit_rock]`.
-    pub fn name(self) -> &'static str {
-        match self {
-            FitParameter::LateralDrillability => "lateral_drillability",
-            FitParameter::WalkAngle => "walk_angle",
-            FitParameter::RockAnisotropy => "rock_anisotropy",
-        }
-    }
-    /// Parse a name of `[bit_rock]`.
-    pub fn parse(s: &str) -> Option<FitParameter> {
-        Some(match s {
-            "lateral_drillability" => FitParameter::LateralDrillability,
-            "walk_angle" => FitParameter::WalkAngle,
-            "rock_anisotropy" => FitParameter::RockAnisotropy,
-            _ => return None,
-        })
-    }
-    /// Accepted names, for messages.
-    pub const NAMES: &'static str = "lateral_drillability, walk_angle, rock_anisotropy";
-    fn value(self, br: &BitRock) -> f64 {
-        match self {
-            FitParameter::LateralDrillability => br.lateral_drillability,
-            FitParameter::WalkAngle => br.walk_angle_rad,
-            FitParameter::RockAnisotropy => br.rock_anisotropy,
-        }
-    }
-    fn set(self, br: &mut BitRock, v: f64) {
-        match self {
-            FitParameter::LateralDrillability => br.lateral_drillability = v,
-            FitParameter::WalkAngle => br.walk_angle_rad = v,
-            FitParameter::RockAnisotropy => {
-                br.rock_anisotropy = v;
-                for f in &mut br.formations {
-                    f.rock_anisotropy = v;
-                }
-            }
-        }
-    }
     /// Natural value of the unbounded variable `u`.
-    fn natural(self, u: f64) -> f64 {
+    pub fn natural(self, u: f64) -> f64 {
         match self {
             FitParameter::LateralDrillability => BETA_MIN + (1.0 - BETA_MIN) / (1.0 + (-u).exp()),
             FitParameter::WalkAngle => u,
@@ -71,7 +25,7 @@ impl FitParameter {
         }
     }
     /// Unbounded variable of a natural value (clamped inside the bounds).
-    fn unbounded(self, v: f64) -> f64 {
+    pub fn unbounded(self, v: f64) -> f64 {
         match self {
             FitParameter::LateralDrillability => {
                 // started at most at BETA_START_MAX: the logistic is flat near 1
@@ -83,7 +37,7 @@ impl FitParameter {
         }
     }
     /// d(natural)/du at `u`.
-    fn slope(self, u: f64) -> f64 {
+    pub fn slope(self, u: f64) -> f64 {
         match self {
             FitParameter::LateralDrillability => {
                 let l = 1.0 / (1.0 + (-u).exp());

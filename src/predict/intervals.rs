@@ -7,7 +7,7 @@ use crate::case::{BitRock, Case};
 use crate::geometry::survey::wrap_pi;
 use crate::geometry::{Vec3, WellPath};
 use crate::models::fem::results::BitResult;
-use crate::predict::march::{hole_to, predict_from, MarchSettings, PredictError, WarmStart};
+use crate::predict::march::{hole_to, predict_from, MarchSettings, PredictError, Prediction, WarmStart};
 
 /// How the survey is cut into intervals.
 #[derive(Debug, Clone, Copy)]
@@ -139,21 +139,11 @@ pub fn run_intervals_skipping(
             Some(_) => warm[k].clone(),
             None => last_end.take(),
         };
-        let pred = hole_to(&case.well.path, iv.from_md_m)
-            .and_then(|start| predict_from(case, bit_rock, &start, iv.to_md_m, settings, &mut w, &mut |_| {}));
-        match pred {
-            Ok(pred) => {
-                warm[k] = pred.start_warm.clone();
+        match predict_interval(case, bit_rock, iv, settings, &mut w) {
+            Ok((result, start_warm)) => {
+                warm[k] = start_warm;
                 last_end = w;
-                let end = pred.path.point_at(iv.to_md_m);
-                out.push(IntervalResult {
-                    interval: *iv,
-                    inc_rad: end.inc_rad,
-                    azi_rad: end.azi_rad,
-                    position: end.position,
-                    bit_start: pred.steps[0].bit,
-                    bit_end: pred.steps[pred.steps.len() - 1].bit,
-                });
+                out.push(result);
             }
             Err(e) => {
                 tracing::warn!(from = iv.from_md_m, to = iv.to_md_m, error = %e, "interval skipped");
@@ -166,6 +156,45 @@ pub fn run_intervals_skipping(
         progress(k + 1, list.len());
     }
     (out, failed)
+}
+
+/// Predict interval `iv` from the measured hole behind it with the law parameters `bit_rock`,
+/// warm-started from `warm` (which then holds the solved state at the end); returns the result
+/// and the solved state at the interval's start.
+pub fn predict_interval(
+    case: &Case,
+    bit_rock: &BitRock,
+    iv: &Interval,
+    settings: &MarchSettings,
+    warm: &mut WarmStart,
+) -> Result<(IntervalResult, WarmStart), PredictError> {
+    let pred = predict_interval_path(case, bit_rock, iv, settings, warm)?;
+    Ok((result_of(iv, &pred), pred.start_warm))
+}
+
+/// The prediction of interval `iv` (as [`predict_interval`], with the whole predicted hole).
+pub fn predict_interval_path(
+    case: &Case,
+    bit_rock: &BitRock,
+    iv: &Interval,
+    settings: &MarchSettings,
+    warm: &mut WarmStart,
+) -> Result<Prediction, PredictError> {
+    let start = hole_to(&case.well.path, iv.from_md_m)?;
+    predict_from(case, bit_rock, &start, iv.to_md_m, settings, warm, &mut |_| {})
+}
+
+/// The interval result of prediction `pred` of `iv`.
+pub fn result_of(iv: &Interval, pred: &Prediction) -> IntervalResult {
+    let end = pred.path.point_at(iv.to_md_m);
+    IntervalResult {
+        interval: *iv,
+        inc_rad: end.inc_rad,
+        azi_rad: end.azi_rad,
+        position: end.position,
+        bit_start: pred.steps[0].bit,
+        bit_end: pred.steps[pred.steps.len() - 1].bit,
+    }
 }
 
 /// Error statistics over intervals (all per 100 m of interval length).

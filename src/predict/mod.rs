@@ -10,3 +10,4 @@ pub mod intervals;
 pub mod law;
 pub mod march;
 pub mod track;
+pub mod tracking;

@@ -1,0 +1,15 @@
+//! Tracking: a prediction judged against the naive projections a directional driller makes by
+//! hand, and corrected by what the measured hole behind the bit shows (survey assimilation).
+//!
+//! - [`references`]: hold, the build and turn rates of the hole behind extrapolated, a damped
+//!   statistic; the direction error;
+//! - [`estimator`]: the tendency filter (a Kalman filter on the turn the model does not
+//!   explain);
+//! - [`assimilate`]: the filter run over consecutive intervals, with the frozen assimilation;
+//! - [`skill`]: mean errors per predictor over the same intervals, the best naive projection,
+//!   the skill and the physics' share.
+
+pub mod assimilate;
+pub mod estimator;
+pub mod references;
+pub mod skill;
