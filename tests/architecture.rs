@@ -412,11 +412,11 @@ fn the_import_scanner_sees_imports() {
     assert_eq!(
         p,
         vec![
-            vec!["models", "fem", "element", "beam", "X"]
+            ["models", "fem", "element", "beam", "X"]
                 .iter()
                 .map(|s| s.to_string())
                 .collect::<Vec<_>>(),
-            vec!["models", "fem", "mesh"]
+            ["models", "fem", "mesh"]
                 .iter()
                 .map(|s| s.to_string())
                 .collect::<Vec<_>>(),
