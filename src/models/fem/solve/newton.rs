@@ -7,11 +7,13 @@
 //! is lagged in the tangent.
 
 use crate::case::{Method, SolverSettings};
+use crate::geometry::min_curvature::AxisGeometry;
 use crate::geometry::Vec3;
 use crate::models::fem::linalg::band::{BandLdlt, BandMatrix, FactorError};
 use crate::models::fem::linalg::band_lu::{BandLu, GeneralBand};
 use crate::models::fem::model::StiffnessSink;
 use crate::models::fem::model::{Evaluation, Model, State, HALF_BANDWIDTH};
+use crate::models::softstring;
 use std::time::Instant;
 
 /// Solver controls.
@@ -166,21 +168,43 @@ pub fn load_scale(model: &Model) -> f64 {
     w + model.loads.wob_n.abs() + model.loads.hook_load_n.unwrap_or(0.0).abs() + 1e3
 }
 
-/// Soft-string axial force of each element (tension positive), N: `-WOB` at the bit plus the
-/// buoyed weight's axial part integrated upward on the hole axis between the nodes' MDs in
-/// `state.md` (no friction).
-fn soft_string_tension(model: &Model, state: &State) -> Vec<f64> {
-    let mut tension = -model.loads.wob_n;
-    let tangent: Vec<Vec3> = state.md.iter().map(|&md| model.path.axis_at(md).tangent).collect();
-    (0..model.nodes() - 1)
-        .map(|e| {
-            let tbar = (tangent[e] + tangent[e + 1]).normalize();
+/// A frictionless soft string on the hole axis at the nodes' MDs (physics.md 6.5 without
+/// friction, [`softstring::element_balance`] per element), integrated from `-WOB` at the bit
+/// upward with the axial weight `W tbar.e_D` of each element.
+struct SoftStringPass {
+    /// Axis point at each node's MD.
+    axis: Vec<AxisGeometry>,
+    /// Axial force at each element's centre, N (tension positive).
+    mid_tension: Vec<f64>,
+    /// Lateral load at each node, N (global): half of each adjacent element's.
+    nodal_load: Vec<Vec3>,
+    /// Axial force at the top, N.
+    top_tension: f64,
+}
+
+impl SoftStringPass {
+    /// The pass along the nodes' MDs `md` (bit first), m.
+    fn along(model: &Model, md: &[f64]) -> SoftStringPass {
+        let nn = model.nodes();
+        let mut tension = -model.loads.wob_n;
+        let mut nodal_load = vec![Vec3::zeros(); nn];
+        let mut mid_tension = Vec::with_capacity(nn - 1);
+        let axis: Vec<AxisGeometry> = md.iter().map(|&md| model.path.axis_at(md)).collect();
+        for e in 0..nn - 1 {
             let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
-            let mid = tension + 0.5 * w * tbar.z;
-            tension += w * tbar.z;
-            mid
-        })
-        .collect()
+            let b = softstring::element_balance(axis[e].tangent, axis[e + 1].tangent, tension, w);
+            mid_tension.push(tension + 0.5 * w * b.tbar.z);
+            nodal_load[e] += b.lateral * 0.5;
+            nodal_load[e + 1] += b.lateral * 0.5;
+            tension += w * b.tbar.z;
+        }
+        SoftStringPass {
+            axis,
+            mid_tension,
+            nodal_load,
+            top_tension: tension,
+        }
+    }
 }
 
 /// Stretched start: slide every node along the hole axis by the axial displacement of the
@@ -194,7 +218,7 @@ fn soft_string_tension(model: &Model, state: &State) -> Vec<f64> {
 /// Call it on a fresh [`Model::initial_state`] before [`soft_string_start`].
 pub fn stretch_start(model: &Model, state: &mut State) {
     let nn = model.nodes();
-    let tension = soft_string_tension(model, state);
+    let tension = SoftStringPass::along(model, &state.md).mid_tension;
     let mut u = 0.0;
     for i in 1..nn {
         let e = i - 1;
@@ -222,24 +246,16 @@ pub fn stretch_start(model: &Model, state: &mut State) {
 /// normal force as their first multiplier (physics.md 4.5). Axis points at the nodes' MDs in
 /// `state.md` (the reference MDs, or the stretched ones of [`stretch_start`]).
 pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
-    let nn = model.nodes();
-    let mut tension = -model.loads.wob_n;
-    let mut load = vec![Vec3::zeros(); nn];
-    let axis: Vec<_> = state.md.iter().map(|&md| model.path.axis_at(md)).collect();
-    for e in 0..nn - 1 {
-        let (p_lo, p_up) = (&axis[e], &axis[e + 1]);
-        let w = model.mesh.elements[e].buoyed_weight_n_per_m * model.sections[e].l0;
-        let tbar = (p_lo.tangent + p_up.tangent).normalize();
-        let g = (p_lo.tangent - p_up.tangent) * tension + Vec3::new(0.0, 0.0, w);
-        let gperp = g - tbar * g.dot(&tbar);
-        load[e] += gperp * 0.5;
-        load[e + 1] += gperp * 0.5;
-        tension += w * tbar.z;
-    }
+    let SoftStringPass {
+        axis,
+        nodal_load,
+        top_tension,
+        ..
+    } = SoftStringPass::along(model, &state.md);
     if model.loads.hook_load_n.is_none() {
-        state.hook_load_n = tension.max(0.0);
+        state.hook_load_n = top_tension.max(0.0);
     }
-    for (i, li) in load.iter().enumerate() {
+    for (i, li) in nodal_load.iter().enumerate() {
         // near the bit the stiff assembly lifts off the wall: leave those nodes on the axis
         // and the bottom-hole assembly starts off the wall (the active-set strategy closes
         // penetrating gaps many at a time, but opens them only a few at a time)
