@@ -372,7 +372,7 @@ tool_joint_od = "6.625 in"
     }
 }
 
-/// Reference: the cold-started solve of the same row (the solver's own start and fallbacks).
+/// Reference: the cold-started solve of the same row (the solver's own start).
 /// Warm starts between bit depths (the same load case one depth up, carried onto the longer
 /// string's mesh) must converge to the same solution: hook load and torque within 1e-6
 /// relative (of the row's hook load for the torque of a non-rotating row, whose value is 0),

@@ -314,7 +314,7 @@ fn interior_point_contact_step_converges_in_few_iterations() {
     let case = slick_collar_case(30.0, 0.0, 40.0, 0.0, 0.5, "");
     let model = Model::from_case(&case);
     let mut state = model.initial_state();
-    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut state, false);
+    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut state);
     let sol = drillpath::models::fem::solve::solve_ip_from(&model, state, &SolveControls::default()).unwrap();
     assert!(sol.converged);
     println!(
@@ -590,7 +590,7 @@ fn smoothed_start_limits_the_lateral_slope() {
     let case = load_case(&path, &CaseOverrides::default()).unwrap();
     let model = Model::from_case(&case);
     let mut raw = model.initial_state();
-    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut raw, false);
+    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut raw);
     let mut smooth = raw.clone();
     drillpath::models::fem::solve::newton::smooth_start(&model, &mut smooth);
     let axis: Vec<_> = (0..model.nodes())

@@ -265,7 +265,7 @@ pub fn hole_for_prediction(case: &Case, to_md_m: f64) -> HoleSize {
 pub use crate::models::fem::warm::transport_state;
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
-/// full cold [`solve`] (its own start and fallbacks).
+/// full cold [`solve`] (its own start).
 fn solve_step(
     model: &Model,
     warm: Option<State>,

@@ -159,8 +159,6 @@ pub struct Model {
     pub loads: Loads,
     /// Whether the axial-force/bending coupling is on (off only to demonstrate its effect).
     pub geometric_stiffness: bool,
-    /// Length of the bottom-hole assembly from the bit, m.
-    pub bha_length_m: f64,
     /// Full consistent element tangent (needed under torque; slower), see
     /// [`super::element::corotational::element_response`].
     pub consistent_tangent: bool,
@@ -239,16 +237,14 @@ impl Model {
     /// the top is held as [`TopCondition::Surface`].
     pub fn for_string(case: &Case, string: &DrillString, path: &WellPath, hole: &HoleSize, bit_md_m: f64) -> Model {
         let mesh = build_mesh(string, &case.solver, case.mud.density_kg_m3);
-        let mut model = Model::new(
+        Model::new(
             path.clone(),
             hole.clone(),
             mesh,
             bit_md_m,
             loads_from_case(case),
             |md| hole.friction_at(md).unwrap_or(case.operation.friction),
-        );
-        model.bha_length_m = case.string.bha_length_m();
-        model
+        )
     }
 
     /// Build from parts; `friction_at(md)` gives the wall friction coefficient. `path` is in
@@ -311,7 +307,6 @@ impl Model {
             loads,
             geometric_stiffness: true,
             consistent_tangent: false,
-            bha_length_m: 0.0,
             top: TopCondition::Surface,
         }
     }

@@ -2,7 +2,7 @@
 //!
 //! - [`newton`]: Newton iterations with the consistent co-rotational tangent, the contact forces
 //!   of each step from an interior-point complementarity solve (`method = "newton"`, the
-//!   default), with its fallbacks;
+//!   default);
 //! - [`paper`]: the seed paper's modified Newton with gradient-updated gap forces
 //!   (`method = "paper"`, eq. 15).
 //!

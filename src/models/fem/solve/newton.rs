@@ -56,36 +56,6 @@ impl Default for SolveControls {
     }
 }
 
-/// Globalization choices of one solve attempt (see [`solve_newton`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Strategy {
-    /// Iterates remembered by the non-monotone line search (1: monotone).
-    pub nonmonotone_memory: usize,
-    /// Start the bottom-hole assembly off the wall instead of on the soft-string contact side.
-    pub bha_open_start: bool,
-}
-
-/// Attempts made by [`solve_newton`], in order, each from a fresh start: the active-set iteration is
-/// sensitive to its start and line search, and no single choice converges on every case.
-pub const STRATEGIES: [Strategy; 4] = [
-    Strategy {
-        nonmonotone_memory: 1,
-        bha_open_start: false,
-    },
-    Strategy {
-        nonmonotone_memory: 8,
-        bha_open_start: true,
-    },
-    Strategy {
-        nonmonotone_memory: 8,
-        bha_open_start: false,
-    },
-    Strategy {
-        nonmonotone_memory: 1,
-        bha_open_start: true,
-    },
-];
-
 /// Statistics of a solve.
 #[derive(Debug, Clone, Default)]
 pub struct SolveStats {
@@ -99,12 +69,8 @@ pub struct SolveStats {
     pub max_penetration: f64,
     /// Wall-clock time, s.
     pub seconds: f64,
-    /// Negative pivots in the last factor (unstable directions).
-    pub negative_pivots: usize,
     /// Nodes whose contact state changed in the last iterations.
     pub chattering_nodes: Vec<usize>,
-    /// Strategies tried (the last one is the one whose result is returned).
-    pub attempts: usize,
 }
 
 /// A converged (or flagged unconverged) solution.
@@ -139,16 +105,6 @@ pub enum SolveError {
 
 /// Nodes closer than this to the bit start on the hole axis (not on the wall), m.
 pub const START_OFF_WALL_M: f64 = 5.0;
-
-/// A closed gap opens when its force is below minus this fraction of the load scale: a gap
-/// that is just touching (force and gap both ~0) is accepted either way instead of cycling.
-pub const RELEASE_FORCE_FRACTION: f64 = 1e-5;
-
-/// Status changes after which a gap leaves the active-set logic for the unilateral law.
-pub const MAX_STATUS_FLIPS: usize = 2;
-
-/// Halvings tried by the line search.
-pub const LINE_SEARCH_STEPS: usize = 8;
 
 /// Largest lateral motion of a gap node per interior-point Newton step, in clearances.
 pub const MAX_LATERAL_STEP_CLEARANCES: f64 = 2.0;
@@ -245,7 +201,7 @@ pub fn stretch_start(model: &Model, state: &mut State) {
 /// lateral load of each element; nodes put on that side of the wall with the soft-string
 /// normal force as their first multiplier (physics.md 4.5). Axis points at the nodes' MDs in
 /// `state.md` (the reference MDs, or the stretched ones of [`stretch_start`]).
-pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
+pub fn soft_string_start(model: &Model, state: &mut State) {
     let SoftStringPass {
         axis,
         nodal_load,
@@ -257,14 +213,7 @@ pub fn soft_string_start(model: &Model, state: &mut State, bha_open: bool) {
     }
     for (i, li) in nodal_load.iter().enumerate() {
         // near the bit the stiff assembly lifts off the wall: leave those nodes on the axis
-        // and the bottom-hole assembly starts off the wall (the active-set strategy closes
-        // penetrating gaps many at a time, but opens them only a few at a time)
-        let in_bha = model.mesh.nodes[i].s_m < model.bha_length_m;
-        if !model.mesh.nodes[i].has_gap
-            || li.norm() < 1e-6
-            || model.mesh.nodes[i].s_m < START_OFF_WALL_M
-            || (in_bha && bha_open)
-        {
+        if !model.mesh.nodes[i].has_gap || li.norm() < 1e-6 || model.mesh.nodes[i].s_m < START_OFF_WALL_M {
             continue;
         }
         let n = li.normalize();
@@ -477,22 +426,6 @@ fn increment_across(model: &Model, ev: &Evaluation, du: &[f64], i: usize, k0: us
     (v - t * t.dot(&v)).norm()
 }
 
-/// Merit of a state: squared residual over free DOFs plus the WOB equation, forces in N and
-/// moments in N.m (1 m length scale).
-fn merit(r: &[f64], constrained: &[usize], c: f64, bordered: bool) -> f64 {
-    let m: f64 = r
-        .iter()
-        .enumerate()
-        .filter(|(d, _)| !constrained.contains(d))
-        .map(|(_, v)| v * v)
-        .sum();
-    if bordered {
-        m + c * c
-    } else {
-        m
-    }
-}
-
 /// Index of the entry of `r` largest in magnitude (0 for an empty `r`).
 fn largest_entry(r: &[f64]) -> usize {
     r.iter()
@@ -675,24 +608,6 @@ impl Linear {
             Linear::General(_, f) => f.solve2_in_place(x, y),
         }
     }
-    fn negative_pivots(&self) -> usize {
-        match self {
-            Linear::Symmetric(_, f) => f.negative_pivots(),
-            Linear::General(..) => 0,
-        }
-    }
-}
-
-/// Row of the bit's axial DOF over the free columns (for the hook-load equation), the WOB
-/// equation's residual `c`, and the residual with constrained entries zeroed.
-pub(crate) fn bordered_parts(
-    model: &Model,
-    lin: &Linear,
-    ev: &Evaluation,
-    constrained: &[usize],
-) -> (Vec<(usize, f64)>, f64, Vec<f64>) {
-    let (c, r) = free_residual(model, ev, constrained);
-    (bit_row(model, lin, constrained), c, r)
 }
 
 /// Newton step of the bordered system with the factored tangent in `lin`: `K du = -r` with
@@ -767,307 +682,22 @@ fn singular(model: &Model, e: FactorError) -> SolveError {
     }
 }
 
-/// Solve the static problem from the model's initial state: first the interior-point contact
-/// Newton ([`solve_ip_from`]) with the consistent tangent, then, if it fails, the active-set
-/// [`STRATEGIES`] in turn and a load continuation; returns the last attempt (flagged
-/// unconverged) if none converges.
+/// Solve the static problem from the model's start ([`stretch_start`], [`soft_string_start`],
+/// [`smooth_start`], [`wind_up_start`]) by the interior-point contact Newton
+/// ([`solve_ip_from`]) with the fully consistent co-rotational tangent; an unconverged solve is
+/// returned flagged (`converged == false`).
 pub fn solve_newton(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
-    // 1. Newton with the fully consistent co-rotational tangent, each step solving the contact
-    //    problem of all gaps by the interior-point method
     let mut consistent = model.clone();
     consistent.consistent_tangent = true;
     let mut state = model.initial_state();
     stretch_start(model, &mut state);
-    soft_string_start(model, &mut state, false);
+    soft_string_start(model, &mut state);
     smooth_start(model, &mut state);
     wind_up_start(model, &mut state);
     let mut sol = solve_ip_from(&consistent, state, ctl)?;
-    sol.stats.attempts = 1;
-    if sol.converged {
-        sol.stats.seconds = t0.elapsed().as_secs_f64();
-        return Ok(sol);
-    }
-    tracing::info!("interior-point contact Newton did not converge; trying the active-set strategies");
-    // 2. fallbacks: active-set strategies, then load continuation, each with a shorter budget
-    let ctl = &SolveControls {
-        max_iterations: ctl.max_iterations.min(FALLBACK_MAX_ITERATIONS),
-        ..*ctl
-    };
-    let mut total = sol.stats.iterations;
-    let mut last = None;
-    for (k, strategy) in STRATEGIES.iter().enumerate() {
-        let mut state = model.initial_state();
-        soft_string_start(model, &mut state, strategy.bha_open_start);
-        let mut sol = solve_from(model, state, ctl, strategy)?;
-        total += sol.stats.iterations;
-        sol.stats.attempts = k + 2;
-        let done = sol.converged;
-        last = Some(sol);
-        if done {
-            break;
-        }
-        tracing::info!(attempt = k + 1, "solve did not converge; trying the next strategy");
-    }
-    let mut sol = last.expect("at least one strategy");
-    if !sol.converged {
-        // load continuation: WOB, bit torque and friction ramped from zero, each step warm
-        // started from the last (contact states included)
-        tracing::info!("trying load continuation");
-        if let Some(mut cont) = solve_by_continuation(model, ctl)? {
-            total += cont.stats.iterations;
-            cont.stats.attempts = STRATEGIES.len() + 2;
-            sol = cont;
-        }
-    }
-    sol.stats.iterations = total;
     sol.stats.seconds = t0.elapsed().as_secs_f64();
     Ok(sol)
-}
-
-/// Iteration limit of each fallback attempt of [`solve_newton`] (active-set strategy, continuation
-/// step) after the interior-point Newton failed. None of them has rescued a case since the
-/// interior-point Newton became the default (the test suite, the example wells, the benchmark
-/// wells and the failing extremes: inclination 120 and 180 deg, DLS 30 deg/30 m drilling,
-/// WOB 1-3 x helical with friction), while with the full limit they made a failing solve take
-/// a minute; the shorter budget keeps them as a last resort and fails in seconds.
-pub const FALLBACK_MAX_ITERATIONS: usize = 100;
-
-/// Load steps of the continuation fallback (fractions of WOB, bit torque and friction).
-pub const CONTINUATION_STEPS: [f64; 6] = [0.0, 0.2, 0.4, 0.6, 0.8, 1.0];
-
-/// Ramp WOB, bit torque and friction from zero, warm-starting each step (contact states
-/// included). Returns the final solution if every step converged, `None` otherwise.
-fn solve_by_continuation(model: &Model, ctl: &SolveControls) -> Result<Option<Solution>, SolveError> {
-    let mut m = model.clone();
-    let mut state = model.initial_state();
-    soft_string_start(model, &mut state, false);
-    let mut total = 0usize;
-    let mut last = None;
-    for &frac in &CONTINUATION_STEPS {
-        m.loads.wob_n = model.loads.wob_n * frac;
-        m.loads.bit_torque_nm = model.loads.bit_torque_nm * frac;
-        m.friction = model.friction.iter().map(|f| f * frac).collect();
-        let mut step = None;
-        for strategy in [&STRATEGIES[0], &STRATEGIES[2]] {
-            let sol = solve_from(&m, state.clone(), ctl, strategy)?;
-            total += sol.stats.iterations;
-            if sol.converged {
-                step = Some(sol);
-                break;
-            }
-        }
-        tracing::info!(frac, converged = step.is_some(), "continuation step");
-        match step {
-            Some(sol) => {
-                state = sol.state.clone();
-                last = Some(sol);
-            }
-            None => return Ok(None),
-        }
-    }
-    Ok(last.map(|mut s| {
-        s.stats.iterations = total;
-        s
-    }))
-}
-
-/// Solve the static problem from `state` with one globalization `strategy`.
-pub fn solve_from(
-    model: &Model,
-    mut state: State,
-    ctl: &SolveControls,
-    strategy: &Strategy,
-) -> Result<Solution, SolveError> {
-    let t0 = Instant::now();
-    let mut lin = Linear::for_model(model);
-    let constrained = model.constrained_dofs();
-    let top = model.nodes() - 1;
-    let bit_ax = model.dof(0, 0);
-    let top_ax = model.dof(top, 0);
-    let bordered = model.loads.hook_load_n.is_none();
-    let scale = load_scale(model);
-    let mut stats = SolveStats::default();
-    let mut flips = vec![0usize; model.nodes()];
-    let mut converged = false;
-    let mut ev;
-    // Active-set strategy: the contact status of every gap is held fixed while Newton solves
-    // the (then smooth) problem, closed gaps acting as bilateral penalty springs; then gaps
-    // whose force turned negative open and open gaps that penetrate close (primal-dual active
-    // set, Hintermueller-Ito-Kunisch 2002), and the augmented-Lagrangian multipliers of closed
-    // gaps are updated until the penetration is within tolerance.
-    let mut newton_steps = 0usize;
-    let mut merits: Vec<f64> = Vec::new();
-    if state.closed.is_none() {
-        let closed: Vec<bool> = (0..model.nodes())
-            .map(|i| model.mesh.nodes[i].has_gap && state.lambda[i] > 0.0)
-            .collect();
-        state.closed = Some(closed);
-    }
-    loop {
-        ev = model.evaluate(&mut state, Some(lin.sink()));
-        // row of the bit axial DOF (free columns) before constraining
-        let (kb, c, r) = bordered_parts(model, &lin, &ev, &constrained);
-        let rn = residual_norm(&r, scale).max(c.abs() / scale);
-        stats.residual_history.push(rn);
-        let mut pen: f64 = 0.0;
-        for (i, g) in ev.gaps.iter().enumerate() {
-            if let Some(g) = g {
-                let eo = ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M);
-                let closed = state.closed.as_ref().is_some_and(|cl| cl[i]);
-                let free = state.free_law.as_ref().is_some_and(|f| f[i]);
-                if (closed && !free) || g.penetration > 0.0 {
-                    pen = pen.max(g.penetration.abs() / eo);
-                }
-            }
-        }
-        stats.max_penetration = pen;
-        if tracing::enabled!(tracing::Level::DEBUG) {
-            // the largest residual entry: a scan over every DOF, made only for the log
-            let worst = largest_entry(&r);
-            tracing::debug!(
-                worst_node = model.nodes() - 1 - worst / 6,
-                worst_dof = worst % 6,
-                iteration = stats.iterations,
-                residual = rn,
-                penetration = pen,
-                hook_load = state.hook_load_n,
-                "newton"
-            );
-        }
-        if stats.iterations >= ctl.max_iterations {
-            break;
-        }
-        if rn < ctl.residual_tolerance || (rn < 1e-2 && newton_steps >= 1) || newton_steps >= 6 {
-            newton_steps = 0;
-            // status update
-            let mut changes = 0usize;
-            let closed = state.closed.as_mut().expect("status set above");
-            let free = state.free_law.get_or_insert_with(|| vec![false; model.nodes()]);
-            for (i, g) in ev.gaps.iter().enumerate() {
-                if let Some(g) = g {
-                    if free[i] {
-                        continue;
-                    }
-                    if flips[i] >= MAX_STATUS_FLIPS {
-                        // a cycling gap: let Newton treat it with the unilateral law
-                        free[i] = true;
-                        changes += 1;
-                        continue;
-                    }
-                    let eo = ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M);
-                    if closed[i] && g.normal_force < -RELEASE_FORCE_FRACTION * scale {
-                        tracing::trace!(s = model.mesh.nodes[i].s_m, force = g.normal_force, "open");
-                        closed[i] = false;
-                        changes += 1;
-                        flips[i] += 1;
-                    } else if !closed[i] && g.penetration > ctl.gap_tolerance * eo {
-                        tracing::trace!(s = model.mesh.nodes[i].s_m, pen = g.penetration, "close");
-                        closed[i] = true;
-                        changes += 1;
-                        flips[i] += 1;
-                    }
-                }
-            }
-            tracing::debug!(changes, "contact status update");
-            if changes == 0 {
-                if pen <= ctl.gap_tolerance && rn < ctl.residual_tolerance {
-                    converged = true;
-                    break;
-                }
-                // augmented-Lagrangian update of the closed (and freely switching) gaps
-                for (i, g) in ev.gaps.iter().enumerate() {
-                    if let Some(g) = g {
-                        if ev.clearance[i] <= crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
-                            // pin: vector multiplier takes the whole current force
-                            state.lambda_vec[i] = -g.force_normal();
-                            continue;
-                        }
-                        if closed[i] || free[i] {
-                            state.lambda[i] = g.normal_force.max(0.0);
-                        }
-                    }
-                }
-            }
-            stats.iterations += 1;
-            continue;
-        }
-        constrain_and_factor(model, &mut lin, &constrained)?;
-        stats.factorizations += 1;
-        stats.negative_pivots = lin.negative_pivots();
-        let hook_before = state.hook_load_n;
-        let (du, dh) = bordered_step(&lin, &r, &kb, c, top_ax, bordered);
-        state.hook_load_n += dh;
-        // cap lateral motion to one clearance per iteration (physics.md 4.5)
-        let mut ratio: f64 = 0.0;
-        for i in 0..model.nodes() {
-            if model.mesh.nodes[i].has_gap {
-                let lat = (du[model.dof(i, 1)].powi(2) + du[model.dof(i, 2)].powi(2)).sqrt();
-                ratio = ratio.max(lat / ev.clearance[i].max(2e-3));
-            }
-        }
-        // and bending rotations to a few hundredths of a radian (the string stays within the hole,
-        // so large section rotations are never part of the solution)
-        for i in 0..model.nodes() {
-            let rot = (du[model.dof(i, 4)].powi(2) + du[model.dof(i, 5)].powi(2)).sqrt();
-            ratio = ratio.max(rot / MAX_BENDING_ROTATION_STEP);
-        }
-        let mut alpha = if ratio > 1.0 { 1.0 / ratio } else { 1.0 };
-        // backtracking line search on the residual norm (globalizes the semi-smooth Newton
-        // step across contact switches)
-        // non-monotone line search (Grippo et al. 1986): compare with the largest merit of
-        // the last few iterates, so contact switches may raise the merit for a while
-        let merit_now = merit(&ev.residual, &constrained, c, bordered);
-        merits.push(merit_now);
-        let merit0 = merits
-            .iter()
-            .rev()
-            .take(strategy.nonmonotone_memory.max(1))
-            .fold(0.0f64, |a, &b| a.max(b));
-        let h0 = state.hook_load_n;
-        let dh_total = state.hook_load_n - hook_before;
-        let mut accepted = false;
-        for _ in 0..LINE_SEARCH_STEPS {
-            let mut trial = state.clone();
-            trial.hook_load_n = hook_before + alpha * dh_total;
-            model.update(&mut trial, &du, alpha);
-            let tev = model.evaluate(&mut trial, None);
-            let tc = if bordered {
-                tev.residual[bit_ax] + model.loads.wob_n
-            } else {
-                0.0
-            };
-            let m1 = merit(&tev.residual, &constrained, tc, bordered);
-            if m1 <= (1.0 - 1e-4 * alpha) * merit0 || merit0 < 1e-30 {
-                state = trial;
-                accepted = true;
-                break;
-            }
-            alpha *= 0.5;
-        }
-        if !accepted {
-            // take the (small) last step anyway so iterations can leave a stalled point
-            state.hook_load_n = h0;
-            state.hook_load_n = hook_before + alpha * dh_total;
-            model.update(&mut state, &du, alpha);
-        }
-        tracing::debug!(alpha, cap = ratio, accepted, "step");
-        newton_steps += 1;
-        stats.iterations += 1;
-    }
-    stats.chattering_nodes = flips
-        .iter()
-        .enumerate()
-        .filter(|(_, &f)| f > 3)
-        .map(|(i, _)| i)
-        .collect();
-    stats.seconds = t0.elapsed().as_secs_f64();
-    Ok(Solution {
-        state,
-        eval: ev,
-        converged,
-        stats,
-    })
 }
 
 /// Smallest clearance the gap tolerance is measured against, m: a gap's penetration counts

@@ -414,7 +414,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
     //    smoothed, torsional wind-up); the soft-string normal forces are the first P of the
     //    closed gaps and the first friction loads
     let mut state = model.initial_state();
-    soft_string_start(model, &mut state, false);
+    soft_string_start(model, &mut state);
     smooth_start(model, &mut state);
     wind_up_start(model, &mut state);
     let mut r_lag: Vec<f64> = (0..nn)
@@ -818,7 +818,6 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
     fin.implicit_friction = false;
     fin.exact_multipliers = true;
     let eval = model.evaluate(&mut fin, None);
-    stats.attempts = 1;
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state: fin,
