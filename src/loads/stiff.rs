@@ -131,13 +131,16 @@ pub fn transport_to_depth(prev: &Solved, model: &Model, string: &DrillString) ->
     };
     let alt = transport_mapped(pm, ps, model, |i| (i == k).then(|| by_distance(i)));
     let t = model.basis[k].column(0).into_owned();
-    let (a, b) = (alt.lam[k].column(1).into_owned(), st.lam[k].column(1).into_owned());
+    let (a, b) = (
+        alt.triads[k].column(1).into_owned(),
+        st.triads[k].column(1).into_owned(),
+    );
     let (a, b) = (a - t * t.dot(&a), b - t * t.dot(&b));
     let twist = t.dot(&a.cross(&b)).atan2(a.dot(&b));
     for i in 0..k {
         let axis = nalgebra::Unit::new_normalize(model.basis[i].column(0).into_owned());
         let r = nalgebra::Rotation3::from_axis_angle(&axis, twist);
-        st.lam[i] = r.matrix() * st.lam[i];
+        st.triads[i] = r.matrix() * st.triads[i];
     }
     let stretch = t.dot(&(alt.x[k] - st.x[k]));
     for i in k..model.nodes() {

@@ -12,7 +12,7 @@ use crate::geometry::Vec3;
 use crate::models::fem::linalg::band::{BandLdlt, BandMatrix, FactorError};
 use crate::models::fem::linalg::band_lu::{BandLu, GeneralBand};
 use crate::models::fem::model::StiffnessSink;
-use crate::models::fem::model::{Evaluation, Model, State, HALF_BANDWIDTH};
+use crate::models::fem::model::{Evaluation, GapTreatment, Model, State, HALF_BANDWIDTH};
 use crate::models::softstring;
 use std::time::Instant;
 
@@ -192,7 +192,7 @@ pub fn stretch_start(model: &Model, state: &mut State) {
         let (t, b1, b2) = model.path.bishop_at(md);
         state.x[i] = model.path.axis_at(md).position;
         state.md[i] = md;
-        state.lam[i] = nalgebra::Matrix3::from_columns(&[t, b1, b2]);
+        state.triads[i] = nalgebra::Matrix3::from_columns(&[t, b1, b2]);
         state.normal[i] = -model.path.frame_at(md).h;
     }
 }
@@ -219,7 +219,7 @@ pub fn soft_string_start(model: &Model, state: &mut State) {
         let n = li.normalize();
         let eo = model.clearance(i, state.md[i]);
         state.x[i] = axis[i].position + n * eo;
-        state.lambda[i] = li.norm();
+        state.multipliers[i] = li.norm();
         state.normal[i] = n;
     }
 }
@@ -243,7 +243,7 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
             let tangential = omega * rc;
             let speed = (tangential * tangential + model.loads.axial_speed_m_s.powi(2)).sqrt();
             if speed > 1e-12 {
-                torque += model.friction[i] * state.lambda[i] * rc * tangential / speed;
+                torque += model.friction[i] * state.multipliers[i] * rc * tangential / speed;
             }
         }
         let l0 = model.sections[e].l0;
@@ -258,8 +258,8 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
     let mut phi = 0.0;
     for i in (0..nn - 1).rev() {
         phi -= twist_rate[i] * model.sections[i].l0;
-        let t = state.lam[i].column(0).into_owned();
-        state.lam[i] = crate::models::fem::element::rotation::exp_so3(&(t * phi)) * state.lam[i];
+        let t = state.triads[i].column(0).into_owned();
+        state.triads[i] = crate::models::fem::element::rotation::exp_so3(&(t * phi)) * state.triads[i];
     }
 }
 
@@ -736,7 +736,7 @@ pub(crate) fn constrained_with_pins(model: &Model, pins: &[usize]) -> Vec<usize>
     constrained
 }
 
-/// Linearization of the exact pins' friction (`State::exact_pins`): a pin's wall force `p`
+/// Linearization of the exact pins' friction ([`GapTreatment::exact_pins`]): a pin's wall force `p`
 /// is the reaction to the lateral residual `a = -(I - t t^T)(Q1 r1 + Q2 r2)` of everything
 /// else (`p = M a`, [`Model::pin_reaction`]), and its friction force and moment depend on `p`
 /// (`F = -p - (f/|v|)(v_a |p| t + Omega R_c t x p)`,
@@ -754,7 +754,7 @@ pub(crate) fn add_pin_coupling(model: &Model, lin: &mut Linear, ev: &Evaluation,
         let rc = model.mesh.nodes[i].contact_od_m / 2.0;
         let spin = omega * rc;
         let speed = (va * va + spin * spin).sqrt();
-        let p = state.lambda_vec[i];
+        let p = state.pin_multipliers[i];
         let pn = p.norm();
         if f <= 0.0 || speed <= 1e-12 || pn <= 1e-12 {
             continue;
@@ -917,7 +917,7 @@ pub(crate) fn managed_gaps(model: &Model) -> Vec<bool> {
 /// zero-clearance gaps (pins) are penalty springs until the outer residual falls below
 /// [`PIN_EXACT_RESIDUAL`], then exact constraints: held on the hole axis by their lateral
 /// DOFs (the step at the switch prescribes the lateral increments that take them from the
-/// penalty's give onto the axis), their force the reaction (`State::exact_pins`) with its
+/// penalty's give onto the axis), their force the reaction ([`GapTreatment::exact_pins`]) with its
 /// friction linearized
 /// (`add_pin_coupling`); no augmented-Lagrangian phase. Below [`ACTIVE_SET_RESIDUAL`] (not at
 /// the pins' switch) each step first tries the equality-constrained Newton step of the last
@@ -952,16 +952,20 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
     // springs about their vector multipliers. A warm start that carries the pins' forces
     // starts exact.
     let pin_constrained = constrained_with_pins(model, &pins);
-    state.exact_pins = pins.is_empty() || pins.iter().any(|&i| state.lambda_vec[i] != Vec3::zeros());
-    let mut constrained = if state.exact_pins {
+    // the gaps' treatment: the managed gaps' forces come from the interior point, the other
+    // gaps are open (pins aside)
+    let mut gaps = GapTreatment {
+        closed: Some(vec![false; nn]),
+        unilateral: None,
+        solver_contacts: Some(managed.clone()),
+        exact_multipliers: false,
+        exact_pins: pins.is_empty() || pins.iter().any(|&i| state.pin_multipliers[i] != Vec3::zeros()),
+    };
+    let mut constrained = if gaps.exact_pins {
         pin_constrained.clone()
     } else {
         model.constrained_dofs()
     };
-    state.closed = Some(vec![false; nn]);
-    state.free_law = None;
-    state.lcp_nodes = Some(managed.clone());
-    state.implicit_friction = true;
     let mut ev;
     // the previous Newton step was full and its outer residual small: this evaluation is
     // likely the converged one, so it is first made without the tangent (then redone with it
@@ -975,17 +979,17 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         // at the switch to exact pins the pins are not moved onto the axis by themselves (their
         // neighbours would carry the jump into the residual): the Newton step prescribes their
         // lateral increment instead (`pin_move`)
-        let switching = !state.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL);
+        let switching = !gaps.exact_pins && stats.residual_history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL);
         if switching {
-            state.exact_pins = true;
+            gaps.exact_pins = true;
             constrained.clone_from(&pin_constrained);
-        } else if state.exact_pins {
+        } else if gaps.exact_pins {
             hold_pins_on_axis(model, &mut state, &pins);
         }
         ev = if skip_tangent {
-            model.evaluate(&mut state, None)
+            model.evaluate(&mut state, &gaps, None)
         } else {
-            model.evaluate(&mut state, Some(lin.sink()))
+            model.evaluate(&mut state, &gaps, Some(lin.sink()))
         };
         let (c, r0) = free_residual(model, &ev, &constrained);
         // prescribed increments of held DOFs: the switching pins' lateral DOFs take them to
@@ -1038,7 +1042,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             far_at[i] = m + EXTRA * k;
         }
         // outer residual with the current multipliers as the contact forces
-        let rt = contact_residual(model, &r0, &qidx, &eq_cols, &state.lambda, &constrained);
+        let rt = contact_residual(model, &r0, &qidx, &eq_cols, &state.multipliers, &constrained);
         let rn = residual_norm(&rt, scale).max(c.abs() / scale);
         let mut pen: f64 = 0.0;
         let mut compl: f64 = 0.0;
@@ -1049,7 +1053,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 pen_s = model.mesh.nodes[i].s_m;
             }
             pen = pen.max(gaps0[j] / eo);
-            compl = compl.max((state.lambda[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
+            compl = compl.max((state.multipliers[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
         }
         // net force of the residual (the global equilibrium error of physics.md 6.7): the entries
         // are each below the tolerance, but thousands of them may add up
@@ -1067,7 +1071,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             && net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
             && pen <= ctl.gap_tolerance
             && compl < 1e-6;
-        let done = equilibrium && pins_held && state.exact_pins;
+        let done = equilibrium && pins_held && gaps.exact_pins;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
             redo = true;
             continue;
@@ -1096,7 +1100,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         if stats.iterations >= ctl.max_iterations {
             break;
         }
-        if equilibrium && !state.exact_pins {
+        if equilibrium && !gaps.exact_pins {
             // in equilibrium about penalty pins (a step went straight from above
             // `PIN_EXACT_RESIDUAL` to the tolerance): the next evaluation holds them exactly
             stats.iterations += 1;
@@ -1104,8 +1108,8 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
             continue;
         }
         // circle stiffness of the current contact forces
-        add_circle_stiffness(model, lin.sink(), &qidx, &geometry, &state.lambda);
-        if state.exact_pins {
+        add_circle_stiffness(model, lin.sink(), &qidx, &geometry, &state.multipliers);
+        if gaps.exact_pins {
             add_pin_coupling(model, &mut lin, &ev, &state, &pins);
         }
         let kb = bit_row(model, &lin, &constrained);
@@ -1144,7 +1148,7 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
         let mut shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
         // the previous multiplier of each pair (the far-wall planes: none) and its clearance
         let lam_prev: Vec<f64> = (0..mt)
-            .map(|j| if j < m { state.lambda[qidx[j]] } else { 0.0 })
+            .map(|j| if j < m { state.multipliers[qidx[j]] } else { 0.0 })
             .collect();
         let clr: Vec<f64> = cnode
             .iter()
@@ -1474,20 +1478,19 @@ pub fn solve_ip_from(model: &Model, mut state: State, ctl: &SolveControls) -> Re
                 usize::MAX => r_f[j],
                 f => r_f[j] + r_f[f..f + EXTRA].iter().sum::<f64>(),
             };
-            state.lambda[i] = if rj > 1e-9 * scale { rj } else { 0.0 };
+            state.multipliers[i] = if rj > 1e-9 * scale { rj } else { 0.0 };
         }
         stats.iterations += 1;
     }
     // final state: contacts with force are closed at their multipliers
-    let closed: Vec<bool> = (0..nn).map(|i| managed[i] && state.lambda[i] > 0.0).collect();
-    state.closed = Some(closed);
-    state.lcp_nodes = None;
-    state.implicit_friction = false;
-    state.exact_pins = false;
-    state.exact_multipliers = true;
+    let closed: Vec<bool> = (0..nn).map(|i| managed[i] && state.multipliers[i] > 0.0).collect();
+    let final_gaps = GapTreatment {
+        closed: Some(closed),
+        exact_multipliers: true,
+        ..GapTreatment::default()
+    };
     // same positions and triads as the last evaluation: its element responses are reused
-    let ev_final = model.evaluate_reusing_elements(&mut state, ev.elements);
-    state.exact_multipliers = false;
+    let ev_final = model.evaluate_reusing_elements(&mut state, &final_gaps, ev.elements);
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state,

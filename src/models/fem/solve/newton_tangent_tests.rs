@@ -33,12 +33,18 @@ fn pins_of(model: &Model) -> Vec<usize> {
 }
 
 /// The interior-point Newton's outer residual at `state` with the multipliers held.
-fn outer_residual(model: &Model, state: &State, qidx: &[usize], constrained: &[usize]) -> Vec<f64> {
+fn outer_residual(
+    model: &Model,
+    state: &State,
+    gaps: &GapTreatment,
+    qidx: &[usize],
+    constrained: &[usize],
+) -> Vec<f64> {
     let mut st = state.clone();
-    let ev = model.evaluate(&mut st, None);
+    let ev = model.evaluate(&mut st, gaps, None);
     let (_, r0) = free_residual(model, &ev, constrained);
     let cc = contact_columns(model, &mut st, &ev, qidx);
-    contact_residual(model, &r0, qidx, &cc.eq_cols, &st.lambda, constrained)
+    contact_residual(model, &r0, qidx, &cc.eq_cols, &st.multipliers, constrained)
 }
 
 #[test]
@@ -59,20 +65,23 @@ fn contact_tangent_matches_central_differences() {
     let pins = pins_of(&model);
     assert_eq!(pins.len(), 1, "the near-bit stabilizer is the pin");
     assert!(
-        qidx.iter().filter(|&&i| sol.state.lambda[i] > 1e3).count() >= 5,
+        qidx.iter().filter(|&&i| sol.state.multipliers[i] > 1e3).count() >= 5,
         "contacts carry load"
     );
-    let mut state = sol.state.clone();
-    state.closed = Some(vec![false; model.nodes()]);
-    state.lcp_nodes = Some(managed);
-    state.implicit_friction = true;
-    state.exact_pins = true;
+    let state = sol.state.clone();
+    let gaps = GapTreatment {
+        closed: Some(vec![false; model.nodes()]),
+        unilateral: None,
+        solver_contacts: Some(managed),
+        exact_multipliers: false,
+        exact_pins: true,
+    };
     let constrained = constrained_with_pins(&model, &pins);
     let mut lin = Linear::for_model(&model);
     let mut st = state.clone();
-    let ev = model.evaluate(&mut st, Some(lin.sink()));
+    let ev = model.evaluate(&mut st, &gaps, Some(lin.sink()));
     let cc = contact_columns(&model, &mut st, &ev, &qidx);
-    add_circle_stiffness(&model, lin.sink(), &qidx, &cc.geometry, &st.lambda);
+    add_circle_stiffness(&model, lin.sink(), &qidx, &cc.geometry, &st.multipliers);
     add_pin_coupling(&model, &mut lin, &ev, &st, &pins);
     let n = model.dofs();
     let hb = HALF_BANDWIDTH;
@@ -91,8 +100,8 @@ fn contact_tangent_matches_central_differences() {
         let (mut sp, mut sm) = (state.clone(), state.clone());
         model.update(&mut sp, &e, h);
         model.update(&mut sm, &e, -h);
-        let rp = outer_residual(&model, &sp, &qidx, &constrained);
-        let rm = outer_residual(&model, &sm, &qidx, &constrained);
+        let rp = outer_residual(&model, &sp, &gaps, &qidx, &constrained);
+        let rm = outer_residual(&model, &sm, &gaps, &qidx, &constrained);
         for i in (j.saturating_sub(hb)..(j + hb + 1).min(n)).filter(|i| !constrained.contains(i)) {
             let fd = (rp[i] - rm[i]) / (2.0 * h);
             let an = lin.get(i, j);

@@ -125,7 +125,7 @@ use super::newton::{
 };
 use crate::models::fem::contact::gap::{evaluate as gap_evaluate, GapInput, ZERO_CLEARANCE_M};
 use crate::models::fem::linalg::band_lu::{BandLu, GeneralBand};
-use crate::models::fem::model::{Evaluation, Model, State, StiffnessSink, HALF_BANDWIDTH};
+use crate::models::fem::model::{Evaluation, GapTreatment, Model, State, StiffnessSink, HALF_BANDWIDTH};
 use std::time::Instant;
 
 /// Gap spring `k_g` of a node as a multiple of the string's own lateral stiffness there (the
@@ -228,8 +228,11 @@ fn gap_springs(model: &Model, kind: &[Kind]) -> Vec<f64> {
     bare.k_n.iter_mut().for_each(|k| *k = 0.0);
     bare.friction.iter_mut().for_each(|f| *f = 0.0);
     let mut s0 = model.initial_state();
-    s0.closed = Some(vec![false; nn]);
-    bare.evaluate(&mut s0, Some(lin.sink()));
+    let open = GapTreatment {
+        closed: Some(vec![false; nn]),
+        ..GapTreatment::default()
+    };
+    bare.evaluate(&mut s0, &open, Some(lin.sink()));
     (0..nn)
         .map(|i| {
             if kind[i] == Kind::None {
@@ -364,16 +367,18 @@ fn residual_of(
     (r, c, rn)
 }
 
-/// [`residual_of`] after evaluating `work` (frictionless, gap springs) at `state`.
+/// [`residual_of`] after evaluating `work` (frictionless, gap springs) at `state` with the gaps
+/// treated as `gaps` says.
 fn residual(
     work: &Model,
     model: &Model,
     state: &mut State,
+    gaps: &GapTreatment,
     r_lag: &[f64],
     constrained: &[usize],
     scale: f64,
 ) -> (f64, Vec<f64>, f64) {
-    let ev = work.evaluate(state, None);
+    let ev = work.evaluate(state, gaps, None);
     let (r, c, rn) = residual_of(model, &ev, state, r_lag, constrained, scale);
     (rn, r, c)
 }
@@ -422,7 +427,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             if kind[i] == Kind::None {
                 0.0
             } else {
-                state.lambda[i].max(0.0)
+                state.multipliers[i].max(0.0)
             }
         })
         .collect();
@@ -432,23 +437,22 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
     // EO))
     let mut closed = vec![false; nn];
     for i in 0..nn {
-        if kind[i] == Kind::Gap && state.lambda[i] > 0.0 {
+        if kind[i] == Kind::Gap && state.multipliers[i] > 0.0 {
             let (md, p) = model.path.nearest_axis(&state.x[i], state.md[i]);
             let d = state.x[i] - p.position;
             let s = (d - p.tangent * p.tangent.dot(&d)).norm();
             let eo = model.clearance(i, md);
             if s >= START_CLOSED_FRACTION * eo {
                 closed[i] = true;
-                state.lambda[i] += k_g[i] * (eo - s).max(0.0);
+                state.multipliers[i] += k_g[i] * (eo - s).max(0.0);
             }
         }
         if !closed[i] {
-            state.lambda[i] = 0.0;
+            state.multipliers[i] = 0.0;
         }
     }
     let mut frozen = vec![false; nn];
     let mut free_active = vec![false; nn];
-    state.closed = Some(closed.clone());
     // gaps under the unilateral law R = max(0, lambda + k_g (s - EO)) during the structural
     // iteration: the frozen ones and every open gap (with lambda = 0)
     let free_of = |closed: &[bool], frozen: &[bool]| -> Vec<bool> {
@@ -457,8 +461,11 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             .collect()
     };
     let mut free = free_of(&closed, &frozen);
-    state.free_law = Some(free.clone());
-    state.exact_multipliers = false;
+    let mut gaps = GapTreatment {
+        closed: Some(closed.clone()),
+        unilateral: Some(free.clone()),
+        ..GapTreatment::default()
+    };
 
     let mut stats = SolveStats::default();
     let mut converged = false;
@@ -484,7 +491,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
     loop {
         // 3. residual of K1 d = F0 + P (+ lagged friction) at the current state
         if need_refresh {
-            ev = work.evaluate(&mut state, Some(lin.sink()));
+            ev = work.evaluate(&mut state, &gaps, Some(lin.sink()));
             kb = (0..6)
                 .map(|c| model.dof(0, c))
                 .chain((0..6).map(|c| model.dof(1, c)))
@@ -524,7 +531,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             need_refresh = false;
             since_refresh = 0;
         } else {
-            ev = work.evaluate(&mut state, None);
+            ev = work.evaluate(&mut state, &gaps, None);
         }
         let (r, c, rn) = residual_of(model, &ev, &state, &r_lag, &constrained, scale);
         passes += 1;
@@ -636,7 +643,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             if changes > 0 {
                 for &i in to_open.iter().chain(&to_close) {
                     closed[i] = !closed[i];
-                    state.lambda[i] = 0.0;
+                    state.multipliers[i] = 0.0;
                     if !closed[i] {
                         // Table 1: an open gap carries no friction (T = 0, m = 0)
                         r_lag[i] = 0.0;
@@ -649,7 +656,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
                         free_active[i] = closed[i];
                     }
                 }
-                state.closed = Some(closed.clone());
+                gaps.closed = Some(closed.clone());
                 free = free_of(&closed, &frozen);
                 for i in 0..nn {
                     if free[i] && !frozen[i] {
@@ -657,7 +664,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
                         free_active[i] = ev.gaps[i].as_ref().is_some_and(|g| g.normal_force > 0.0);
                     }
                 }
-                state.free_law = Some(free.clone());
+                gaps.unilateral = Some(free.clone());
                 need_refresh = true;
             }
             if !at_equilibrium {
@@ -678,12 +685,12 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
                         // vector form: drive the lateral offset d to zero (the pin force is
                         // -(lambda_vec + k_g d); its direction is not that of d)
                         let d = lateral_offset(model, &state, i);
-                        state.lambda_vec[i] += d * (alpha * k_g[i]);
+                        state.pin_multipliers[i] += d * (alpha * k_g[i]);
                     }
                     Kind::Gap if frozen[i] => {
                         let e = g.penetration;
                         if g.normal_force > 0.0 || e > 0.0 {
-                            state.lambda[i] = (state.lambda[i] + alpha * k_g[i] * e).max(0.0);
+                            state.multipliers[i] = (state.multipliers[i] + alpha * k_g[i] * e).max(0.0);
                         }
                     }
                     Kind::Gap if closed[i] && last_change[i] != Some(stats.iterations) => {
@@ -699,8 +706,8 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
                         // along the outward normal (R = k_g s - P); P never moves the spring's
                         // anchor beyond the wall (lambda >= 0)
                         let ds2 = -g.penetration;
-                        let dp = (alpha * secant * ds2).min(state.lambda[i]);
-                        state.lambda[i] -= dp;
+                        let dp = (alpha * secant * ds2).min(state.multipliers[i]);
+                        state.multipliers[i] -= dp;
                         last_dp[i] = dp;
                         last_s[i] = s;
                     }
@@ -766,7 +773,7 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             trial.hook_load_n += beta * dh;
             work.update(&mut trial, &du, beta);
             arc_step(model, &state, &mut trial, &du, beta, &on_wall);
-            let (rt, _, _) = residual(&work, model, &mut trial, &r_lag, &constrained, scale);
+            let (rt, _, _) = residual(&work, model, &mut trial, &gaps, &r_lag, &constrained, scale);
             if rt <= BACKTRACK_GROWTH * rn {
                 tracing::trace!(beta, residual = rt, "paper step accepted");
                 state = trial;
@@ -802,22 +809,22 @@ pub fn solve_paper(model: &Model, ctl: &SolveControls) -> Result<Solution, Solve
             (Kind::Gap, Some(g)) => {
                 let on = (closed[i] || frozen[i]) && g.normal_force > 0.0;
                 closed_final[i] = on;
-                fin.lambda[i] = if on { g.normal_force } else { 0.0 };
+                fin.multipliers[i] = if on { g.normal_force } else { 0.0 };
             }
             (Kind::Pin, Some(_)) => {
                 // same pin force with the model's penalty stiffness
                 let d = lateral_offset(model, &fin, i);
-                fin.lambda_vec[i] += d * (k_g[i] - model.k_n[i]);
+                fin.pin_multipliers[i] += d * (k_g[i] - model.k_n[i]);
             }
             _ => {}
         }
     }
-    fin.closed = Some(closed_final);
-    fin.free_law = None;
-    fin.lcp_nodes = None;
-    fin.implicit_friction = false;
-    fin.exact_multipliers = true;
-    let eval = model.evaluate(&mut fin, None);
+    let final_gaps = GapTreatment {
+        closed: Some(closed_final),
+        exact_multipliers: true,
+        ..GapTreatment::default()
+    };
+    let eval = model.evaluate(&mut fin, &final_gaps, None);
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state: fin,
