@@ -3,8 +3,8 @@
 //! bit depth.
 //!
 //! **Warm starts** (whole string). Each load case starts the interior-point contact Newton
-//! ([`solve_ip_from`], at most [`WARM_MAX_ITERATIONS`] iterations) from the same load case's
-//! converged state at the previous bit depth, carried onto the new mesh by
+//! ([`solve_interior_point_from`], at most [`WARM_MAX_ITERATIONS`] iterations) from the same
+//! load case's converged state at the previous bit depth, carried onto the new mesh by
 //! [`transport_to_depth`] (the string is longer there: its top component is lengthened,
 //! [`super::string_at_depth`]); at the first depth, or when that case has no converged state,
 //! from the previous load case's state at the same depth (same mesh, other loads). Whenever a
@@ -39,7 +39,7 @@ use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, SolveResults};
-use crate::models::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
+use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::levels::run as run_level;
 use crate::string::DrillString;
@@ -171,7 +171,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             max_iterations: ctl.max_iterations.min(WARM_MAX_ITERATIONS),
             ..ctl
         };
-        match solve_ip_from(&consistent, state, &warm_ctl) {
+        match solve_interior_point_from(&consistent, state, &warm_ctl) {
             Ok(sol) if sol.converged => {
                 let out = converged(
                     case,

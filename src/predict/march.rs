@@ -9,7 +9,7 @@ use crate::geometry::{Frame, HoleSection, HoleSize, Station, Survey, Vec3, WellP
 use crate::models::fem::bha::{bha_model, default_cut_m};
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, BitResult};
-use crate::models::fem::solve::{solve, solve_ip_from, SolveControls};
+use crate::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 use nalgebra::{Matrix2, Vector2};
 use std::time::Instant;
 
@@ -276,7 +276,7 @@ fn solve_step(
     if let Some(state) = warm {
         // a failed warm start (not converged, or a singular system from a poor start) falls
         // back to the cold start below
-        match solve_ip_from(model, state, ctl) {
+        match solve_interior_point_from(model, state, ctl) {
             Ok(sol) if sol.converged => return Ok(sol),
             Ok(_) => tracing::info!(md, "warm-started solve did not converge; solving from scratch"),
             Err(e) => tracing::info!(md, error = %e, "warm-started solve failed; solving from scratch"),

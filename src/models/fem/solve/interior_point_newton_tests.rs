@@ -1,9 +1,16 @@
-//! Checks of the interior-point Newton's linearization (`solve_ip_from`) and of its exact pins.
+//! Checks of the interior-point Newton's linearization (`solve_interior_point_from`) and of
+//! its exact pins.
 
-use super::*;
+use super::super::contacts::{add_circle_stiffness, contact_columns, contact_residual, managed_gaps};
+use super::super::hook_load_system::free_residual;
+use super::super::matrix_and_factor::MatrixAndFactor;
+use super::super::modified_newton_gap_forces::solve_modified_newton;
+use super::super::pins::{add_pin_coupling, constrained_with_pins};
+use super::super::{solve, Solution, SolveControls};
+use crate::geometry::Vec3;
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::models::fem::bha::{bha_model, default_cut_m};
-use crate::models::fem::solve::solve;
+use crate::models::fem::model::{GapTreatment, Model, State, HALF_BANDWIDTH};
 
 /// The predictor's cut BHA model of wells/j-shape: rotating at 60 rpm while sliding down at
 /// 12 m/h, friction 0.25, a loaded full-gauge near-bit stabilizer (a pin, 17 kN) and an
@@ -77,7 +84,7 @@ fn contact_tangent_matches_central_differences() {
         exact_pins: true,
     };
     let constrained = constrained_with_pins(&model, &pins);
-    let mut lin = Linear::for_model(&model);
+    let mut lin = MatrixAndFactor::for_model(&model);
     let mut st = state.clone();
     let ev = model.evaluate(&mut st, &gaps, Some(lin.sink()));
     let cc = contact_columns(&model, &mut st, &ev, &qidx);
@@ -154,7 +161,7 @@ fn loaded_full_gauge_stabilizer_converges_without_a_pin_phase() {
     let pin = pins_of(&model)[0];
     let g = sol.eval.gaps[pin].as_ref().unwrap();
     assert!(g.penetration.abs() < 1e-9, "pin offset {} m", g.penetration);
-    let reference = crate::models::fem::solve::paper::solve_paper(&model, &ctl).unwrap();
+    let reference = solve_modified_newton(&model, &ctl).unwrap();
     assert!(reference.converged);
     let g_ref = reference.eval.gaps[pin].as_ref().unwrap();
     assert!(g_ref.normal_force > 1e4, "loaded stabilizer: {} N", g_ref.normal_force);
