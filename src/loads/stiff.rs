@@ -8,7 +8,7 @@
 //! [`transport_to_depth`] (the string is longer there: its top component is lengthened,
 //! [`super::string_at_depth`]); at the first depth, or when that case has no converged state,
 //! from the previous load case's state at the same depth (same mesh, other loads). Whenever a
-//! warm start does not converge, the full strategy chain of [`solve`] runs from a cold start;
+//! warm start does not converge, [`solve`] runs from its own cold start;
 //! the outcome says which start converged. Measured (docs/performance.md): the same load case
 //! one depth up is the better start (3-4 iterations a row on the example wells, against 4-8
 //! from the previous load case and 6-15 cold).
