@@ -24,7 +24,7 @@ use drillpath::case::Case;
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::bha::{bha_model, default_cut_m};
 use drillpath::models::fem::model::{Model, TopCondition};
-use drillpath::models::fem::solve::{solve, solve_ip_from, SolveControls};
+use drillpath::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 use drillpath::models::fem::warm::transport_state;
 use drillpath::models::softstring;
 use std::fmt::Write;
@@ -197,7 +197,7 @@ fn bench_solve(c: &mut Criterion) {
             let mut warm = model.clone();
             warm.consistent_tangent = true;
             warm.loads.wob_n *= 1.05;
-            let sol_w = solve_ip_from(&warm, sol.state.clone(), &ctl).expect("solves");
+            let sol_w = solve_interior_point_from(&warm, sol.state.clone(), &ctl).expect("solves");
             assert!(sol_w.converged, "warm BHA solve converges");
             println!(
                 "bha_100m_warm: {} DOF, {} Newton iterations, {} factorizations",
@@ -207,7 +207,7 @@ fn bench_solve(c: &mut Criterion) {
             );
             group.bench_function("bha_100m_warm", |b| {
                 b.iter(|| {
-                    let s = solve_ip_from(&warm, sol.state.clone(), &ctl).expect("solves");
+                    let s = solve_interior_point_from(&warm, sol.state.clone(), &ctl).expect("solves");
                     assert!(s.converged);
                     s.stats.iterations
                 })
@@ -269,7 +269,7 @@ fn bench_bha_cut(group: &mut criterion::BenchmarkGroup<criterion::measurement::W
     let prev = solve(&before, &ctl).expect("solves");
     assert!(prev.converged, "cut BHA model 1 m shallower converges");
     let start = transport_state(&before, &prev.state, &model);
-    let sol_w = solve_ip_from(&model, start.clone(), &ctl).expect("solves");
+    let sol_w = solve_interior_point_from(&model, start.clone(), &ctl).expect("solves");
     assert!(sol_w.converged, "warm cut BHA solve converges");
     println!(
         "bha_cut_warm: {} DOF, {} Newton iterations, {} factorizations",
@@ -279,7 +279,7 @@ fn bench_bha_cut(group: &mut criterion::BenchmarkGroup<criterion::measurement::W
     );
     group.bench_function("bha_cut_warm", |b| {
         b.iter(|| {
-            let s = solve_ip_from(&model, start.clone(), &ctl).expect("solves");
+            let s = solve_interior_point_from(&model, start.clone(), &ctl).expect("solves");
             assert!(s.converged);
             s.stats.iterations
         })

@@ -9,7 +9,7 @@ use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::buckling::{stiff_marks, BuckleState};
 use drillpath::models::fem::model::{Model, State};
 use drillpath::models::fem::results::{extract, SolveResults};
-use drillpath::models::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
+use drillpath::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use std::f64::consts::FRAC_PI_2;
 
 /// 5 in pipe body (no tool joints), 29 kg/m, 1.2 sg, 8.5 in hole.
@@ -64,7 +64,7 @@ fn continuation_step(case: &Case, prev: Option<State>, ctl: &SolveControls) -> (
         None => solve(&model, ctl).unwrap(),
         Some(st) => {
             model.consistent_tangent = true;
-            solve_ip_from(&model, st, ctl).unwrap()
+            solve_interior_point_from(&model, st, ctl).unwrap()
         }
     };
     (model, sol)

@@ -372,7 +372,7 @@ tool_joint_od = "6.625 in"
     }
 }
 
-/// Reference: the cold-started solve of the same row (the solver's own start and fallbacks).
+/// Reference: the cold-started solve of the same row (the solver's own start).
 /// Warm starts between bit depths (the same load case one depth up, carried onto the longer
 /// string's mesh) must converge to the same solution: hook load and torque within 1e-6
 /// relative (of the row's hook load for the torque of a non-rotating row, whose value is 0),
@@ -474,8 +474,8 @@ fn transport_between_depths_keeps_the_state() {
     let back = transport_to_depth(&(m.clone(), st.clone()), &m, &c.string);
     for i in 0..m.nodes() {
         assert!((back.x[i] - st.x[i]).norm() < 1e-12, "node {i}");
-        assert!((back.lam[i] - st.lam[i]).norm() < 1e-12, "node {i}");
-        assert_eq!(back.lambda[i], st.lambda[i]);
+        assert!((back.triads[i] - st.triads[i]).norm() < 1e-12, "node {i}");
+        assert_eq!(back.multipliers[i], st.multipliers[i]);
     }
     // two joints deeper: the new nodes sit at the MDs of the old ones
     let d2 = 500.0 + 2.0 * 9.144;

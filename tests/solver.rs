@@ -5,7 +5,7 @@
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
-use drillpath::models::fem::model::Model;
+use drillpath::models::fem::model::{GapTreatment, Model};
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, SolveControls};
 
@@ -309,13 +309,14 @@ fn friction_acts_against_the_motion() {
 
 #[test]
 fn interior_point_contact_step_converges_in_few_iterations() {
-    // The interior-point contact Newton (fem::solve::solve_ip_from) settles all contacts of a
+    // The interior-point contact Newton (fem::solve::solve_interior_point_from) settles all contacts of a
     // short pendulum at once: same answer as the reference (0.5%), few Newton iterations.
     let case = slick_collar_case(30.0, 0.0, 40.0, 0.0, 0.5, "");
     let model = Model::from_case(&case);
     let mut state = model.initial_state();
-    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut state, false);
-    let sol = drillpath::models::fem::solve::solve_ip_from(&model, state, &SolveControls::default()).unwrap();
+    drillpath::models::fem::solve::start::soft_string_start(&model, &mut state);
+    let sol =
+        drillpath::models::fem::solve::solve_interior_point_from(&model, state, &SolveControls::default()).unwrap();
     assert!(sol.converged);
     println!(
         "interior-point contact Newton: {} iterations, {} factorizations",
@@ -501,8 +502,9 @@ fn mirrored_well_flips_the_walk_force() {
 
 #[test]
 fn paper_method_runs_the_paper_scheme_not_the_default() {
-    // `[solver] method = "paper"` must run the paper's scheme (fem::solve::paper::solve_paper), not
-    // the default one under the user's choice: `solve` returns exactly what solve_paper does.
+    // `[solver] method = "paper"` must run the paper's scheme (fem::solve::solve_modified_newton),
+    // not the default one under the user's choice: `solve` returns exactly what
+    // solve_modified_newton does.
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n",
         "[well]\nsurvey = \"survey.csv\"\nhole = [{ to_md = \"40 m\", diameter = \"8.5 in\" }]\n[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\n[solver]\nmethod = \"paper\"\n",
@@ -513,7 +515,7 @@ fn paper_method_runs_the_paper_scheme_not_the_default() {
         ..Default::default()
     };
     let via_solve = solve(&model, &ctl).expect("paper scheme runs");
-    let direct = drillpath::models::fem::solve::paper::solve_paper(&model, &ctl).expect("paper scheme runs");
+    let direct = drillpath::models::fem::solve::solve_modified_newton(&model, &ctl).expect("paper scheme runs");
     assert!(via_solve.converged);
     assert_eq!(via_solve.stats.iterations, direct.stats.iterations);
     assert_eq!(via_solve.stats.residual_history, direct.stats.residual_history);
@@ -559,19 +561,19 @@ bha_element_length = "2 m"
     assert!(q > 0.0, "the default mud drag is on");
     let expected = -(4e3 * length + q * length * length / 2.0) / gj;
     let mut state = model.initial_state();
-    drillpath::models::fem::solve::newton::wind_up_start(&model, &mut state);
+    drillpath::models::fem::solve::start::wind_up_start(&model, &mut state);
     let twist = |lam: &nalgebra::Matrix3<f64>| {
         let r = model.basis[0].transpose() * lam;
         drillpath::models::fem::element::rotation::log_so3(&r).x
     };
-    let start = twist(&state.lam[0]);
+    let start = twist(&state.triads[0]);
     assert!(
         (start - expected).abs() < 1e-9 * expected.abs(),
         "start twist {start} vs {expected}"
     );
     let sol = solve(&model, &SolveControls::default()).unwrap();
     assert!(sol.converged);
-    let fem = twist(&sol.state.lam[0]);
+    let fem = twist(&sol.state.triads[0]);
     println!("bit twist: FEM {fem:.6} rad, Saint-Venant {expected:.6} rad");
     assert!(
         (fem - expected).abs() < 1e-3 * expected.abs(),
@@ -581,7 +583,7 @@ bha_element_length = "2 m"
 
 #[test]
 fn smoothed_start_limits_the_lateral_slope() {
-    // The smoothed start (fem::solve::smooth_start) keeps each node's offset direction, never
+    // The smoothed start (fem::solve::start::smooth_start) keeps each node's offset direction, never
     // moves a node farther from the axis, and leaves neighbouring offsets within
     // 2 START_MAX_SLOPE times their distance (one slope for the size of the offset, one for
     // its direction). Case: the J-shape example (stabilizers between collars, a side change at
@@ -590,9 +592,9 @@ fn smoothed_start_limits_the_lateral_slope() {
     let case = load_case(&path, &CaseOverrides::default()).unwrap();
     let model = Model::from_case(&case);
     let mut raw = model.initial_state();
-    drillpath::models::fem::solve::newton::soft_string_start(&model, &mut raw, false);
+    drillpath::models::fem::solve::start::soft_string_start(&model, &mut raw);
     let mut smooth = raw.clone();
-    drillpath::models::fem::solve::newton::smooth_start(&model, &mut smooth);
+    drillpath::models::fem::solve::start::smooth_start(&model, &mut smooth);
     let axis: Vec<_> = (0..model.nodes())
         .map(|i| model.path.point_at(model.md_ref[i]).position)
         .collect();
@@ -608,13 +610,13 @@ fn smoothed_start_limits_the_lateral_slope() {
         let jump = (lat(&smooth.x[e + 1], e + 1) - lat(&smooth.x[e], e)).norm();
         worst_raw = worst_raw.max((lat(&raw.x[e + 1], e + 1) - lat(&raw.x[e], e)).norm() / l);
         assert!(
-            jump <= 2.0 * drillpath::models::fem::solve::newton::START_MAX_SLOPE * l * (1.0 + 1e-9),
+            jump <= 2.0 * drillpath::models::fem::solve::start::START_MAX_SLOPE * l * (1.0 + 1e-9),
             "element {e}: lateral jump {jump} m over {l} m"
         );
     }
     // the raw start does have the kinks this removes
     assert!(
-        worst_raw > 10.0 * drillpath::models::fem::solve::newton::START_MAX_SLOPE,
+        worst_raw > 10.0 * drillpath::models::fem::solve::start::START_MAX_SLOPE,
         "{worst_raw}"
     );
 }
@@ -635,10 +637,11 @@ fn evaluation_reusing_element_responses_equals_a_fresh_one_bit_for_bit() {
     // a state off the solution: positions and triads moved, MDs not yet updated
     let mut state = sol.state.clone();
     model.update(&mut state, &vec![1e-4; model.dofs()], 1.0);
-    let prev = model.evaluate(&mut state.clone(), None).elements;
+    let gaps = GapTreatment::default();
+    let prev = model.evaluate(&mut state.clone(), &gaps, None).elements;
     let (mut a, mut b) = (state.clone(), state);
-    let ea = model.evaluate(&mut a, None);
-    let eb = model.evaluate_reusing_elements(&mut b, prev);
+    let ea = model.evaluate(&mut a, &gaps, None);
+    let eb = model.evaluate_reusing_elements(&mut b, &gaps, prev);
     let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     assert_eq!(bits(&ea.residual), bits(&eb.residual));
     assert_eq!(bits(&a.md), bits(&b.md));
@@ -655,7 +658,7 @@ fn stretched_start_and_solution_match_the_hanging_string_stretch() {
     // Reference: a string hanging in a straight vertical hole with WOB W at the bit, which is
     // held: the axial force of element e is N_e = -W + (buoyed weight below its centre), and
     // the top rises by u = sum N_e l0_e / EA_e (linear elasticity, no contact). The stretched
-    // start (fem::solve::stretch_start) must put the top node there to 1e-9 (it integrates
+    // start (fem::solve::start::stretch_start) must put the top node there to 1e-9 (it integrates
     // the same forces); the converged FEM solution to 1e-3 (the co-rotational axial strain).
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,0,0\n2000,0,0\n",
@@ -700,7 +703,7 @@ bha_element_length = "1 m"
         "a 2 km string in tension stretches by decimetres: {expected} m"
     );
     let mut state = model.initial_state();
-    drillpath::models::fem::solve::newton::stretch_start(&model, &mut state);
+    drillpath::models::fem::solve::start::stretch_start(&model, &mut state);
     let z0 = model.path.point_at(model.md_ref[top]).position.z;
     let start = z0 - state.x[top].z;
     assert!(

@@ -8,7 +8,7 @@ use crate::case::Mode;
 /// How a converged stiff solve started.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Start {
-    /// The solver's own cold start (and fallbacks).
+    /// The solver's own cold start.
     Cold,
     /// The previous load case's state at the same bit depth.
     PreviousCase,

@@ -3,12 +3,12 @@
 //! bit depth.
 //!
 //! **Warm starts** (whole string). Each load case starts the interior-point contact Newton
-//! ([`solve_ip_from`], at most [`WARM_MAX_ITERATIONS`] iterations) from the same load case's
-//! converged state at the previous bit depth, carried onto the new mesh by
+//! ([`solve_interior_point_from`], at most [`WARM_MAX_ITERATIONS`] iterations) from the same
+//! load case's converged state at the previous bit depth, carried onto the new mesh by
 //! [`transport_to_depth`] (the string is longer there: its top component is lengthened,
 //! [`super::string_at_depth`]); at the first depth, or when that case has no converged state,
 //! from the previous load case's state at the same depth (same mesh, other loads). Whenever a
-//! warm start does not converge, the full strategy chain of [`solve`] runs from a cold start;
+//! warm start does not converge, [`solve`] runs from its own cold start;
 //! the outcome says which start converged. Measured (docs/performance.md): the same load case
 //! one depth up is the better start (3-4 iterations a row on the example wells, against 4-8
 //! from the previous load case and 6-15 cold).
@@ -39,7 +39,7 @@ use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, SolveResults};
-use crate::models::fem::solve::{solve, solve_ip_from, Solution, SolveControls};
+use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::levels::run as run_level;
 use crate::string::DrillString;
@@ -131,13 +131,16 @@ pub fn transport_to_depth(prev: &Solved, model: &Model, string: &DrillString) ->
     };
     let alt = transport_mapped(pm, ps, model, |i| (i == k).then(|| by_distance(i)));
     let t = model.basis[k].column(0).into_owned();
-    let (a, b) = (alt.lam[k].column(1).into_owned(), st.lam[k].column(1).into_owned());
+    let (a, b) = (
+        alt.triads[k].column(1).into_owned(),
+        st.triads[k].column(1).into_owned(),
+    );
     let (a, b) = (a - t * t.dot(&a), b - t * t.dot(&b));
     let twist = t.dot(&a.cross(&b)).atan2(a.dot(&b));
     for i in 0..k {
         let axis = nalgebra::Unit::new_normalize(model.basis[i].column(0).into_owned());
         let r = nalgebra::Rotation3::from_axis_angle(&axis, twist);
-        st.lam[i] = r.matrix() * st.lam[i];
+        st.triads[i] = r.matrix() * st.triads[i];
     }
     let stretch = t.dot(&(alt.x[k] - st.x[k]));
     for i in k..model.nodes() {
@@ -168,7 +171,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             max_iterations: ctl.max_iterations.min(WARM_MAX_ITERATIONS),
             ..ctl
         };
-        match solve_ip_from(&consistent, state, &warm_ctl) {
+        match solve_interior_point_from(&consistent, state, &warm_ctl) {
             Ok(sol) if sol.converged => {
                 let out = converged(
                     case,

@@ -100,6 +100,33 @@ pub struct SoftStringResult {
 
 const E_D: Vec3 = Vec3::new(0.0, 0.0, 1.0);
 
+/// Force balance of one soft-string element (see the module documentation): its mean
+/// tangent and the lateral load that the wall carries.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElementBalance {
+    /// Mean unit tangent `tbar = (t_lo + t_up)/|t_lo + t_up|` (`t_lo` when the two tangents
+    /// cancel).
+    pub tbar: Vec3,
+    /// Lateral load `G - (G.tbar) tbar` with `G = F_lo (t_lo - t_up) + W e_D`, N (global
+    /// north, east, down): the force the element presses on the wall with, frictionless.
+    pub lateral: Vec3,
+}
+
+/// Balance of an element with unit tangents `t_lo` (lower end) and `t_up` (upper end) down the
+/// hole, axial force `f_lo` at its lower end (N, tension positive) and buoyed weight
+/// `weight_n` (N): Johancsik's element balance, shared by [`soft_string`] and the stiff
+/// model's start (`models::fem::solve`).
+pub fn element_balance(t_lo: Vec3, t_up: Vec3, f_lo: f64, weight_n: f64) -> ElementBalance {
+    let sum = t_lo + t_up;
+    let sn = sum.norm();
+    let tbar = if sn > 1e-12 { sum / sn } else { t_lo };
+    let g = (t_lo - t_up) * f_lo + E_D * weight_n;
+    ElementBalance {
+        tbar,
+        lateral: g - tbar * g.dot(&tbar),
+    }
+}
+
 /// Contact radius of a component for the soft-string torque, m: half the tool-joint OD if
 /// the component has tool joints, else half its contact OD (physics.md 1.4 / 2.3).
 pub fn contact_radius_m(c: &Component) -> f64 {
@@ -197,12 +224,7 @@ fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
             let md_up = input.bit_md_m - x_up;
             let p_up = input.path.point_at(md_up);
             let dl = p_lo.md_m - md_up;
-            let (t_lo, t_up) = (p_lo.tangent, p_up.tangent);
-            let sum = t_lo + t_up;
-            let sn = sum.norm();
-            let tbar = if sn > 1e-12 { sum / sn } else { t_lo };
-            let g = (t_lo - t_up) * f + E_D * (w_b * dl);
-            let lat = g - tbar * g.dot(&tbar);
+            let lat = element_balance(p_lo.tangent, p_up.tangent, f, w_b * dl).lateral;
             let mu = input
                 .hole
                 .friction_at(0.5 * (p_lo.md_m + md_up))

@@ -159,8 +159,6 @@ pub struct Model {
     pub loads: Loads,
     /// Whether the axial-force/bending coupling is on (off only to demonstrate its effect).
     pub geometric_stiffness: bool,
-    /// Length of the bottom-hole assembly from the bit, m.
-    pub bha_length_m: f64,
     /// Full consistent element tangent (needed under torque; slower), see
     /// [`super::element::corotational::element_response`].
     pub consistent_tangent: bool,
@@ -168,42 +166,55 @@ pub struct Model {
     pub top: TopCondition,
 }
 
-/// Mutable solution state.
+/// Mechanical state of the string: what a solve finds, what a warm start carries.
 #[derive(Debug, Clone)]
 pub struct State {
-    /// Node positions, m.
+    /// Node positions (model frame), m.
     pub x: Vec<Vec3>,
-    /// Node material triads.
-    pub lam: Vec<Matrix3<f64>>,
+    /// Node material triads (columns: the section's axis and its two principal directions,
+    /// global).
+    pub triads: Vec<Matrix3<f64>>,
     /// MD of each node's nearest axis point, m.
     pub md: Vec<f64>,
-    /// Augmented-Lagrangian multipliers, N.
-    pub lambda: Vec<f64>,
-    /// Last contact normal per node.
+    /// Wall normal force multiplier of each gap node, N (the contact force of a closed gap,
+    /// regularized by the penalty unless [`GapTreatment::exact_multipliers`]).
+    pub multipliers: Vec<f64>,
+    /// Last contact normal per node (outward, global).
     pub normal: Vec<Vec3>,
     /// Hook load (top axial force), N.
     pub hook_load_n: f64,
-    /// Contact status per node imposed by the active-set solver (None: unilateral law).
+    /// Vector multipliers of the zero-clearance gaps (pins), N: the wall force of a pin.
+    pub pin_multipliers: Vec<Vec3>,
+}
+
+/// How an evaluation treats the gap elements: the contact scheme's settings, owned by the
+/// solver and passed to [`Model::evaluate`] beside the mechanical [`State`]. The default
+/// puts every gap under the unilateral law `R = max(0, multiplier + k_n (s - EO))` and the pins
+/// as penalty springs about their vector multipliers.
+#[derive(Debug, Clone, Default)]
+pub struct GapTreatment {
+    /// Contact status per node imposed by the solver: `true` closed (bilateral: the force
+    /// `multiplier + k_n (s - EO)` may turn negative), `false` open (no force). `None`: the
+    /// unilateral law everywhere.
     pub closed: Option<Vec<bool>>,
-    /// Nodes that cycled between open and closed: they use the unilateral law instead.
-    pub free_law: Option<Vec<bool>>,
-    /// Vector multipliers of zero-clearance gaps, N.
-    pub lambda_vec: Vec<Vec3>,
-    /// Gaps whose normal force is being decided by the complementarity step (they carry only
-    /// their lagged friction during assembly).
-    pub lcp_nodes: Option<Vec<bool>>,
-    /// Closed gaps carry exactly their multiplier (no penalty term): for the final evaluation
-    /// of a solution whose contact forces came from the interior-point step.
+    /// Nodes under the unilateral law whatever `closed` says (the modified Newton's open and
+    /// frozen gaps).
+    pub unilateral: Option<Vec<bool>>,
+    /// Gaps whose normal and friction forces the solver applies itself (the interior-point
+    /// contact step, friction in proportion to the unknown normal force): the evaluation
+    /// leaves both out of the residual and assembles only the stiffness of the friction's
+    /// direction at the node's multiplier.
+    pub solver_contacts: Option<Vec<bool>>,
+    /// Closed gaps carry exactly their multiplier (no penalty term): the final evaluation of a
+    /// solution whose contact forces came from the interior-point step.
     pub exact_multipliers: bool,
-    /// Managed gaps leave their friction to the solver (proportional to the unknown normal
-    /// force) instead of applying it from the multiplier.
-    pub implicit_friction: bool,
     /// Zero-clearance gaps (pins) are exact constraints: the node is held on the hole axis (its
     /// lateral DOFs are held by the solver) and its wall force is the reaction that balances
     /// the lateral residual of everything else, friction included ([`Model::pin_reaction`]);
-    /// the vector multiplier is set to it at each evaluation, and the force is that reaction
-    /// alone (no penalty on an offset from the axis, which the solver removes by prescribed
-    /// lateral increments). `false`: penalty springs about the multiplier.
+    /// the pin's multiplier in [`State::pin_multipliers`] is set to it at each evaluation,
+    /// and the force is that reaction alone (no penalty on an offset from the axis, which the
+    /// solver removes by prescribed lateral increments). `false`: penalty springs about the
+    /// multiplier.
     pub exact_pins: bool,
 }
 
@@ -239,16 +250,14 @@ impl Model {
     /// the top is held as [`TopCondition::Surface`].
     pub fn for_string(case: &Case, string: &DrillString, path: &WellPath, hole: &HoleSize, bit_md_m: f64) -> Model {
         let mesh = build_mesh(string, &case.solver, case.mud.density_kg_m3);
-        let mut model = Model::new(
+        Model::new(
             path.clone(),
             hole.clone(),
             mesh,
             bit_md_m,
             loads_from_case(case),
             |md| hole.friction_at(md).unwrap_or(case.operation.friction),
-        );
-        model.bha_length_m = case.string.bha_length_m();
-        model
+        )
     }
 
     /// Build from parts; `friction_at(md)` gives the wall friction coefficient. `path` is in
@@ -311,7 +320,6 @@ impl Model {
             loads,
             geometric_stiffness: true,
             consistent_tangent: false,
-            bha_length_m: 0.0,
             top: TopCondition::Surface,
         }
     }
@@ -363,18 +371,12 @@ impl Model {
         }
         State {
             x,
-            lam: self.basis.clone(),
+            triads: self.basis.clone(),
             md: self.md_ref.clone(),
-            lambda: vec![0.0; nn],
+            multipliers: vec![0.0; nn],
             normal: self.md_ref.iter().map(|&m| -self.path.frame_at(m).h).collect(),
             hook_load_n: self.loads.hook_load_n.unwrap_or(0.0),
-            closed: None,
-            free_law: None,
-            lambda_vec: vec![Vec3::zeros(); nn],
-            lcp_nodes: None,
-            exact_multipliers: false,
-            implicit_friction: false,
-            exact_pins: false,
+            pin_multipliers: vec![Vec3::zeros(); nn],
         }
     }
 
@@ -398,37 +400,43 @@ impl Model {
         4.0 * std::f64::consts::PI * mu * w * r1 * r1 * r2 * r2 / (r2 * r2 - r1 * r1)
     }
 
-    /// Evaluate residual (and, if `k` is given, assemble the tangent into it) at `state`.
-    /// Updates each node's nearest-axis MD in `state.md`.
-    pub fn evaluate(&self, state: &mut State, k: Option<&mut dyn StiffnessSink>) -> Evaluation {
-        self.evaluate_with(state, k, None)
+    /// Evaluate residual (and, if `k` is given, assemble the tangent into it) at `state`, the
+    /// gaps treated as `gaps` says. Updates each gap node's nearest-axis MD in `state.md` and
+    /// contact normal in `state.normal` (and, with exact pins, the pins' multipliers).
+    pub fn evaluate(&self, state: &mut State, gaps: &GapTreatment, k: Option<&mut dyn StiffnessSink>) -> Evaluation {
+        self.evaluate_with(state, gaps, k, None)
     }
 
     /// [`Model::evaluate`] without the tangent, taking the element responses from `elements`
     /// (the [`Evaluation::elements`] of an evaluation at the same node positions and triads)
     /// instead of computing them again: for a second evaluation of the same configuration with
     /// other contact settings (the solver's final evaluation with exact multipliers). The
-    /// result is the same as `evaluate(state, None)` bit for bit.
+    /// result is the same as `evaluate(state, gaps, None)` bit for bit.
     ///
     /// # Panics
     /// If `elements` does not hold one response per element.
-    pub fn evaluate_reusing_elements(&self, state: &mut State, elements: Vec<ElementForces>) -> Evaluation {
+    pub fn evaluate_reusing_elements(
+        &self,
+        state: &mut State,
+        gaps: &GapTreatment,
+        elements: Vec<ElementForces>,
+    ) -> Evaluation {
         assert_eq!(
             elements.len(),
             self.nodes().saturating_sub(1),
             "Model::evaluate_reusing_elements: one response per element"
         );
-        self.evaluate_with(state, None, Some(elements))
+        self.evaluate_with(state, gaps, None, Some(elements))
     }
 
     fn evaluate_with(
         &self,
         state: &mut State,
+        gaps: &GapTreatment,
         k: Option<&mut dyn StiffnessSink>,
         reuse: Option<Vec<ElementForces>>,
     ) -> Evaluation {
         let nn = self.nodes();
-        let mut reuse = reuse.map(|v| v.into_iter());
         let mut r = vec![0.0; self.dofs()];
         let mut kmat = k;
         if let Some(km) = kmat.as_deref_mut() {
@@ -436,6 +444,41 @@ impl Model {
                 km.clear();
             }
         }
+        let elements = self.assemble_elements(state, &mut r, kmat.as_deref_mut(), reuse);
+        // bit torque: moment -T_b t at the bit node
+        let tb = self.basis[0].column(0).into_owned() * (-self.loads.bit_torque_nm);
+        let tb_loc = self.basis[0].transpose() * tb;
+        for k in 0..3 {
+            r[self.dof(0, 3 + k)] -= tb_loc[k];
+        }
+        // hook load: force -H t_top at the top node
+        let top = nn - 1;
+        r[self.dof(top, 0)] += state.hook_load_n;
+        let mut ev = Evaluation {
+            residual: r,
+            elements,
+            gaps: vec![None; nn],
+            clearance: vec![0.0; nn],
+            axis: vec![(Vec3::zeros(), Vec3::zeros()); nn],
+        };
+        let pins = self.assemble_gaps(state, gaps, &mut ev, kmat);
+        self.apply_exact_pins(state, gaps, &pins, &mut ev);
+        ev
+    }
+
+    /// Element responses from the bit upward (taken from `reuse` when given), their internal
+    /// forces minus their gravity and mud-drag loads added to the residual `r`, and with `k`
+    /// their tangents assembled into it (each node's lines zeroed just before the first
+    /// element that touches them).
+    fn assemble_elements(
+        &self,
+        state: &State,
+        r: &mut [f64],
+        mut k: Option<&mut (dyn StiffnessSink + '_)>,
+        reuse: Option<Vec<ElementForces>>,
+    ) -> Vec<ElementForces> {
+        let nn = self.nodes();
+        let mut reuse = reuse.map(|v| v.into_iter());
         let mut elements = Vec::with_capacity(nn - 1);
         let ed = Vec3::new(0.0, 0.0, 1.0);
         let mut tangent = Mat12::zeros();
@@ -446,14 +489,14 @@ impl Model {
             let st = ElementState {
                 x_a: &state.x[a],
                 x_b: &state.x[b],
-                lam_a: &state.lam[a],
-                lam_b: &state.lam[b],
+                lam_a: &state.triads[a],
+                lam_b: &state.triads[b],
                 q_a: &self.basis[a],
                 q_b: &self.basis[b],
             };
             let resp = if let Some(prev) = reuse.as_mut() {
                 prev.next().expect("one response per element")
-            } else if kmat.is_some() {
+            } else if k.is_some() {
                 element_response_into(
                     &st,
                     &self.sections[e],
@@ -484,7 +527,7 @@ impl Model {
             for (j, &d) in dofs.iter().enumerate() {
                 r[d] += resp.force[j] - ext[j / 3][j % 3];
             }
-            if let Some(km) = kmat.as_deref_mut() {
+            if let Some(km) = k.as_deref_mut() {
                 // each node's lines are zeroed just before the first element that touches
                 // them (element e is the first for node e + 1, element 0 also for node 0):
                 // the matrix is built in one pass while its rows are in cache
@@ -494,65 +537,76 @@ impl Model {
                 km.clear_dofs(self.dof(a, 0)..self.dof(a, 0) + 6);
                 debug_assert!(dofs.windows(2).all(|p| p[1] == p[0] + 1));
                 if self.consistent_tangent && self.needs_unsymmetric() {
-                    // load stiffness of the end moments that follow the chord r1 (gravity's
-                    // consistent moments and the mud torque): dr1/dx_B = -dr1/dx_A = (I - r1 r1^T)/L;
-                    // unsymmetric, so only in the unsymmetric (LU) tangent: a symmetric band
-                    // store keeps one triangle
-                    let chord = state.x[b] - state.x[a];
-                    let dr1 = (Matrix3::identity() - e1 * e1.transpose()) / chord.norm();
-                    let c = self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0;
-                    let qx = q.cross_matrix() * (l * l / 12.0);
-                    // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt)
-                    let dm = [-qx - Matrix3::identity() * c, qx - Matrix3::identity() * c];
-                    let bases = [qa, qb];
-                    for (end, dme) in dm.iter().enumerate() {
-                        for (col, sign) in [(0usize, -1.0), (6usize, 1.0)] {
-                            // residual = internal - external: minus the load's derivative
-                            let blk = bases[end].transpose() * dme * dr1 * bases[col / 6] * (-sign);
-                            for rr in 0..3 {
-                                for cc in 0..3 {
-                                    tangent[(6 * end + 3 + rr, col + cc)] += blk[(rr, cc)];
-                                }
-                            }
-                        }
-                    }
+                    self.add_end_moment_load_stiffness(state, e, &e1, &q, &mut tangent);
                 }
                 km.add_element(dofs[0], &tangent);
             }
             elements.push(resp);
         }
-        // bit torque: moment -T_b t at the bit node
-        let tb = self.basis[0].column(0).into_owned() * (-self.loads.bit_torque_nm);
-        let tb_loc = self.basis[0].transpose() * tb;
-        for k in 0..3 {
-            r[self.dof(0, 3 + k)] -= tb_loc[k];
+        elements
+    }
+
+    /// Add to the element tangent `tangent` of element `e` (chord direction `e1`, weight per
+    /// length `q`, N/m, global) the load stiffness of the end moments that follow the chord
+    /// `r1` (gravity's consistent moments and the mud torque):
+    /// `dr1/dx_B = -dr1/dx_A = (I - r1 r1^T)/L`. Unsymmetric, so only in the unsymmetric (LU)
+    /// tangent: a symmetric band store keeps one triangle.
+    fn add_end_moment_load_stiffness(&self, state: &State, e: usize, e1: &Vec3, q: &Vec3, tangent: &mut Mat12) {
+        let (a, b) = (e + 1, e);
+        let l = self.sections[e].l0;
+        let chord = state.x[b] - state.x[a];
+        let dr1 = (Matrix3::identity() - e1 * e1.transpose()) / chord.norm();
+        let c = self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0;
+        let qx = q.cross_matrix() * (l * l / 12.0);
+        // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt)
+        let dm = [-qx - Matrix3::identity() * c, qx - Matrix3::identity() * c];
+        let bases = [&self.basis[a], &self.basis[b]];
+        for (end, dme) in dm.iter().enumerate() {
+            for (col, sign) in [(0usize, -1.0), (6usize, 1.0)] {
+                // residual = internal - external: minus the load's derivative
+                let blk = bases[end].transpose() * dme * dr1 * bases[col / 6] * (-sign);
+                for rr in 0..3 {
+                    for cc in 0..3 {
+                        tangent[(6 * end + 3 + rr, col + cc)] += blk[(rr, cc)];
+                    }
+                }
+            }
         }
-        // hook load: force -H t_top at the top node
-        let top = nn - 1;
-        r[self.dof(top, 0)] += state.hook_load_n;
-        // gaps
-        let mut gaps = vec![None; nn];
-        let mut clearance = vec![0.0; nn];
-        let mut axis = vec![(Vec3::zeros(), Vec3::zeros()); nn];
+    }
+
+    /// Gap forces of every gap node but the exact pins, subtracted from `ev.residual` (and
+    /// their stiffness assembled into `k`); fills `ev.gaps`, `ev.clearance` and `ev.axis`, and
+    /// updates each gap node's nearest-axis MD and contact normal in `state`. Returns the
+    /// exact pins, whose force needs the lateral residual of everything else
+    /// ([`Model::apply_exact_pins`]).
+    fn assemble_gaps(
+        &self,
+        state: &mut State,
+        gaps: &GapTreatment,
+        ev: &mut Evaluation,
+        mut kmat: Option<&mut (dyn StiffnessSink + '_)>,
+    ) -> Vec<usize> {
+        let r = &mut ev.residual;
         let mut pins = Vec::new();
-        for i in 0..nn {
+        for i in 0..self.nodes() {
             if !self.mesh.nodes[i].has_gap {
                 continue;
             }
             let (md, p) = self.path.nearest_axis(&state.x[i], state.md[i]);
             state.md[i] = md;
-            axis[i] = (p.position, p.tangent);
+            ev.axis[i] = (p.position, p.tangent);
             let eo = self.clearance(i, md);
-            clearance[i] = eo;
-            if state.exact_pins && eo <= crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
+            ev.clearance[i] = eo;
+            if gaps.exact_pins && eo <= crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
                 // applied below, once the lateral residual of everything else is known
                 pins.push(i);
                 continue;
             }
-            let g = evaluate(&self.gap_input(state, i, state.x[i] - p.position, p.tangent, eo));
-            // implicit friction: the solver adds the friction force itself (proportional to the
-            // unknown normal force); only its geometric stiffness comes from here
-            let force_here = !(state.implicit_friction && state.lcp_nodes.as_ref().is_some_and(|q| q[i]));
+            let g = evaluate(&self.gap_input(state, gaps, i, state.x[i] - p.position, p.tangent, eo));
+            // the solver's contacts: the solver adds their forces itself (friction
+            // proportional to the unknown normal force); only the friction's geometric
+            // stiffness comes from here
+            let force_here = !gaps.solver_contacts.as_ref().is_some_and(|q| q[i]);
             if g.normal_force != 0.0 || g.active || g.force != Vec3::zeros() {
                 let qb = &self.basis[i];
                 if force_here {
@@ -580,18 +634,27 @@ impl Model {
                 }
                 state.normal[i] = g.normal;
             }
-            gaps[i] = Some(g);
+            ev.gaps[i] = Some(g);
         }
-        for i in pins {
+        pins
+    }
+
+    /// Wall forces of the exact `pins` ([`GapTreatment::exact_pins`]): each pin's multiplier
+    /// becomes the reaction to the lateral residual of everything else
+    /// ([`Model::pin_reaction`]), and its force (that reaction, no penalty on its offset) with
+    /// its friction is subtracted from `ev.residual`.
+    fn apply_exact_pins(&self, state: &mut State, gaps: &GapTreatment, pins: &[usize], ev: &mut Evaluation) {
+        let r = &mut ev.residual;
+        for &i in pins {
             let q = &self.basis[i];
             // lateral residual of everything but the pin (basis DOFs 1 and 2), global
             let e_lat = q.column(1) * r[self.dof(i, 1)] + q.column(2) * r[self.dof(i, 2)];
-            let (p, t) = axis[i];
+            let (p, t) = ev.axis[i];
             let offset = state.x[i] - p;
-            state.lambda_vec[i] = self.pin_reaction(i, &t, &(-e_lat));
+            state.pin_multipliers[i] = self.pin_reaction(i, &t, &(-e_lat));
             // the exact pin's force is the reaction alone: no penalty on its offset (which the
             // solver removes by the pin's prescribed lateral increment)
-            let mut input = self.gap_input(state, i, offset, t, clearance[i]);
+            let mut input = self.gap_input(state, gaps, i, offset, t, ev.clearance[i]);
             input.k_n = 0.0;
             let g = evaluate(&input);
             let f = q.transpose() * g.force;
@@ -601,27 +664,21 @@ impl Model {
                 r[self.dof(i, 3 + k)] -= m[k];
             }
             state.normal[i] = g.normal;
-            gaps[i] = Some(g);
-        }
-        Evaluation {
-            residual: r,
-            elements,
-            gaps,
-            clearance,
-            axis,
+            ev.gaps[i] = Some(g);
         }
     }
 
     /// Gap input of node `i` at `state` with lateral `offset` (m) from the axis point of tangent
-    /// `t` and clearance `eo` (m).
-    fn gap_input(&self, state: &State, i: usize, offset: Vec3, t: Vec3, eo: f64) -> GapInput {
+    /// `t` and clearance `eo` (m), treated as `gaps` says.
+    fn gap_input(&self, state: &State, gaps: &GapTreatment, i: usize, offset: Vec3, t: Vec3, eo: f64) -> GapInput {
+        let solver_contact = gaps.solver_contacts.as_ref().is_some_and(|q| q[i]);
         GapInput {
             offset,
             t,
             clearance: eo,
             contact_radius: self.mesh.nodes[i].contact_od_m / 2.0,
-            lambda: state.lambda[i],
-            k_n: if state.exact_multipliers && eo > crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
+            lambda: state.multipliers[i],
+            k_n: if gaps.exact_multipliers && eo > crate::models::fem::contact::gap::ZERO_CLEARANCE_M {
                 0.0
             } else {
                 self.k_n[i]
@@ -630,17 +687,14 @@ impl Model {
             axial_speed: self.loads.axial_speed_m_s,
             omega: self.loads.omega_rad_s,
             fallback_normal: state.normal[i],
-            status: match (&state.closed, &state.free_law, &state.lcp_nodes) {
-                (_, _, Some(q)) if q[i] => Some(false),
-                (_, Some(f), _) if f[i] => None,
-                (Some(c), _, _) => Some(c[i]),
-                (None, _, _) => None,
+            status: match (&gaps.closed, &gaps.unilateral) {
+                _ if solver_contact => Some(false),
+                (_, Some(f)) if f[i] => None,
+                (Some(c), _) => Some(c[i]),
+                (None, _) => None,
             },
-            lambda_vec: state.lambda_vec[i],
-            friction_load: match &state.lcp_nodes {
-                Some(q) if q[i] => Some(state.lambda[i]),
-                _ => None,
-            },
+            lambda_vec: state.pin_multipliers[i],
+            friction_load: solver_contact.then_some(state.multipliers[i]),
         }
     }
 
@@ -671,8 +725,8 @@ impl Model {
             let dw = Vec3::new(du[self.dof(i, 3)], du[self.dof(i, 4)], du[self.dof(i, 5)]) * alpha;
             state.x[i] += q * dx;
             let w = q * dw;
-            state.lam[i] =
-                super::element::rotation::orthonormalize(&(super::element::rotation::exp_so3(&w) * state.lam[i]));
+            state.triads[i] =
+                super::element::rotation::orthonormalize(&(super::element::rotation::exp_so3(&w) * state.triads[i]));
         }
     }
 }

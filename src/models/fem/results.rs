@@ -71,19 +71,36 @@ pub struct SolveResults {
     pub largest_force_n: f64,
 }
 
-/// Extract results from a solution.
+/// Extract results from a solution (`mud_density_kg_m3` for the hydrostatic pressure of the
+/// stresses, kg/m3).
 pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveResults {
     let st = &sol.state;
-    let ev = &sol.eval;
+    let r = &sol.eval.residual;
     let nn = model.nodes();
-    let r = &ev.residual;
+    let surface_torque = r[model.dof(nn - 1, 3)];
+    let nodes = (0..nn).map(|i| node_result(model, sol, i, mud_density_kg_m3)).collect();
+    let (force_imbalance_n, moment_imbalance_nm, largest_force_n) = imbalance(model, sol);
+    SolveResults {
+        bit: bit_result(model, sol),
+        hook_load_n: st.hook_load_n,
+        surface_torque_nm: surface_torque,
+        nodes,
+        force_imbalance_n,
+        moment_imbalance_nm,
+        largest_force_n,
+    }
+}
+
+/// Bit forces (the reaction of the held bit DOFs, bit on rock) and tilt of a solution.
+fn bit_result(model: &Model, sol: &Solution) -> BitResult {
+    let r = &sol.eval.residual;
     // bit reaction (rock on bit) in global, bit on rock = minus that
     let qb = &model.basis[0];
     let react = qb * Vec3::new(r[model.dof(0, 0)], r[model.dof(0, 1)], r[model.dof(0, 2)]);
     let f_bit = -react;
     let frame = model.path.frame_at(model.bit_md_m);
-    let eb = st.lam[0].column(0).into_owned();
-    let bit = BitResult {
+    let eb = sol.state.triads[0].column(0).into_owned();
+    BitResult {
         md_m: model.bit_md_m,
         wob_n: f_bit.dot(&frame.t),
         build_force_n: f_bit.dot(&frame.h),
@@ -91,86 +108,96 @@ pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveRe
         tilt_inc_rad: eb.dot(&frame.h).atan2(eb.dot(&frame.t)),
         tilt_azi_rad: eb.dot(&frame.r).atan2(eb.dot(&frame.t)),
         torque_nm: model.loads.bit_torque_nm,
-    };
-    let top = nn - 1;
-    let surface_torque = r[model.dof(top, 3)];
-    // per-node values from adjacent element ends (element e: A = node e+1 upper, B = node e lower)
-    let mut nodes = Vec::with_capacity(nn);
-    for i in 0..nn {
-        let mut ax = Vec::new();
-        let mut tq = Vec::new();
-        let mut bm = Vec::new();
-        let mut sec: Option<usize> = None;
-        if i > 0 {
-            // element i-1, node i is its upper end A
-            let e = i - 1;
-            let resp = &ev.elements[e];
-            let q = Vec3::new(0.0, 0.0, model.mesh.elements[e].buoyed_weight_n_per_m);
-            let qa = q.dot(&resp.frame.column(0).into_owned());
-            ax.push(resp.axial_force + qa * model.sections[e].l0 / 2.0);
-            tq.push(resp.local_moments[0]);
-            bm.push(resp.local_moments[1].hypot(resp.local_moments[2]));
-            sec = Some(e);
-        }
-        if i < nn - 1 {
-            let e = i;
-            let resp = &ev.elements[e];
-            let q = Vec3::new(0.0, 0.0, model.mesh.elements[e].buoyed_weight_n_per_m);
-            let qa = q.dot(&resp.frame.column(0).into_owned());
-            ax.push(resp.axial_force - qa * model.sections[e].l0 / 2.0);
-            tq.push(-resp.local_moments[3]);
-            bm.push(resp.local_moments[4].hypot(resp.local_moments[5]));
-            sec = sec.or(Some(e));
-        }
-        let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
-        let (axial, torque, bend) = (mean(&ax), mean(&tq), mean(&bm));
-        let md = if model.mesh.nodes[i].has_gap {
-            st.md[i]
-        } else {
-            model.path.nearest_md(&st.x[i], st.md[i])
-        };
-        let p = model.path.point_at(md);
-        let f = model.path.frame_at(md);
-        let d = st.x[i] - p.position;
-        let (dh, dr) = (d.dot(&f.h), d.dot(&f.r));
-        let (cf, ang) = match &ev.gaps[i] {
-            Some(g) if g.normal_force > 0.0 => {
-                let a = g
-                    .normal
-                    .dot(&f.r)
-                    .atan2(g.normal.dot(&f.h))
-                    .to_degrees()
-                    .rem_euclid(360.0);
-                (g.normal_force, a)
-            }
-            _ => (0.0, 0.0),
-        };
-        let el = &model.mesh.elements[sec.unwrap_or(0)];
-        let (od, id) = (el.od_m, el.id_m);
-        let area = std::f64::consts::PI / 4.0 * (od * od - id * id);
-        let inertia = std::f64::consts::PI / 64.0 * (od.powi(4) - id.powi(4));
-        // hydrostatic pressure at the well-frame TVD (the model frame's origin is at the bit)
-        let pressure = mud_density_kg_m3 * G * (p.position.z + model.origin_m.z).max(0.0);
-        let f_true = axial - pressure * area;
-        let sa = f_true / area;
-        let sb = bend * od / (2.0 * inertia);
-        let tau = torque * od / (4.0 * inertia);
-        let vm = ((sa.abs() + sb).powi(2) + 3.0 * tau * tau).sqrt();
-        nodes.push(NodeResult {
-            md_m: md,
-            position: st.x[i] + model.origin_m,
-            disp_high_m: dh,
-            disp_right_m: dr,
-            clearance_m: ev.clearance[i],
-            contact_force_n: cf,
-            contact_angle_deg: ang,
-            axial_force_n: axial,
-            torque_nm: torque,
-            bending_moment_nm: bend,
-            von_mises_pa: vm,
-        });
     }
-    // global equilibrium: all external forces (weight, walls, bit and top reactions)
+}
+
+/// Results at node `i`: axial force, torque and bending moment averaged over the adjacent
+/// element ends (element e: A = node e+1 upper, B = node e lower), position, contact and the
+/// von Mises stress (`mud_density_kg_m3`, kg/m3, for the hydrostatic pressure).
+fn node_result(model: &Model, sol: &Solution, i: usize, mud_density_kg_m3: f64) -> NodeResult {
+    let (st, ev) = (&sol.state, &sol.eval);
+    let nn = model.nodes();
+    let mut ax = Vec::new();
+    let mut tq = Vec::new();
+    let mut bm = Vec::new();
+    let mut sec: Option<usize> = None;
+    if i > 0 {
+        // element i-1, node i is its upper end A
+        let e = i - 1;
+        let resp = &ev.elements[e];
+        let q = Vec3::new(0.0, 0.0, model.mesh.elements[e].buoyed_weight_n_per_m);
+        let qa = q.dot(&resp.frame.column(0).into_owned());
+        ax.push(resp.axial_force + qa * model.sections[e].l0 / 2.0);
+        tq.push(resp.local_moments[0]);
+        bm.push(resp.local_moments[1].hypot(resp.local_moments[2]));
+        sec = Some(e);
+    }
+    if i < nn - 1 {
+        let e = i;
+        let resp = &ev.elements[e];
+        let q = Vec3::new(0.0, 0.0, model.mesh.elements[e].buoyed_weight_n_per_m);
+        let qa = q.dot(&resp.frame.column(0).into_owned());
+        ax.push(resp.axial_force - qa * model.sections[e].l0 / 2.0);
+        tq.push(-resp.local_moments[3]);
+        bm.push(resp.local_moments[4].hypot(resp.local_moments[5]));
+        sec = sec.or(Some(e));
+    }
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    let (axial, torque, bend) = (mean(&ax), mean(&tq), mean(&bm));
+    let md = if model.mesh.nodes[i].has_gap {
+        st.md[i]
+    } else {
+        model.path.nearest_md(&st.x[i], st.md[i])
+    };
+    let p = model.path.point_at(md);
+    let f = model.path.frame_at(md);
+    let d = st.x[i] - p.position;
+    let (dh, dr) = (d.dot(&f.h), d.dot(&f.r));
+    let (cf, ang) = match &ev.gaps[i] {
+        Some(g) if g.normal_force > 0.0 => {
+            let a = g
+                .normal
+                .dot(&f.r)
+                .atan2(g.normal.dot(&f.h))
+                .to_degrees()
+                .rem_euclid(360.0);
+            (g.normal_force, a)
+        }
+        _ => (0.0, 0.0),
+    };
+    let el = &model.mesh.elements[sec.unwrap_or(0)];
+    let (od, id) = (el.od_m, el.id_m);
+    let area = std::f64::consts::PI / 4.0 * (od * od - id * id);
+    let inertia = std::f64::consts::PI / 64.0 * (od.powi(4) - id.powi(4));
+    // hydrostatic pressure at the well-frame TVD (the model frame's origin is at the bit)
+    let pressure = mud_density_kg_m3 * G * (p.position.z + model.origin_m.z).max(0.0);
+    let f_true = axial - pressure * area;
+    let sa = f_true / area;
+    let sb = bend * od / (2.0 * inertia);
+    let tau = torque * od / (4.0 * inertia);
+    let vm = ((sa.abs() + sb).powi(2) + 3.0 * tau * tau).sqrt();
+    NodeResult {
+        md_m: md,
+        position: st.x[i] + model.origin_m,
+        disp_high_m: dh,
+        disp_right_m: dr,
+        clearance_m: ev.clearance[i],
+        contact_force_n: cf,
+        contact_angle_deg: ang,
+        axial_force_n: axial,
+        torque_nm: torque,
+        bending_moment_nm: bend,
+        von_mises_pa: vm,
+    }
+}
+
+/// Global equilibrium of a solution: the net external force (N) and moment about the bit
+/// (N.m) of the weight, mud drag, walls, bit and top reactions, hook load and bit torque, and
+/// the largest single external force (N).
+fn imbalance(model: &Model, sol: &Solution) -> (Vec3, Vec3, f64) {
+    let (st, ev) = (&sol.state, &sol.eval);
+    let r = &ev.residual;
+    let nn = model.nodes();
     let mut fsum = Vec3::zeros();
     let mut msum = Vec3::zeros();
     let mut largest: f64 = 0.0;
@@ -221,13 +248,5 @@ pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveRe
         -model.basis[0].column(0) * model.loads.bit_torque_nm,
         st.x[0],
     );
-    SolveResults {
-        bit,
-        hook_load_n: st.hook_load_n,
-        surface_torque_nm: surface_torque,
-        nodes,
-        force_imbalance_n: fsum,
-        moment_imbalance_nm: msum,
-        largest_force_n: largest,
-    }
+    (fsum, msum, largest)
 }

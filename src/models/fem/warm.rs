@@ -48,12 +48,12 @@ impl Source {
 /// One node's state carried to node `i` of `model` (the predictor's rule, kept bit for bit).
 struct Carried {
     x: Vec3,
-    lam: Matrix3<f64>,
+    triad: Matrix3<f64>,
     md: f64,
-    lambda: f64,
+    multiplier: f64,
     normal: Vec3,
     /// Vector multiplier of a pin (zero-clearance gap), N.
-    lambda_vec: Vec3,
+    pin_multiplier: Vec3,
 }
 
 fn carry(prev_model: &Model, prev: &State, j: usize, model: &Model, i: usize, lateral_scale: f64) -> Carried {
@@ -71,11 +71,11 @@ fn carry(prev_model: &Model, prev: &State, j: usize, model: &Model, i: usize, la
     }
     Carried {
         x: p_new + rel * d,
-        lam: orthonormalize(&(rel * prev.lam[j])),
+        triad: orthonormalize(&(rel * prev.triads[j])),
         md: model.md_ref[i] + (prev.md[j] - prev_model.md_ref[j]),
-        lambda: prev.lambda[j],
+        multiplier: prev.multipliers[j],
         normal: rel * prev.normal[j],
-        lambda_vec: rel * prev.lambda_vec[j],
+        pin_multiplier: rel * prev.pin_multipliers[j],
     }
 }
 
@@ -112,21 +112,21 @@ pub fn transport_mapped(
             let n = a.normal * (1.0 - w) + b.normal * w;
             Carried {
                 x: a.x * (1.0 - w) + b.x * w,
-                lam: orthonormalize(&(a.lam * (1.0 - w) + b.lam * w)),
+                triad: orthonormalize(&(a.triad * (1.0 - w) + b.triad * w)),
                 md: a.md * (1.0 - w) + b.md * w,
-                lambda: a.lambda * (1.0 - w) + b.lambda * w,
+                multiplier: a.multiplier * (1.0 - w) + b.multiplier * w,
                 normal: if n.norm() > 1e-12 { n.normalize() } else { a.normal },
-                lambda_vec: a.lambda_vec * (1.0 - w) + b.lambda_vec * w,
+                pin_multiplier: a.pin_multiplier * (1.0 - w) + b.pin_multiplier * w,
             }
         } else {
             a
         };
         st.x[i] = c.x;
-        st.lam[i] = c.lam;
+        st.triads[i] = c.triad;
         st.md[i] = c.md;
-        st.lambda[i] = c.lambda;
+        st.multipliers[i] = c.multiplier;
         st.normal[i] = c.normal;
-        st.lambda_vec[i] = c.lambda_vec;
+        st.pin_multipliers[i] = c.pin_multiplier;
     }
     st.hook_load_n = prev.hook_load_n;
     st

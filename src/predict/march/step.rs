@@ -7,13 +7,13 @@ use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::bha_model;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, BitResult};
-use crate::models::fem::solve::{solve, solve_ip_from, SolveControls};
+use crate::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 use crate::models::fem::warm::transport_state;
 use crate::predict::law::BitAction;
 use nalgebra::{Matrix2, Vector2};
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
-/// full cold [`solve`] (its own start and fallbacks).
+/// full cold [`solve`] (its own start).
 fn solve_step(
     model: &Model,
     warm: Option<State>,
@@ -24,7 +24,7 @@ fn solve_step(
     if let Some(state) = warm {
         // a failed warm start (not converged, or a singular system from a poor start) falls
         // back to the cold start below
-        match solve_ip_from(model, state, ctl) {
+        match solve_interior_point_from(model, state, ctl) {
             Ok(sol) if sol.converged => return Ok(sol),
             Ok(_) => tracing::info!(md, "warm-started solve did not converge; solving from scratch"),
             Err(e) => tracing::info!(md, error = %e, "warm-started solve failed; solving from scratch"),

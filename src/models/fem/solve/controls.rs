@@ -1,0 +1,43 @@
+//! The controls of a solve: iteration limit, tolerances, contact scheme.
+
+use crate::case::{Method, SolverSettings};
+
+/// Solver controls.
+#[derive(Debug, Clone, Copy)]
+pub struct SolveControls {
+    /// Iteration limit.
+    pub max_iterations: usize,
+    /// Allowed penetration relative to the clearance (interface `tolerance`).
+    pub gap_tolerance: f64,
+    /// Residual tolerance relative to the load scale.
+    pub residual_tolerance: f64,
+    /// Contact scheme.
+    pub method: Method,
+    /// Relaxation `alpha` of the modified Newton's gap-force update (`method = "paper"`, eq. 15).
+    pub alpha: f64,
+}
+
+impl SolveControls {
+    /// Controls from a case's `[solver]` table (iteration limit, gap tolerance, scheme, alpha).
+    pub fn from_settings(s: &SolverSettings) -> SolveControls {
+        SolveControls {
+            max_iterations: s.max_iterations,
+            gap_tolerance: s.tolerance,
+            method: s.method,
+            alpha: s.alpha,
+            ..SolveControls::default()
+        }
+    }
+}
+
+impl Default for SolveControls {
+    fn default() -> Self {
+        SolveControls {
+            max_iterations: 300,
+            gap_tolerance: 1e-4,
+            residual_tolerance: 1e-7,
+            method: Method::Newton,
+            alpha: 0.7,
+        }
+    }
+}

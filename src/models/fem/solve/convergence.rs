@@ -1,0 +1,159 @@
+//! Convergence measures of the contact Newton: the load scale that makes residuals relative,
+//! the residual norms, and the criteria of a converged solution (force residual, net force,
+//! penetration, complementarity, pins on the hole axis).
+
+use super::contacts::{ContactColumns, ContactSet};
+use super::controls::SolveControls;
+use super::pins::pin_offset_m;
+use crate::geometry::Vec3;
+use crate::models::fem::model::{Evaluation, Model};
+
+/// Smallest clearance the gap tolerance is measured against, m: a gap's penetration counts
+/// relative to `max(clearance, this)`, and a pin's offset relative to this.
+pub(crate) const MIN_REFERENCE_CLEARANCE_M: f64 = 1e-3;
+
+/// Net force of the residual allowed at convergence, in units of the residual tolerance (both
+/// relative to the load scale): every entry below the tolerance is not enough when thousands
+/// of nodes' small imbalances add up in the global equilibrium check.
+pub const NET_FORCE_TOLERANCE: f64 = 1.0;
+
+/// Largest complementarity `|R min(gap, 0)|` allowed at convergence, relative to the load scale
+/// times the clearance.
+const COMPLEMENTARITY_TOLERANCE: f64 = 1e-6;
+
+/// Outer residual (relative to the load scale) below which a full Newton step of the
+/// interior-point Newton is expected to converge: the next evaluation is then made without
+/// the tangent first (the converged one needs none), and redone with it if the expectation
+/// fails. Newton converges quadratically here (e.g. 8e-3, 8e-5, 3e-8 on a 3,000 m string).
+pub const LIKELY_CONVERGED_RESIDUAL: f64 = 1e-3;
+
+/// After two Newton iterations, a full step is expected to converge only if the next residual
+/// predicted from the last contraction (`rn^2 / rn_prev`) is below this many residual
+/// tolerances (the cold BHA's 0.05, 7.6e-4, 5e-6: the step from 7.6e-4 is not probed).
+pub const LIKELY_CONVERGED_FACTOR: f64 = 10.0;
+
+/// Load scale used for relative residuals: total buoyed weight plus WOB (and a given hook
+/// load) plus 1 kN, N.
+pub fn load_scale(model: &Model) -> f64 {
+    let w: f64 = model
+        .mesh
+        .elements
+        .iter()
+        .zip(&model.sections)
+        .map(|(e, s)| e.buoyed_weight_n_per_m.abs() * s.l0)
+        .sum();
+    w + model.loads.wob_n.abs() + model.loads.hook_load_n.unwrap_or(0.0).abs() + 1e3
+}
+
+/// Largest residual entry relative to the load scale `scale` (N).
+pub(crate) fn residual_norm(r: &[f64], scale: f64) -> f64 {
+    r.iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
+}
+
+/// Index of the entry of `r` largest in magnitude (0 for an empty `r`).
+pub(crate) fn largest_entry(r: &[f64]) -> usize {
+    r.iter()
+        .enumerate()
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map(|(d, _)| d)
+        .unwrap_or(0)
+}
+
+/// The outer residual of one linearization of the interior-point Newton.
+pub(crate) struct OuterResidual {
+    /// The residual with the multipliers as the managed gaps' contact forces and the
+    /// constrained entries zeroed, N and N.m (DOF order).
+    pub(crate) forces: Vec<f64>,
+    /// The WOB equation's residual (axial reaction at the bit + WOB), N; 0 when the hook load
+    /// is given.
+    pub(crate) wob: f64,
+}
+
+/// How far one linearization of the interior-point Newton is from a solution.
+pub(crate) struct Measures {
+    /// Outer residual: largest entry of the residual with the multipliers as contact forces,
+    /// or of the WOB equation, relative to the load scale.
+    pub(crate) rn: f64,
+    /// Largest penetration of a managed gap relative to its clearance (at least
+    /// [`MIN_REFERENCE_CLEARANCE_M`]); negative when all are open.
+    pub(crate) pen: f64,
+    /// Distance from the bit of the node with the largest penetration (for the log), m.
+    pub(crate) pen_s: f64,
+    /// Largest complementarity `|R min(gap, 0)|` relative to the load scale times the clearance.
+    pub(crate) compl: f64,
+    /// Net force of the residual (the global equilibrium error of physics.md 6.7) relative to
+    /// the load scale: the entries are each below the tolerance, but thousands of them may add up.
+    pub(crate) net: f64,
+    /// Largest offset of a pin from the hole axis, m.
+    pub(crate) pin_offset: f64,
+}
+
+impl Measures {
+    /// Measures of the outer residual `outer` at the evaluation `ev`, with the managed gaps of
+    /// `contacts` at the gaps of `cols` and the multipliers `multipliers` (N, per node),
+    /// relative to the load scale `scale` (N).
+    pub(crate) fn of(
+        model: &Model,
+        ev: &Evaluation,
+        contacts: &ContactSet,
+        cols: &ContactColumns,
+        outer: &OuterResidual,
+        multipliers: &[f64],
+        scale: f64,
+    ) -> Measures {
+        let (rt, gaps0) = (&outer.forces, &cols.gaps0);
+        let rn = residual_norm(rt, scale).max(outer.wob.abs() / scale);
+        let mut pen: f64 = 0.0;
+        let mut compl: f64 = 0.0;
+        let mut pen_s = 0.0;
+        for (j, &i) in contacts.qidx.iter().enumerate() {
+            let eo = ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M);
+            if gaps0[j] / eo > pen {
+                pen_s = model.mesh.nodes[i].s_m;
+            }
+            pen = pen.max(gaps0[j] / eo);
+            compl = compl.max((multipliers[i] * gaps0[j].min(0.0)).abs() / (scale * eo));
+        }
+        let net = (0..model.nodes())
+            .map(|i| model.basis[i] * Vec3::new(rt[model.dof(i, 0)], rt[model.dof(i, 1)], rt[model.dof(i, 2)]))
+            .sum::<Vec3>()
+            .norm()
+            / scale;
+        Measures {
+            rn,
+            pen,
+            pen_s,
+            compl,
+            net,
+            pin_offset: pin_offset_m(ev, &contacts.pins),
+        }
+    }
+
+    /// Equilibrium within the controls' tolerances: residual, net force, penetration and
+    /// complementarity.
+    pub(crate) fn equilibrium(&self, ctl: &SolveControls) -> bool {
+        self.rn < ctl.residual_tolerance
+            && self.net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
+            && self.pen <= ctl.gap_tolerance
+            && self.compl < COMPLEMENTARITY_TOLERANCE
+    }
+
+    /// The pins (zero-clearance gaps, full-gauge stabilizers) are on the hole axis within the
+    /// gap tolerance of the smallest clearance the managed gaps are measured against.
+    pub(crate) fn pins_held(&self, ctl: &SolveControls) -> bool {
+        self.pin_offset <= ctl.gap_tolerance * MIN_REFERENCE_CLEARANCE_M
+    }
+}
+
+/// Whether the Newton step just taken (scaled by `alpha`, from the outer residual `rn` after
+/// the residuals `history`) is expected to converge: full, from below
+/// [`LIKELY_CONVERGED_RESIDUAL`], and, after a previous iteration, its contraction (the next
+/// residual predicted as `rn^2 / rn_prev`) says so too. A probe that fails costs a
+/// residual-only evaluation.
+pub(crate) fn likely_converged(alpha: f64, rn: f64, history: &[f64], ctl: &SolveControls) -> bool {
+    let predicted = match history.len() {
+        0 | 1 => 0.0,
+        k => rn * rn / history[k - 2],
+    };
+    alpha == 1.0 && rn < LIKELY_CONVERGED_RESIDUAL && predicted < LIKELY_CONVERGED_FACTOR * ctl.residual_tolerance
+}

@@ -1,0 +1,588 @@
+//! The contact subproblem of one Newton step, solved by a primal-dual interior-point method on
+//! the band system: `K du + N R = -r0`, `N^T du + s = -g`, `R, s >= 0`, `R s = 0` (`du` the
+//! displacement increment, `R` the contact forces, `s` the slacks of the linearized gaps `g`),
+//! bordered by the hook-load equation. Each iteration factors `K + N diag(R/s) N^T`, which
+//! keeps the band structure (a rank-one 3x3 block per contact), and makes two solves with it
+//! (Mehrotra predictor-corrector: the affine direction sets the centering, the corrector adds
+//! the second-order complementarity term). The iteration is warm-started from the previous
+//! step's multipliers, shifted off the boundary in proportion to the outer residual
+//! ([`IP_START_SHIFT`]), and stopped at a tolerance tied to the outer residual
+//! (`ip_tolerance`: inexact Newton, exact near convergence). Near convergence it first tries
+//! the active-set step of the last contact set ([`ACTIVE_SET_RESIDUAL`]).
+
+use super::contacts::ContactColumns;
+use super::convergence::MIN_REFERENCE_CLEARANCE_M;
+use super::matrix_and_factor::MatrixAndFactor;
+use super::solution::{singular, SolveError, SolveStats};
+use crate::models::fem::model::{Evaluation, Model, StiffnessSink, HALF_BANDWIDTH};
+
+/// Shift of the interior-point warm start off the boundary, per unit of outer residual:
+/// multipliers get `+ shift * load_scale / contacts`, slacks `+ shift * clearance`, with
+/// `shift = clamp(IP_START_SHIFT * rn, 1e-6, 0.1)`.
+pub const IP_START_SHIFT: f64 = 0.1;
+
+/// Consecutive interior-point steps shorter than 1e-2 after which the contact subproblem of a
+/// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
+pub const IP_STALL_STEPS: usize = 5;
+
+/// Restarts of an interior-point solve stalled near the solution (inner tolerance at most 1e-8),
+/// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
+/// boundary. Far from the solution it does not restart: a restart there discards the warm
+/// start's contact set and makes the outer iteration wander on the horizontal WOB case of
+/// tests/extremes.rs (thousands of factorizations).
+pub const IP_RESTARTS: usize = 2;
+
+/// Growth of the warm-start shift at each interior-point restart.
+pub const IP_RESTART_SHIFT_FACTOR: f64 = 100.0;
+
+/// Interior-point iterations allowed per Newton step.
+pub const MAX_IP_ITERATIONS: usize = 60;
+
+/// Outer residual (relative to the load scale) below which an interior-point solve first
+/// tries the active-set step of the last contact set (one factorization; [`ACTIVE_SET_TRIES`]
+/// with the pairs that left the set switched), the interior point taking over when the set
+/// does not hold.
+pub const ACTIVE_SET_RESIDUAL: f64 = 1e-3;
+
+/// Distance from the boundary of the active-set step's start, and how far past it a pair may
+/// end and still count as in its set: relative to the clearance (slacks) and to the load scale
+/// per contact (multipliers).
+pub const ACTIVE_SET_EPS: f64 = 1e-9;
+
+/// Active-set steps tried per Newton step before the interior point takes over.
+pub const ACTIVE_SET_TRIES: usize = 2;
+
+/// Smallest force of a pair in the active set's start, per contact's share of the load scale:
+/// a pair with less force (one just touching, at the end of a contact run) starts outside the
+/// set.
+pub const ACTIVE_SET_MIN_FORCE: f64 = 1e-3;
+
+/// Relative tolerance of the interior-point solve of one linearization whose outer residual
+/// (relative to the load scale) is `rn`: `min(1e-2 rn, rn^2)`, never below 1e-10 (the exact
+/// tolerance used at convergence).
+pub(crate) fn ip_tolerance(rn: f64) -> f64 {
+    (1e-2 * rn).min(rn * rn).max(1e-10)
+}
+
+/// Largest step in (0, 1] keeping `r + a dr` and `s + a ds` positive, times `tau`
+/// (fraction to the boundary).
+fn step_to_boundary(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64], tau: f64) -> f64 {
+    let mut a: f64 = 1.0;
+    for j in 0..r.len() {
+        if dr[j] < 0.0 {
+            a = a.min(-tau * r[j] / dr[j]);
+        }
+        if ds[j] < 0.0 {
+            a = a.min(-tau * s[j] / ds[j]);
+        }
+    }
+    a
+}
+
+/// The previous multiplier of each contact of `cols` (N; the far-wall planes: 0), from the
+/// multipliers per node `multipliers` of the managed gaps `qidx`.
+pub(crate) fn previous_multipliers(cols: &ContactColumns, qidx: &[usize], multipliers: &[f64]) -> Vec<f64> {
+    let m = qidx.len();
+    (0..cols.len())
+        .map(|j| if j < m { multipliers[qidx[j]] } else { 0.0 })
+        .collect()
+}
+
+/// Clearance of each contact's node at the evaluation `ev`, at least
+/// [`MIN_REFERENCE_CLEARANCE_M`], m.
+pub(crate) fn contact_clearances(cols: &ContactColumns, ev: &Evaluation) -> Vec<f64> {
+    cols.node
+        .iter()
+        .map(|&i| ev.clearance[i].max(MIN_REFERENCE_CLEARANCE_M))
+        .collect()
+}
+
+/// The six DOFs of each contact's node.
+pub(crate) fn contact_dofs(model: &Model, cols: &ContactColumns) -> Vec<[usize; 6]> {
+    cols.node
+        .iter()
+        .map(|&i| std::array::from_fn(|k| model.dof(i, k)))
+        .collect()
+}
+
+/// Diagonal given to the held DOFs of `lin`'s matrix (any positive value: they are
+/// decoupled): the mean magnitude of its positive finite diagonal entries (1 if none).
+pub(crate) fn constraint_scale(lin: &MatrixAndFactor, n: usize) -> f64 {
+    let (sum, cnt) = (0..n)
+        .map(|d| lin.get(d, d).abs())
+        .filter(|v| *v > 0.0 && v.is_finite())
+        .fold((0.0, 0usize), |(s, c), v| (s + v, c + 1));
+    if cnt > 0 {
+        sum / cnt as f64
+    } else {
+        1.0
+    }
+}
+
+/// The contact subproblem of one linearization, with the tangent `K` assembled (and kept in
+/// `base` when the factorization overwrites it).
+pub(crate) struct ContactSubproblem<'a> {
+    /// The model.
+    pub(crate) model: &'a Model,
+    /// The linearized contacts.
+    pub(crate) cols: &'a ContactColumns,
+    /// Managed-gap contact index of each node (`usize::MAX`: none).
+    pub(crate) contact_at: &'a [usize],
+    /// Residual with the constrained entries zeroed, N and N.m (DOF order).
+    pub(crate) r0: &'a [f64],
+    /// The WOB equation's residual, N.
+    pub(crate) c: f64,
+    /// The bit's axial row of `K` over the free columns.
+    pub(crate) kb: &'a [(usize, f64)],
+    /// Top axial DOF (the hook-load column).
+    pub(crate) top_ax: usize,
+    /// Whether the hook load is unknown (the system is bordered).
+    pub(crate) bordered: bool,
+    /// Held DOFs.
+    pub(crate) constrained: &'a [usize],
+    /// Prescribed increments of held DOFs (DOF, m): the switching pins' lateral moves.
+    pub(crate) pin_move: &'a [(usize, f64)],
+    /// The assembled `K` kept for the factorizations (`None`: in the factored object itself).
+    pub(crate) base: Option<&'a MatrixAndFactor>,
+    /// Diagonal of the held DOFs.
+    pub(crate) constraint_scale: f64,
+    /// Load scale, N.
+    pub(crate) scale: f64,
+    /// Relative tolerance of this solve ([`ip_tolerance`]).
+    pub(crate) eta: f64,
+    /// Previous multiplier per contact, N ([`previous_multipliers`]).
+    pub(crate) lam_prev: Vec<f64>,
+    /// Reference clearance per contact, m ([`contact_clearances`]).
+    pub(crate) clr: Vec<f64>,
+    /// DOFs of each contact's node ([`contact_dofs`]).
+    pub(crate) dofs6: Vec<[usize; 6]>,
+}
+
+/// An iterate of the interior point.
+pub(crate) struct IpIterate {
+    /// Displacement increment of the linearization (DOF order, node bases).
+    pub(crate) du: Vec<f64>,
+    /// Hook-load change, N.
+    pub(crate) dh: f64,
+    /// Contact forces, N.
+    pub(crate) r: Vec<f64>,
+    /// Slacks of the linearized gaps, m.
+    pub(crate) s: Vec<f64>,
+}
+
+/// The interior point's result: its last iterate and the iterations made.
+pub(crate) struct IpSolution {
+    /// The last iterate.
+    pub(crate) iterate: IpIterate,
+    /// Interior-point iterations (factorizations) made.
+    pub(crate) iterations: usize,
+}
+
+/// Residuals of an iterate and the work vectors of one interior-point iteration.
+struct Work {
+    /// Dual residual `K du + N R + r0` (hook-load column included), DOF order.
+    rd: Vec<f64>,
+    /// Primal residual `N^T du + s + g` per contact, m.
+    rp: Vec<f64>,
+    /// Right-hand side, then the solved `du` direction.
+    rhs: Vec<f64>,
+    /// `K^-1 e_top` (the hook-load column solved).
+    b_top: Vec<f64>,
+    /// Complementarity target per contact.
+    rc: Vec<f64>,
+    /// Corrector slack and force directions.
+    ds: Vec<f64>,
+    dr: Vec<f64>,
+    /// Affine (predictor) slack and force directions.
+    ds_aff: Vec<f64>,
+    dr_aff: Vec<f64>,
+    /// The WOB equation's residual at the iterate, N.
+    cb: f64,
+    /// `kb . K^-1 e_top`.
+    kbb: f64,
+    /// Scratch of the matrix product.
+    mul: Vec<f64>,
+}
+
+/// Sizes of an iterate's residuals.
+struct Residuals {
+    /// Mean complementarity `R s`, N.m.
+    mu: f64,
+    /// Largest dual residual relative to the load scale.
+    rd_n: f64,
+    /// Largest primal residual relative to the clearance.
+    rp_n: f64,
+}
+
+impl ContactSubproblem<'_> {
+    /// Number of contacts.
+    fn mt(&self) -> usize {
+        self.cols.len()
+    }
+
+    /// The warm start of the contact forces, shifted `shift` off the boundary.
+    fn start_r(&self, shift: f64) -> Vec<f64> {
+        let mt = self.mt();
+        (0..mt)
+            .map(|j| self.lam_prev[j].max(0.0) + shift * self.scale / mt.max(1) as f64)
+            .collect()
+    }
+
+    /// The warm start of the slacks, shifted `shift` off the boundary.
+    fn start_s(&self, shift: f64) -> Vec<f64> {
+        (0..self.mt())
+            .map(|j| (-self.cols.gaps0[j]).max(1e-6 * self.clr[j]) + shift * self.clr[j])
+            .collect()
+    }
+
+    /// The warm start: the step at the prescribed increments (the switching pins'), zero
+    /// elsewhere, and the shifted multipliers and slacks.
+    fn start(&self, shift: f64) -> IpIterate {
+        let mut du = vec![0.0; self.model.dofs()];
+        for &(d, v) in self.pin_move {
+            du[d] = v;
+        }
+        IpIterate {
+            du,
+            dh: 0.0,
+            r: self.start_r(shift),
+            s: self.start_s(shift),
+        }
+    }
+
+    /// Each contact's share of the load scale, N.
+    fn per_contact(&self) -> f64 {
+        self.scale / self.mt().max(1) as f64
+    }
+
+    /// The last step's contact set: a pair is in it when its force (per contact's share of
+    /// the load scale) is the larger side of the complementarity pair, the open gap (per
+    /// clearance) the other.
+    fn initial_set(&self) -> Vec<bool> {
+        let per_contact = self.per_contact();
+        (0..self.mt())
+            .map(|j| {
+                self.lam_prev[j] / per_contact
+                    > ((-self.cols.gaps0[j]).max(0.0) / self.clr[j]).max(ACTIVE_SET_MIN_FORCE)
+            })
+            .collect()
+    }
+
+    /// Start of the active-set step of the set `in_set`: pairs in the set on the boundary
+    /// (slack [`ACTIVE_SET_EPS`] clearances: the linearized gap held closed), the others with
+    /// zero force (their force held at zero).
+    fn active_set_start(&self, in_set: &[bool], it: &mut IpIterate) {
+        let per_contact = self.per_contact();
+        for (j, &inside) in in_set.iter().enumerate() {
+            if inside {
+                // at least the contact's share of the load scale: the pair's compliance in
+                // the step's matrix is its slack over this force, and it ends the step
+                // `slack * dR / R` past the wall
+                it.r[j] = self.lam_prev[j].max(per_contact);
+                it.s[j] = ACTIVE_SET_EPS * self.clr[j];
+            } else {
+                it.r[j] = 0.0;
+                it.s[j] = (-self.cols.gaps0[j]).max(self.clr[j]);
+            }
+        }
+    }
+
+    /// Motion of contact `j`'s node along its normal in the increment `u`, m.
+    fn radial(&self, j: usize, u: &[f64]) -> f64 {
+        (0..3).map(|k| self.cols.normals[j][k] * u[self.dofs6[j][k]]).sum()
+    }
+
+    /// Residuals of the iterate `it` (the `ip`-th) into `w` (`K du` vanishes before the first
+    /// step when `du` starts at zero).
+    fn residuals(&self, lin: &MatrixAndFactor, ip: usize, it: &IpIterate, w: &mut Work) -> Residuals {
+        let (mt, eq_cols) = (self.mt(), &self.cols.eq_cols);
+        w.rd.copy_from_slice(self.r0);
+        if ip > 0 || !self.pin_move.is_empty() {
+            lin.matrix_mul_add(self.base, &it.du, &mut w.rd, &mut w.mul);
+        }
+        for (j, col) in eq_cols.iter().enumerate() {
+            for (k, e) in col.iter().enumerate() {
+                w.rd[self.dofs6[j][k]] += it.r[j] * e;
+            }
+        }
+        w.rd[self.top_ax] += it.dh;
+        for &d in self.constrained {
+            w.rd[d] = 0.0;
+        }
+        for j in 0..mt {
+            w.rp[j] = self.radial(j, &it.du) + it.s[j] + self.cols.gaps0[j];
+        }
+        w.cb = if self.bordered {
+            self.c + self.kb.iter().map(|&(d, v)| v * it.du[d]).sum::<f64>()
+        } else {
+            0.0
+        };
+        Residuals {
+            mu: (0..mt).map(|j| it.r[j] * it.s[j]).sum::<f64>() / mt.max(1) as f64,
+            rd_n: w.rd.iter().fold(0.0f64, |a, v| a.max(v.abs())) / self.scale,
+            rp_n: (0..mt).map(|j| w.rp[j].abs() / self.clr[j]).fold(0.0, f64::max),
+        }
+    }
+
+    /// Whether the residuals `res` (and the WOB equation's `cb`, N) are within the tolerance.
+    fn solved(&self, res: &Residuals, cb: f64) -> bool {
+        let (eta, scale) = (self.eta, self.scale);
+        res.rd_n < eta && res.rp_n < 10.0 * eta && res.mu < 1e-2 * eta * scale * 1e-3 && cb.abs() < eta * scale
+    }
+
+    /// Factor the reduced matrix `K + N diag(R/s) N^T` of the iterate `it`. Row form: row `i`
+    /// (DOF `k` of a contact node) gets `D e_k g^T` on the node's translation columns.
+    fn factor(&self, lin: &mut MatrixAndFactor, it: &IpIterate) -> Result<(), SolveError> {
+        let (cols, nn) = (self.cols, self.model.nodes());
+        let (r_f, s_v) = (&it.r, &it.s);
+        let add_row = |i: usize, row: &mut [f64]| {
+            let node = nn - 1 - i / 6;
+            for j in cols.of_node(self.contact_at, node) {
+                let k = i % 6;
+                let e = r_f[j] / s_v[j] * cols.eq_cols[j][k];
+                // the node's first DOF i - k sits at offset HALF_BANDWIDTH - k
+                let off = HALF_BANDWIDTH - k;
+                for cc in 0..3 {
+                    row[off + cc] += e * cols.normals[j][cc];
+                }
+            }
+        };
+        let add = |sink: &mut dyn StiffnessSink| {
+            for j in 0..self.mt() {
+                let dj = r_f[j] / s_v[j];
+                let nv = cols.normals[j];
+                // D e_j g_j^T: rows = equilibrium column (6), columns = gap normal (3)
+                let mut blk = [0.0; 36];
+                for r in 0..6 {
+                    for cc in 0..3 {
+                        blk[r * 6 + cc] = dj * cols.eq_cols[j][r] * nv[cc];
+                    }
+                }
+                sink.add_block(&self.dofs6[j], &blk, 6);
+            }
+        };
+        lin.factor_modified(self.base, self.constrained, self.constraint_scale, add_row, add)
+            .map_err(|e| singular(self.model, e))
+    }
+
+    /// Right-hand side of one Newton solve of the (du, R, s) system for the complementarity
+    /// target `w.rc` (of `R ds + s dR`), into `w.rhs`: `-rd - E S^-1 (rc + R rp)`.
+    fn build_rhs(&self, it: &IpIterate, w: &mut Work) {
+        for (x, v) in w.rhs.iter_mut().zip(&w.rd) {
+            *x = -v;
+        }
+        for j in 0..self.mt() {
+            let wj = (w.rc[j] + it.r[j] * w.rp[j]) / it.s[j];
+            for k in 0..6 {
+                w.rhs[self.dofs6[j][k]] -= wj * self.cols.eq_cols[j][k];
+            }
+        }
+        for &d in self.constrained {
+            w.rhs[d] = 0.0;
+        }
+    }
+
+    /// Solve the predictor's right-hand side together with the hook-load column `K^-1 e_top`
+    /// (one pass over the factor for both); sets `w.kbb`.
+    fn solve_predictor(&self, lin: &MatrixAndFactor, w: &mut Work) {
+        w.kbb = if self.bordered {
+            w.b_top.fill(0.0);
+            w.b_top[self.top_ax] = 1.0;
+            lin.solve2(&mut w.b_top, &mut w.rhs);
+            self.kb.iter().map(|&(d, v)| v * w.b_top[d]).sum::<f64>()
+        } else {
+            lin.solve(&mut w.rhs);
+            0.0
+        };
+    }
+
+    /// With the solved `w.rhs`: the hook-load step (returned, N), the `du` direction (in
+    /// `w.rhs`), and the slack and force directions (the affine ones when `affine`).
+    fn finish(&self, it: &IpIterate, w: &mut Work, affine: bool) -> f64 {
+        let Work {
+            rhs,
+            b_top,
+            rc,
+            rp,
+            ds,
+            dr,
+            ds_aff,
+            dr_aff,
+            cb,
+            kbb,
+            ..
+        } = w;
+        let (ds, dr) = if affine { (ds_aff, dr_aff) } else { (ds, dr) };
+        let dh = if self.bordered {
+            let kba: f64 = self.kb.iter().map(|&(d, v)| v * rhs[d]).sum();
+            let dh = if kbb.abs() > 1e-30 { (*cb + kba) / *kbb } else { 0.0 };
+            for (x, bt) in rhs.iter_mut().zip(b_top.iter()) {
+                *x -= dh * bt;
+            }
+            dh
+        } else {
+            0.0
+        };
+        for j in 0..self.mt() {
+            ds[j] = -rp[j] - self.radial(j, rhs);
+            dr[j] = (rc[j] - it.r[j] * ds[j]) / it.s[j];
+        }
+        dh
+    }
+
+    /// The active-set step: the affine direction is taken in full when no pair leaves its set
+    /// `in_set` (the equality-constrained Newton step of that set; returns `true`); otherwise
+    /// the pairs that left it switch sides (returns `false`).
+    fn try_active_set(&self, in_set: &mut [bool], it: &mut IpIterate, w: &Work, dh_aff: f64) -> bool {
+        let eps_r = ACTIVE_SET_EPS * self.per_contact();
+        let mut switched = 0usize;
+        for (j, inside) in in_set.iter_mut().enumerate() {
+            if *inside && it.r[j] + w.dr_aff[j] < -eps_r {
+                *inside = false;
+                switched += 1;
+            } else if !*inside && it.s[j] + w.ds_aff[j] < -ACTIVE_SET_EPS * self.clr[j] {
+                *inside = true;
+                switched += 1;
+            }
+        }
+        tracing::trace!(switched, "active-set step");
+        if switched > 0 {
+            return false;
+        }
+        for (x, d) in it.du.iter_mut().zip(&w.rhs) {
+            *x += d;
+        }
+        it.dh += dh_aff;
+        for j in 0..self.mt() {
+            it.r[j] = (it.r[j] + w.dr_aff[j]).max(0.0);
+            it.s[j] = (it.s[j] + w.ds_aff[j]).max(0.0);
+        }
+        true
+    }
+
+    /// Mehrotra's corrector after the affine direction in `w`: the centering
+    /// `sigma = (mu_aff / mu)^3` and the second-order term of the complementarity, solved and
+    /// taken to 0.995 of the boundary. Returns the step length.
+    fn corrector(&self, lin: &MatrixAndFactor, it: &mut IpIterate, w: &mut Work, res: &Residuals) -> f64 {
+        let mt = self.mt();
+        let mu = res.mu;
+        let a_aff = step_to_boundary(&it.r, &w.dr_aff, &it.s, &w.ds_aff, 1.0);
+        let mu_aff = (0..mt)
+            .map(|j| (it.r[j] + a_aff * w.dr_aff[j]) * (it.s[j] + a_aff * w.ds_aff[j]))
+            .sum::<f64>()
+            / mt.max(1) as f64;
+        let sigma = if mu > 0.0 {
+            (mu_aff / mu).clamp(0.0, 1.0).powi(3)
+        } else {
+            0.0
+        };
+        for j in 0..mt {
+            w.rc[j] = -it.r[j] * it.s[j] + sigma * mu - w.dr_aff[j] * w.ds_aff[j];
+        }
+        self.build_rhs(it, w);
+        lin.solve(&mut w.rhs);
+        let ddh = self.finish(it, w, false);
+        let alpha = step_to_boundary(&it.r, &w.dr, &it.s, &w.ds, 0.995);
+        let (rd_n, rp_n) = (res.rd_n, res.rp_n);
+        tracing::trace!(rd_n, rp_n, mu_rel = mu / (self.scale * 1e-3), a_aff, sigma, alpha, "ip");
+        for (x, d) in it.du.iter_mut().zip(&w.rhs) {
+            *x += alpha * d;
+        }
+        it.dh += alpha * ddh;
+        for j in 0..mt {
+            it.r[j] += alpha * w.dr[j];
+            it.s[j] += alpha * w.ds[j];
+        }
+        alpha
+    }
+
+    /// Solve the subproblem from the outer residual `rn`, first by the active-set step when
+    /// `try_active_set` ([`ACTIVE_SET_TRIES`] with the pairs that left the set switched), the
+    /// interior point taking over when the set does not hold. Counts the factorizations in
+    /// `stats`.
+    pub(crate) fn solve(
+        &self,
+        lin: &mut MatrixAndFactor,
+        stats: &mut SolveStats,
+        rn: f64,
+        try_active_set: bool,
+    ) -> Result<IpSolution, SolveError> {
+        let (n, mt) = (self.model.dofs(), self.mt());
+        // warm start from the previous multipliers, pushed off the boundary by a shift that
+        // grows with the outer residual (far from the solution the old contact set is a poor
+        // guess, and pairs pinned at the boundary would block the interior-point steps)
+        let mut shift = (IP_START_SHIFT * rn).clamp(1e-6, 1e-1);
+        let mut it = self.start(shift);
+        let mut in_set = self.initial_set();
+        let mut active_set_tries = if try_active_set { ACTIVE_SET_TRIES } else { 0 };
+        if active_set_tries > 0 {
+            self.active_set_start(&in_set, &mut it);
+        }
+        let mut w = Work {
+            rd: vec![0.0; n],
+            rp: vec![0.0; mt],
+            rhs: vec![0.0; n],
+            b_top: vec![0.0; n],
+            rc: vec![0.0; mt],
+            ds: vec![0.0; mt],
+            dr: vec![0.0; mt],
+            ds_aff: vec![0.0; mt],
+            dr_aff: vec![0.0; mt],
+            cb: 0.0,
+            kbb: 0.0,
+            mul: Vec::new(),
+        };
+        let (mut iterations, mut stalled, mut restarts) = (0usize, 0usize, 0usize);
+        for ip in 0..MAX_IP_ITERATIONS {
+            let res = self.residuals(lin, ip, &it, &mut w);
+            if self.solved(&res, w.cb) {
+                break;
+            }
+            iterations += 1;
+            self.factor(lin, &it)?;
+            stats.factorizations += 1;
+            // Mehrotra predictor: the affine-scaling direction (no centering)
+            for j in 0..mt {
+                w.rc[j] = -it.r[j] * it.s[j];
+            }
+            self.build_rhs(&it, &mut w);
+            self.solve_predictor(lin, &mut w);
+            let dh_aff = self.finish(&it, &mut w, true);
+            if active_set_tries > 0 {
+                active_set_tries -= 1;
+                if self.try_active_set(&mut in_set, &mut it, &w, dh_aff) {
+                    break;
+                }
+                if active_set_tries > 0 {
+                    self.active_set_start(&in_set, &mut it);
+                } else {
+                    it.r = self.start_r(shift);
+                    it.s = self.start_s(shift);
+                }
+                continue;
+            }
+            let alpha = self.corrector(lin, &mut it, &mut w, &res);
+            stalled = if alpha < 1e-2 { stalled + 1 } else { 0 };
+            // a stalled interior point (friction makes the contact problem non-monotone) far
+            // from the solution: take the step found so far
+            if stalled >= IP_STALL_STEPS && self.eta > 1e-8 {
+                break;
+            }
+            // stalled near the solution (where the exact tolerance is asked): the warm start sat
+            // too close to the boundary for a pair that has to change (a contact switching while
+            // its force and gap are both near zero), and the remaining iterations would creep
+            // at steps of 1e-3; start again from a more central point
+            if stalled >= IP_STALL_STEPS && restarts < IP_RESTARTS {
+                restarts += 1;
+                shift = (shift * IP_RESTART_SHIFT_FACTOR).min(1e-1);
+                it = self.start(shift);
+                stalled = 0;
+                tracing::debug!(restarts, shift, "interior point restarted");
+            }
+        }
+        Ok(IpSolution {
+            iterate: it,
+            iterations,
+        })
+    }
+}

@@ -1,0 +1,338 @@
+//! The interior-point contact Newton (`method = "newton"`, the default): Newton iterations on
+//! the co-rotational model with the consistent tangent, each step solving the linearized
+//! contact problem of all gaps but the pins by the interior-point method of
+//! [`super::interior_point`].
+//!
+//! Friction enters the residual exactly: it is proportional to the unknown normal force (the
+//! equilibrium columns of [`super::contacts`]); the rotation of the contact normal enters the
+//! tangent as the circle stiffness `(R/s)(I - t t^T - n n^T)` and the rotation of the friction
+//! direction as the gaps' geometric stiffness at the previous multipliers. The zero-clearance
+//! gaps (pins) are penalty springs until the outer residual falls below
+//! [`PIN_EXACT_RESIDUAL`], then exact constraints ([`super::pins`]): held on the hole axis by
+//! their lateral DOFs (the step at the switch prescribes the lateral increments that take them
+//! from the penalty's give onto the axis), their force the reaction with its friction
+//! linearized; no augmented-Lagrangian phase. The hook load is found with the bordered system
+//! of [`super::hook_load_system`]; each step is capped ([`super::step_caps`]). A step that is
+//! likely the last is followed by an evaluation without the tangent
+//! ([`super::convergence::LIKELY_CONVERGED_RESIDUAL`]). The linearization is checked against
+//! central differences in `interior_point_newton_tests.rs`.
+
+use super::contacts::{add_circle_stiffness, contact_columns, contact_residual, ContactColumns, ContactSet};
+use super::controls::SolveControls;
+use super::convergence::{largest_entry, likely_converged, load_scale, Measures, OuterResidual};
+use super::hook_load_system::{bit_row, free_residual};
+use super::interior_point::{
+    constraint_scale, contact_clearances, contact_dofs, ip_tolerance, previous_multipliers, ContactSubproblem,
+    ACTIVE_SET_RESIDUAL,
+};
+use super::matrix_and_factor::MatrixAndFactor;
+use super::pins::{add_pin_coupling, constrained_with_pins, hold_pins_on_axis, pin_moves, PIN_EXACT_RESIDUAL};
+use super::solution::{Solution, SolveError, SolveStats};
+use super::start::cold_start;
+use super::step_caps::step_cap;
+use crate::geometry::Vec3;
+use crate::models::fem::model::{Evaluation, GapTreatment, Model, State};
+use std::time::Instant;
+
+/// Solve the static problem of `model` from its start ([`cold_start`]) by the interior-point
+/// contact Newton with the fully consistent co-rotational tangent; an unconverged solve is
+/// returned flagged (`converged == false`).
+pub fn solve_interior_point(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    let t0 = Instant::now();
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    let state = cold_start(model);
+    let mut sol = solve_interior_point_from(&consistent, state, ctl)?;
+    sol.stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(sol)
+}
+
+/// Solve the static problem of `model` by the interior-point contact Newton from `state` (a
+/// start, or a warm start carried from a neighbouring solution; one that carries the pins'
+/// forces holds the pins exactly from the first iteration).
+pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    let t0 = Instant::now();
+    let mut newton = InteriorPointNewton::new(model, ctl, &state);
+    let mut stats = SolveStats::default();
+    let mut converged = false;
+    // the previous Newton step was full and its outer residual small: this evaluation is
+    // likely the converged one, so it is first made without the tangent (then redone with it
+    // if the solution is not converged after all)
+    let mut likely = false;
+    let mut redo = false;
+    let mut ev;
+    loop {
+        let skip_tangent = likely && !redo;
+        redo = false;
+        let switching = newton.switch_or_hold_pins(&mut state, &stats.residual_history);
+        ev = newton.evaluate(&mut state, !skip_tangent);
+        let lz = newton.linearize(&mut state, &ev, switching);
+        let equilibrium = lz.measures.equilibrium(ctl);
+        let done = equilibrium && lz.measures.pins_held(ctl) && newton.gaps.exact_pins;
+        if skip_tangent && !done && stats.iterations < ctl.max_iterations {
+            redo = true;
+            continue;
+        }
+        stats.residual_history.push(lz.measures.rn);
+        stats.max_penetration = lz.measures.pen.max(0.0);
+        newton.log_iteration(&lz, stats.iterations);
+        if done {
+            converged = true;
+            break;
+        }
+        if stats.iterations >= ctl.max_iterations {
+            break;
+        }
+        if equilibrium && !newton.gaps.exact_pins {
+            // in equilibrium about penalty pins (a step went straight from above
+            // `PIN_EXACT_RESIDUAL` to the tolerance): the next evaluation holds them exactly
+            stats.iterations += 1;
+            likely = false;
+            continue;
+        }
+        likely = newton.step(&mut state, &ev, &lz, &mut stats)?;
+        stats.iterations += 1;
+    }
+    let eval = newton.final_evaluation(&mut state, ev);
+    stats.seconds = t0.elapsed().as_secs_f64();
+    Ok(Solution {
+        state,
+        eval,
+        converged,
+        stats,
+    })
+}
+
+/// One Newton iteration's linearization at an evaluation.
+struct Linearization {
+    /// The residual with the constrained entries zeroed, N and N.m (DOF order).
+    r0: Vec<f64>,
+    /// Prescribed increments of held DOFs (DOF, m): the switching pins' lateral moves onto
+    /// the hole axis.
+    pin_move: Vec<(usize, f64)>,
+    /// The managed gaps' linearized contacts.
+    cols: ContactColumns,
+    /// The outer residual with the multipliers as the contact forces.
+    outer: OuterResidual,
+    /// Its convergence measures.
+    measures: Measures,
+}
+
+/// The interior-point Newton's settings and system for one model.
+struct InteriorPointNewton<'a> {
+    model: &'a Model,
+    ctl: &'a SolveControls,
+    /// Load scale, N.
+    scale: f64,
+    /// The hook load is unknown (the system is bordered by the WOB equation).
+    bordered: bool,
+    /// The top axial DOF (the hook-load column).
+    top_ax: usize,
+    /// The managed gaps and the pins.
+    contacts: ContactSet,
+    /// The model's held DOFs plus the pins' lateral DOFs.
+    pin_constrained: Vec<usize>,
+    /// The DOFs held now.
+    constrained: Vec<usize>,
+    /// How the evaluation treats the gaps.
+    gaps: GapTreatment,
+    /// The tangent and its factor.
+    lin: MatrixAndFactor,
+}
+
+impl<'a> InteriorPointNewton<'a> {
+    /// The Newton of `model` from `state`: the managed gaps' forces come from the interior
+    /// point, the other gaps are open (pins aside). The pins become exact constraints once the
+    /// outer residual is below [`PIN_EXACT_RESIDUAL`] (held on the hole axis by their lateral
+    /// DOFs, their wall force the reaction, [`Model::pin_reaction`], set by each evaluation);
+    /// before that they are penalty springs about their vector multipliers. A warm start that
+    /// carries the pins' forces starts exact.
+    fn new(model: &'a Model, ctl: &'a SolveControls, state: &State) -> InteriorPointNewton<'a> {
+        let nn = model.nodes();
+        let contacts = ContactSet::of(model);
+        let pins = &contacts.pins;
+        let pin_constrained = constrained_with_pins(model, pins);
+        let exact_pins = pins.is_empty() || pins.iter().any(|&i| state.pin_multipliers[i] != Vec3::zeros());
+        let gaps = GapTreatment {
+            closed: Some(vec![false; nn]),
+            unilateral: None,
+            solver_contacts: Some(contacts.managed.clone()),
+            exact_multipliers: false,
+            exact_pins,
+        };
+        let constrained = if exact_pins {
+            pin_constrained.clone()
+        } else {
+            model.constrained_dofs()
+        };
+        InteriorPointNewton {
+            model,
+            ctl,
+            scale: load_scale(model),
+            bordered: model.loads.hook_load_n.is_none(),
+            top_ax: model.dof(nn - 1, 0),
+            contacts,
+            pin_constrained,
+            constrained,
+            gaps,
+            lin: MatrixAndFactor::for_model(model),
+        }
+    }
+
+    /// Switch to exact pins once the last outer residual in `history` is below
+    /// [`PIN_EXACT_RESIDUAL`] (returns `true`; the pins are not moved onto the axis by
+    /// themselves, their neighbours would carry the jump into the residual: the Newton step
+    /// prescribes their lateral increments instead); exact pins already: put them back on the
+    /// hole axis.
+    fn switch_or_hold_pins(&mut self, state: &mut State, history: &[f64]) -> bool {
+        let switching = !self.gaps.exact_pins && history.last().is_some_and(|&r| r < PIN_EXACT_RESIDUAL);
+        if switching {
+            self.gaps.exact_pins = true;
+            self.constrained.clone_from(&self.pin_constrained);
+        } else if self.gaps.exact_pins {
+            hold_pins_on_axis(self.model, state, &self.contacts.pins);
+        }
+        switching
+    }
+
+    /// Evaluate `state`, assembling the tangent when `with_tangent`.
+    fn evaluate(&mut self, state: &mut State, with_tangent: bool) -> Evaluation {
+        if with_tangent {
+            self.model.evaluate(state, &self.gaps, Some(self.lin.sink()))
+        } else {
+            self.model.evaluate(state, &self.gaps, None)
+        }
+    }
+
+    /// The linearization at the evaluation `ev` of `state` (whose contact normals it updates);
+    /// `switching`: the pins become exact at this iteration.
+    fn linearize(&self, state: &mut State, ev: &Evaluation, switching: bool) -> Linearization {
+        let (model, qidx) = (self.model, &self.contacts.qidx);
+        let (c, r0) = free_residual(model, ev, &self.constrained);
+        let pin_move = if switching {
+            pin_moves(model, state, ev, &self.contacts.pins)
+        } else {
+            Vec::new()
+        };
+        let mut cols = contact_columns(model, state, ev, qidx);
+        cols.add_far_walls(model, ev, qidx);
+        let outer = OuterResidual {
+            forces: contact_residual(model, &r0, qidx, &cols.eq_cols, &state.multipliers, &self.constrained),
+            wob: c,
+        };
+        let measures = Measures::of(model, ev, &self.contacts, &cols, &outer, &state.multipliers, self.scale);
+        Linearization {
+            r0,
+            pin_move,
+            cols,
+            outer,
+            measures,
+        }
+    }
+
+    /// Debug log of iteration `iteration` at the linearization `lz`.
+    fn log_iteration(&self, lz: &Linearization, iteration: usize) {
+        if tracing::enabled!(tracing::Level::DEBUG) {
+            // the largest residual entry: a scan over every DOF, made only for the log
+            let worst = largest_entry(&lz.outer.forces);
+            let m = &lz.measures;
+            tracing::debug!(
+                iteration,
+                worst_s = self.model.mesh.nodes[self.model.nodes() - 1 - worst / 6].s_m,
+                worst_dof = worst % 6,
+                pen_s = m.pen_s,
+                residual = m.rn,
+                net = m.net,
+                penetration = m.pen,
+                compl = m.compl,
+                "ip newton"
+            );
+        }
+    }
+
+    /// One Newton step from the linearization `lz` at the evaluation `ev` (whose tangent is
+    /// assembled): the contact subproblem solved by the interior point (its factorizations
+    /// counted in `stats`), the step capped and applied to `state` with the new multipliers.
+    /// Returns whether the next evaluation is likely the converged one.
+    fn step(
+        &mut self,
+        state: &mut State,
+        ev: &Evaluation,
+        lz: &Linearization,
+        stats: &mut SolveStats,
+    ) -> Result<bool, SolveError> {
+        let model = self.model;
+        let qidx = &self.contacts.qidx;
+        // circle stiffness of the current contact forces
+        add_circle_stiffness(model, self.lin.sink(), qidx, &lz.cols.geometry, &state.multipliers);
+        if self.gaps.exact_pins {
+            add_pin_coupling(model, &mut self.lin, ev, state, &self.contacts.pins);
+        }
+        let kb = bit_row(model, &self.lin, &self.constrained);
+        // the base matrix K (before interior-point terms) is kept to rebuild each iteration
+        let base = self.lin.keep_base();
+        let rn = lz.measures.rn;
+        let sub = ContactSubproblem {
+            model,
+            cols: &lz.cols,
+            contact_at: &self.contacts.contact_at,
+            r0: &lz.r0,
+            c: lz.outer.wob,
+            kb: &kb,
+            top_ax: self.top_ax,
+            bordered: self.bordered,
+            constrained: &self.constrained,
+            pin_move: &lz.pin_move,
+            base: base.as_ref(),
+            constraint_scale: constraint_scale(base.as_ref().unwrap_or(&self.lin), model.dofs()),
+            scale: self.scale,
+            eta: ip_tolerance(rn),
+            lam_prev: previous_multipliers(&lz.cols, qidx, &state.multipliers),
+            clr: contact_clearances(&lz.cols, ev),
+            dofs6: contact_dofs(model, &lz.cols),
+        };
+        // the active-set step near convergence, not at the pins' switch (their prescribed
+        // move changes the contact set)
+        let try_active_set = stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL;
+        let ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
+        let cap = step_cap(model, ev, &ip.iterate.du, qidx);
+        tracing::debug!(
+            ip_iters = ip.iterations,
+            alpha = cap.alpha,
+            rot_ratio = cap.rot_ratio,
+            rot_s = model.mesh.nodes[cap.rot_node].s_m,
+            lat_ratio = cap.lat_ratio,
+            lat_s = model.mesh.nodes[cap.lat_node].s_m,
+            "interior-point iterations and step cap (bending-rotation and lateral caps: ratio and \
+             distance from the bit of the node that sets each)"
+        );
+        let likely = likely_converged(cap.alpha, rn, &stats.residual_history, self.ctl);
+        state.hook_load_n += cap.alpha * ip.iterate.dh;
+        model.update(state, &ip.iterate.du, cap.alpha);
+        for (j, &i) in qidx.iter().enumerate() {
+            let rj = lz.cols.node_force(&ip.iterate.r, j, i);
+            state.multipliers[i] = if rj > 1e-9 * self.scale { rj } else { 0.0 };
+        }
+        Ok(likely)
+    }
+
+    /// The final evaluation of `state`, whose last evaluation is `ev`: contacts with force are
+    /// closed at exactly their multipliers; same positions and triads, so `ev`'s element
+    /// responses are reused.
+    fn final_evaluation(&self, state: &mut State, ev: Evaluation) -> Evaluation {
+        let managed = &self.contacts.managed;
+        let closed: Vec<bool> = (0..self.model.nodes())
+            .map(|i| managed[i] && state.multipliers[i] > 0.0)
+            .collect();
+        let final_gaps = GapTreatment {
+            closed: Some(closed),
+            exact_multipliers: true,
+            ..GapTreatment::default()
+        };
+        self.model.evaluate_reusing_elements(state, &final_gaps, ev.elements)
+    }
+}
+
+#[cfg(test)]
+#[path = "interior_point_newton_tests.rs"]
+mod tests;

@@ -1,0 +1,59 @@
+//! What a solve returns: the solution with its statistics, or why it failed.
+
+use crate::models::fem::linalg::band::FactorError;
+use crate::models::fem::model::{Evaluation, Model, State};
+
+/// Statistics of a solve.
+#[derive(Debug, Clone, Default)]
+pub struct SolveStats {
+    /// Iterations done.
+    pub iterations: usize,
+    /// Factorizations done.
+    pub factorizations: usize,
+    /// Residual norm (relative to the load scale) per iteration.
+    pub residual_history: Vec<f64>,
+    /// Largest penetration relative to the clearance at the end.
+    pub max_penetration: f64,
+    /// Wall-clock time, s.
+    pub seconds: f64,
+    /// Nodes whose contact state changed in the last iterations (modified Newton).
+    pub chattering_nodes: Vec<usize>,
+}
+
+/// A converged (or flagged unconverged) solution.
+pub struct Solution {
+    /// Final state.
+    pub state: State,
+    /// Evaluation at the final state.
+    pub eval: Evaluation,
+    /// Whether all convergence criteria were met.
+    pub converged: bool,
+    /// Statistics.
+    pub stats: SolveStats,
+}
+
+/// Why a solve failed.
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    /// The factorization met a zero pivot.
+    #[error("singular stiffness at DOF {dof} (node {node} from the bit): {detail}")]
+    Singular {
+        /// DOF index.
+        dof: usize,
+        /// Node index from the bit.
+        node: usize,
+        /// Details.
+        detail: String,
+    },
+}
+
+/// A failed factorization of `model`'s system as a [`SolveError::Singular`] naming the node.
+pub(crate) fn singular(model: &Model, e: FactorError) -> SolveError {
+    match e {
+        FactorError::ZeroPivot { column: dof, pivot } => SolveError::Singular {
+            dof,
+            node: model.nodes() - 1 - dof / 6,
+            detail: format!("zero pivot {pivot:e}"),
+        },
+    }
+}
