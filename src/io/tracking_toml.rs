@@ -27,7 +27,8 @@ pub fn read_tracking(s: &Section, survey_length_m: f64) -> InputResult<TrackingS
     let positive = |key: &str, dim: D, unit: &str, default: f64| -> InputResult<f64> {
         Ok(s.positive(key, dim, unit, false)?.unwrap_or(default))
     };
-    let window_m = positive("window", D::Length, "m", d.window_m)?;
+    // the default window is at most the survey; a window given longer is an error
+    let window_m = positive("window", D::Length, "m", d.window_m.min(survey_length_m))?;
     if window_m > survey_length_m + 1e-6 {
         return Err(s.error(
             "window",
