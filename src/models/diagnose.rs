@@ -56,7 +56,7 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
 
 /// The last state of a stiff solve that did not converge, in one phrase: its last relative
 /// residuals, the largest penetration relative to the clearance, and the MDs of the contacts
-/// that kept switching.
+/// that kept switching (where the scheme tracks them: the paper's).
 pub fn solve_state_summary(part: &FemPart) -> String {
     let stats = &part.stats;
     let hist = &stats.residual_history;
@@ -67,15 +67,15 @@ pub fn solve_state_summary(part: &FemPart) -> String {
         .take(10)
         .map(|&i| format!("{:.1} m", part.model.md_ref[i]))
         .collect();
+    let switching = if chatter.is_empty() {
+        String::new()
+    } else {
+        format!("; contacts switching at MD {}", chatter.join(", "))
+    };
     format!(
-        "last relative residuals {}; max penetration {:.2e} of clearance; contacts switching at MD {}",
+        "last relative residuals {}; max penetration {:.2e} of clearance{switching}",
         tail.join(", "),
         stats.max_penetration,
-        if chatter.is_empty() {
-            "none".into()
-        } else {
-            chatter.join(", ")
-        }
     )
 }
 
