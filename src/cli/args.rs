@@ -109,6 +109,11 @@ pub struct BackanalyzeArgs {
     /// score them on the rest.
     #[arg(long)]
     pub calibrate: bool,
+    /// Assimilate the survey: correct each interval's prediction by the tendency learned from
+    /// the stations behind its start (settings in the case's `[tracking]` table), and report
+    /// the frozen assimilation and one-standard-deviation bounds.
+    #[arg(long, conflicts_with = "calibrate")]
+    pub assimilate: bool,
     /// Parameters to fit, comma-separated: lateral_drillability, walk_angle, rock_anisotropy.
     #[arg(long, value_name = "LIST", default_value = "lateral_drillability,walk_angle")]
     pub fit: String,

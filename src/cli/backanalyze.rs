@@ -48,6 +48,7 @@ fn request(a: &BackanalyzeArgs) -> anyhow::Result<BackanalysisRequest> {
         from_md_m,
         to_md_m,
         horizon_m,
+        assimilate: a.assimilate,
         calibration: a.calibrate.then_some(CalibrationRequest {
             parameters,
             split: a.split,
@@ -102,7 +103,7 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let summary = json_text(&BackanalysisSummary::new(&shown)).map_err(internal)?;
     if let Some(dir) = &a.out {
         let ctx = || format!("cannot write into {}", dir.display());
-        let csv = backanalysis_csv(&b.results).map_err(internal)?;
+        let csv = backanalysis_csv(&b).map_err(internal)?;
         write_atomic(&dir.join("trajectory.csv"), csv.as_bytes()).with_context(ctx)?;
         if let Some(c) = &b.calibration {
             write_atomic(

@@ -15,6 +15,9 @@ pub use super::intervals::{
 use super::calibrate::{calibrate, Calibration, FitParameter};
 use super::law::LawParams;
 use super::march::{MarchSettings, PredictError, WarmStart, MIN_MODEL_LENGTH_M};
+use super::tracking::assimilate::{assimilate, Assimilation};
+use super::tracking::references::{project, Direction, Reference};
+use super::tracking::skill::{skill, EndDirections, Skill};
 use crate::case::Case;
 use std::time::Instant;
 
@@ -49,6 +52,9 @@ pub struct BackanalysisRequest {
     pub horizon_m: f64,
     /// The calibration, if asked.
     pub calibration: Option<CalibrationRequest>,
+    /// Assimilate the survey ([`crate::predict::tracking::assimilate`], with the case's
+    /// `[tracking]` settings).
+    pub assimilate: bool,
 }
 
 /// Where a back-analysis runs and on which intervals.
@@ -67,6 +73,8 @@ pub struct BackanalysisPlan {
     pub intervals: Vec<Interval>,
     /// The calibration, if asked.
     pub calibration: Option<CalibrationRequest>,
+    /// Whether the survey is assimilated.
+    pub assimilate: bool,
 }
 
 /// Why a back-analysis cannot run.
@@ -107,6 +115,9 @@ pub enum BackanalysisError {
     /// The calibration or the scoring failed.
     #[error(transparent)]
     Predict(#[from] PredictError),
+    /// Calibration and assimilation asked together.
+    #[error("calibration and assimilation cannot run together: the assimilation estimates the law's parameters itself (`estimate` in [tracking])")]
+    CalibrationAndAssimilation,
 }
 
 /// The plan of a back-analysis of `case`'s survey as `req` asks (see the module documentation).
@@ -140,6 +151,9 @@ pub fn plan(case: &Case, req: &BackanalysisRequest) -> Result<BackanalysisPlan, 
         },
     );
     let calibrate = req.calibration.is_some();
+    if calibrate && req.assimilate {
+        return Err(BackanalysisError::CalibrationAndAssimilation);
+    }
     let needed = if calibrate { MIN_CALIBRATION_INTERVALS } else { 1 };
     if list.len() < needed {
         return Err(BackanalysisError::TooFewIntervals {
@@ -157,6 +171,7 @@ pub fn plan(case: &Case, req: &BackanalysisRequest) -> Result<BackanalysisPlan, 
         below_previous_hole_md_m: previous_hole.filter(|_| req.from_md_m.is_none()),
         intervals: list,
         calibration: req.calibration.clone(),
+        assimilate: req.assimilate,
     })
 }
 
@@ -182,7 +197,7 @@ pub struct Backanalysis {
     pub base: Vec<IntervalResult>,
     /// The intervals that could not be predicted, with why.
     pub skipped: Vec<(Interval, PredictError)>,
-    /// Errors of `base`.
+    /// Errors of `base` (of the assimilated predictions when assimilating).
     pub stats: ErrorStats,
     /// Errors of `results` (with a calibration: the calibration intervals with the fitted
     /// law and the scored ones; else `stats`).
@@ -192,8 +207,16 @@ pub struct Backanalysis {
     /// The calibration, if asked.
     pub calibration: Option<CalibrationOutcome>,
     /// The intervals reported: `base`, or with a calibration the calibration intervals with
-    /// the fitted law followed by the scored ones.
+    /// the fitted law followed by the scored ones, or with an assimilation the assimilated
+    /// predictions.
     pub results: Vec<IntervalResult>,
+    /// The end directions of the reported intervals with the references' (and, assimilating,
+    /// the plain and frozen predictions).
+    pub ends: Vec<EndDirections>,
+    /// The model against the references on `ends`.
+    pub skill: Option<Skill>,
+    /// The assimilation, when asked.
+    pub assimilation: Option<Assimilation>,
     /// Wall-clock time, s.
     pub seconds: f64,
 }
@@ -230,6 +253,58 @@ pub fn run(
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Backanalysis, BackanalysisError> {
     let t0 = Instant::now();
+    let mut out = if plan.assimilate {
+        run_assimilated(case, plan, settings, progress)?
+    } else {
+        run_plain(case, plan, settings, progress)?
+    };
+    out.ends = out
+        .results
+        .iter()
+        .enumerate()
+        .map(|(k, r)| {
+            let a = out.assimilation.as_ref().map(|a| &a.intervals[k]);
+            end_directions(case, r, a.map(|a| a.plain), a.map(|a| a.frozen))
+        })
+        .collect();
+    out.skill = skill(&out.ends);
+    out.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// The predicted end of `r` with the references', and the plain and frozen predictions of an
+/// assimilation.
+fn end_directions(
+    case: &Case,
+    r: &IntervalResult,
+    plain: Option<IntervalResult>,
+    frozen: Option<Direction>,
+) -> EndDirections {
+    let iv = &r.interval;
+    let dir = |r: &IntervalResult| Direction {
+        inc_rad: r.inc_rad,
+        azi_rad: r.azi_rad,
+    };
+    EndDirections {
+        length_m: r.length_m(),
+        measured: Direction {
+            inc_rad: iv.measured.0,
+            azi_rad: iv.measured.1,
+        },
+        model: dir(r),
+        references: Reference::all().map(|q| project(&case.well.path, iv.from_md_m, iv.to_md_m, q)),
+        plain: plain.as_ref().map(dir),
+        frozen,
+    }
+}
+
+/// The back-analysis with the case's law (and a calibration when asked).
+fn run_plain(
+    case: &Case,
+    plan: &BackanalysisPlan,
+    settings: &MarchSettings,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Backanalysis, BackanalysisError> {
     let mut warm = Vec::new();
     let (base, skipped) = run_intervals_skipping(
         case,
@@ -240,14 +315,7 @@ pub fn run(
         |done, of| progress(Progress::Interval { done, of }),
         false,
     );
-    if base.is_empty() {
-        let (iv, error) = skipped.into_iter().next().expect("an interval failed");
-        return Err(BackanalysisError::NothingPredicted {
-            from_md_m: iv.from_md_m,
-            to_md_m: iv.to_md_m,
-            error,
-        });
-    }
+    let skipped = check_predicted(&base, skipped)?;
     // calibration and scoring use the intervals that could be predicted with the case's law
     let predicted = |iv: &Interval| !skipped.iter().any(|(s, _)| s.from_md_m == iv.from_md_m);
     let warm: Vec<_> = plan
@@ -266,6 +334,9 @@ pub fn run(
         calibration: None,
         skipped,
         base,
+        ends: Vec::new(),
+        skill: None,
+        assimilation: None,
         seconds: 0.0,
     };
     if let Some(req) = &plan.calibration {
@@ -275,8 +346,52 @@ pub fn run(
         out.results_stats = error_stats(&out.results);
         out.calibration = Some(outcome);
     }
-    out.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// The back-analysis with the survey assimilated.
+fn run_assimilated(
+    case: &Case,
+    plan: &BackanalysisPlan,
+    settings: &MarchSettings,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Backanalysis, BackanalysisError> {
+    let mut a = assimilate(case, &plan.intervals, settings, &case.tracking, &mut |done, of| {
+        progress(Progress::Interval { done, of })
+    });
+    let base: Vec<IntervalResult> = a.intervals.iter().map(|i| i.plain).collect();
+    let skipped = check_predicted(&base, std::mem::take(&mut a.skipped))?;
+    let results: Vec<IntervalResult> = a.intervals.iter().map(|i| i.result()).collect();
+    let stats = error_stats(&results);
+    Ok(Backanalysis {
+        results,
+        results_stats: stats,
+        stats,
+        law: LawParams::at(&case.bit_rock, plan.from_md_m),
+        calibration: None,
+        skipped,
+        base,
+        ends: Vec::new(),
+        skill: None,
+        assimilation: Some(a),
+        seconds: 0.0,
+    })
+}
+
+/// The skipped intervals back when some interval was predicted; else the error of the first.
+fn check_predicted(
+    base: &[IntervalResult],
+    skipped: Vec<(Interval, PredictError)>,
+) -> Result<Vec<(Interval, PredictError)>, BackanalysisError> {
+    if !base.is_empty() {
+        return Ok(skipped);
+    }
+    let (iv, error) = skipped.into_iter().next().expect("an interval failed");
+    Err(BackanalysisError::NothingPredicted {
+        from_md_m: iv.from_md_m,
+        to_md_m: iv.to_md_m,
+        error,
+    })
 }
 
 /// Fit `req`'s parameters on the first part of the predicted intervals `base` (with their warm

@@ -14,6 +14,7 @@ pub mod solve_output;
 pub mod solve_report;
 pub mod solve_text;
 pub mod survey_table;
+pub mod tracking_output;
 
 use std::io::Write;
 use std::path::Path;

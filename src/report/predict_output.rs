@@ -1,10 +1,13 @@
 //! Outputs of `predict` and `backanalyze`: `trajectory.csv` (interface.md columns) and the
 //! JSON summaries.
 
+use super::tracking_output::{
+    assimilation_cells, reference_cells, AssimilationJson, BaselinesJson, ASSIMILATION_COLUMNS, REFERENCE_COLUMNS,
+};
 use super::{num, Finite};
 use crate::case::{Case, Choice};
 use crate::models::fem::results::BitResult;
-use crate::predict::backanalysis::{Backanalysis, BackanalysisPlan, ErrorStats, IntervalResult};
+use crate::predict::backanalysis::{Backanalysis, BackanalysisPlan, ErrorStats};
 use crate::predict::calibrate::{Calibration, FitParameter};
 use crate::predict::forecast::Forecast;
 use crate::predict::law::LawParams;
@@ -65,11 +68,18 @@ pub fn trajectory_csv(rows: &[TrajectoryRow]) -> Result<String, String> {
     Ok(out)
 }
 
-/// `trajectory.csv` of `backanalyze`: one row per interval end, bit values at the end.
-pub fn backanalysis_csv(results: &[IntervalResult]) -> Result<String, String> {
-    let mut out = format!("{TRAJECTORY_HEADER}\n");
-    for r in results {
-        out.push_str(&row_line(
+/// `trajectory.csv` of `backanalyze`: one row per interval end, bit values at the end, then the
+/// direction errors of the model and the references ([`REFERENCE_COLUMNS`]) and, assimilating,
+/// the plain and frozen predictions and the bounds ([`ASSIMILATION_COLUMNS`]).
+pub fn backanalysis_csv(b: &Backanalysis) -> Result<String, String> {
+    let mut out = format!("{TRAJECTORY_HEADER},{REFERENCE_COLUMNS}");
+    if b.assimilation.is_some() {
+        out.push(',');
+        out.push_str(ASSIMILATION_COLUMNS);
+    }
+    out.push('\n');
+    for (k, (r, e)) in b.results.iter().zip(&b.ends).enumerate() {
+        let line = row_line(
             r.interval.to_md_m,
             r.inc_rad,
             r.azi_rad,
@@ -77,7 +87,15 @@ pub fn backanalysis_csv(results: &[IntervalResult]) -> Result<String, String> {
             Some(r.interval.measured),
             Some((r.inc_err_rad(), r.azi_err_rad())),
             &r.bit_end,
-        )?);
+        )?;
+        let mut cells = reference_cells(e)?;
+        if let Some(a) = &b.assimilation {
+            cells.extend(assimilation_cells(a, k, e)?);
+        }
+        out.push_str(line.trim_end());
+        out.push(',');
+        out.push_str(&cells.join(","));
+        out.push('\n');
     }
     Ok(out)
 }
@@ -453,6 +471,16 @@ pub struct BackanalysisSummary {
     bit_rock: LawJson,
     #[serde(skip_serializing_if = "Option::is_none")]
     calibration: Option<BackCalibrationJson>,
+    /// The model's mean direction error per 100 m, deg.
+    dir_err_per_100m_deg: Finite,
+    baselines: BaselinesJson,
+    /// `1 - model / best naive` on the mean direction error.
+    skill: Finite,
+    /// `1 - model / frozen assimilation` on the mean direction error (null without
+    /// assimilation).
+    physics_share: Option<Finite>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    assimilation: Option<AssimilationJson>,
     seconds: Finite,
 }
 
@@ -486,6 +514,10 @@ impl BackanalysisSummary {
             result: b,
         } = *run;
         let (first, last) = b.range_md_m();
+        let skill = b
+            .skill
+            .as_ref()
+            .expect("a back-analysis predicts at least one interval");
         BackanalysisSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
@@ -522,6 +554,19 @@ impl BackanalysisSummary {
                 in_sample_fitted: ErrorStatsJson::from(&c.in_sample_fitted),
                 out_of_sample_default: ErrorStatsJson::from(&c.out_of_sample_default),
                 out_of_sample_fitted: ErrorStatsJson::from(&c.out_of_sample_fitted),
+            }),
+            dir_err_per_100m_deg: Finite(skill.model.dir_err_per_100m_rad.to_degrees()),
+            baselines: BaselinesJson::new(skill),
+            skill: Finite(skill.skill),
+            physics_share: skill.physics_share.map(Finite),
+            assimilation: b.assimilation.as_ref().map(|a| {
+                let start: Vec<f64> = case
+                    .tracking
+                    .parameters
+                    .iter()
+                    .map(|p| p.value(&case.bit_rock))
+                    .collect();
+                AssimilationJson::new(a, &start)
             }),
             seconds: Finite(b.seconds),
         }

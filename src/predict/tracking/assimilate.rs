@@ -9,8 +9,10 @@ use super::references::Direction;
 use crate::case::bit_rock::LawParameter;
 use crate::case::{BitRock, Case, TrackingSettings};
 use crate::geometry::frame::{inc_azi, tangent};
-use crate::geometry::Frame;
-use crate::predict::intervals::{predict_interval_path, result_of, Interval, IntervalResult};
+use crate::geometry::{Frame, Vec3};
+use crate::predict::intervals::{
+    intervals as cut_intervals, predict_interval_path, result_of, Interval, IntervalPlan, IntervalResult,
+};
 use crate::predict::law::deviation;
 use crate::predict::march::{MarchSettings, PredictError, WarmStart};
 use nalgebra::{DMatrix, Matrix2};
@@ -36,6 +38,8 @@ pub struct AssimilatedInterval {
     pub plain: IntervalResult,
     /// The assimilated prediction at the end.
     pub assimilated: Direction,
+    /// The assimilated position at the end (north, east, TVD), m.
+    pub position: Vec3,
     /// The frozen assimilation's prediction at the end.
     pub frozen: Direction,
     /// One standard deviation of the assimilated prediction against the measured end station
@@ -60,6 +64,18 @@ pub struct Assimilation {
     /// The model's tendency held by the frozen assimilation (toward the high side, toward the
     /// right), rad/m.
     pub frozen_model_tendency: [f64; 2],
+}
+
+impl AssimilatedInterval {
+    /// The interval's result with the assimilated direction and position at the end.
+    pub fn result(&self) -> IntervalResult {
+        IntervalResult {
+            inc_rad: self.assimilated.inc_rad,
+            azi_rad: self.assimilated.azi_rad,
+            position: self.position,
+            ..self.plain
+        }
+    }
 }
 
 impl Assimilation {
@@ -189,6 +205,38 @@ pub fn assimilate(
     }
 }
 
+/// Warm both filters up on the measured hole behind `start_md` (at most the tracking window,
+/// in steps of at least its interval between stations), the model's tendency there taken as
+/// `kappa` (rad/m, toward the high side and the right): its value on the first interval, so
+/// no march is run for it.
+fn warm_up(case: &Case, start_md: f64, kappa: [f64; 2], tracking: &TrackingSettings, f: &mut Filters) {
+    let path = &case.well.path;
+    let plan = IntervalPlan {
+        from_md_m: (start_md - tracking.window_m).max(path.md_start()),
+        to_md_m: start_md,
+        horizon_m: tracking.interval_m,
+    };
+    let dir = |md: f64| {
+        let p = path.point_at(md);
+        Direction {
+            inc_rad: p.inc_rad,
+            azi_rad: p.azi_rad,
+        }
+    };
+    for iv in cut_intervals(path, &plan) {
+        let len = iv.to_md_m - iv.from_md_m;
+        let (a, b) = (dir(iv.from_md_m), dir(iv.to_md_m));
+        let r = survey_covariance(tracking, a.inc_rad) + survey_covariance(tracking, b.inc_rad);
+        for filter in [&mut f.filter, &mut f.frozen] {
+            let t = filter.predicted_turn(len);
+            let predicted = turned(&a, [kappa[0] * len + t[0], kappa[1] * len + t[1]]);
+            let h = filter.observation(len, &DMatrix::zeros(2, filter.parameters().len()));
+            filter.update(turn_between(&predicted, &b), len, &h, &r);
+            filter.propagate(len);
+        }
+    }
+}
+
 /// Predict one interval with the filters' corrections, then take in its measured end.
 fn assimilate_interval(
     case: &Case,
@@ -208,16 +256,25 @@ fn assimilate_interval(
     };
     let j = sensitivity(case, &f.filter, iv, settings, &start_warm, &march_end)?;
     let h = f.filter.observation(len, &j);
-    let correction = f.filter.predicted_turn(len);
-    let assimilated = turned(&march_end, correction);
     let s = case.well.path.point_at(iv.from_md_m);
     let start = Direction {
         inc_rad: s.inc_rad,
         azi_rad: s.azi_rad,
     };
-    let kappa = *f
-        .frozen_tendency
-        .get_or_insert_with(|| turn_between(&start, &march_end).map(|t| t / len));
+    let kappa = match f.frozen_tendency {
+        Some(k) => k,
+        None => {
+            let k = turn_between(&start, &march_end).map(|t| t / len);
+            f.frozen_tendency = Some(k);
+            warm_up(case, iv.from_md_m, k, tracking, f);
+            k
+        }
+    };
+    let correction = f.filter.predicted_turn(len);
+    let assimilated = turned(&march_end, correction);
+    let offset = f.filter.predicted_offset(len);
+    let sf = Frame::from_tangent(&s.tangent, s.azi_rad);
+    let position = plain.position + sf.h * offset[0] + sf.r * offset[1];
     let ft = f.frozen.predicted_turn(len);
     let frozen = turned(&start, [kappa[0] * len + ft[0], kappa[1] * len + ft[1]]);
     let r = survey_covariance(tracking, start.inc_rad) + survey_covariance(tracking, assimilated.inc_rad);
@@ -229,6 +286,7 @@ fn assimilate_interval(
     let out = AssimilatedInterval {
         plain,
         assimilated,
+        position,
         frozen,
         inc_sd_rad: cov[(0, 0)].sqrt(),
         azi_sd_rad: (cov[(1, 1)].sqrt() / assimilated.inc_rad.sin().max(1e-6)).min(std::f64::consts::PI),
