@@ -9,8 +9,7 @@ use drillpath::models::fem::model::Model;
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, SolveControls};
 
-mod common;
-use common::{collar_properties, load_temp_case, slick_collar_case};
+use crate::common::{collar_properties, load_temp_case, slick_collar_case};
 
 struct Run {
     res: SolveResults,

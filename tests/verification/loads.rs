@@ -12,8 +12,7 @@ use drillpath::loads::{set_row_operation, ChartOperation, MODES};
 
 const G: f64 = 9.80665;
 
-mod common;
-use common::load_temp_case as temp_case;
+use crate::common::load_temp_case as temp_case;
 
 /// Survey rows every 10 m from (md, inc, azi) knots with inclination and azimuth linear in MD
 /// between knots (constant build/turn rate).

@@ -11,8 +11,7 @@ use drillpath::models::fem::model::Model;
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, Solution, SolveControls};
 
-mod common;
-use common::{collar_properties, load_temp_case, slick_collar_case};
+use crate::common::{collar_properties, load_temp_case, slick_collar_case};
 
 /// Solve `case` with `method`, gap tolerance `gap_tol` and an iteration limit.
 fn run(case: &Case, method: Method, gap_tol: f64, max_iterations: usize) -> (Solution, SolveResults) {
