@@ -804,7 +804,7 @@ fn survey_md_unit_option_reads_feet() {
 
 /// Sliding 250 kN onto the bit at the end of a 300 m lateral (300 m vertical, 90 deg build of
 /// 450 m, 5 in pipe, friction 0.25): the soft string needs the top pushed down (hook load < 0,
-/// lock-up, src/diagnose.rs) and buckles the pipe helically. With 3 iterations allowed the
+/// lock-up, src/models/diagnose.rs) and buckles the pipe helically. With 3 iterations allowed the
 /// stiff solve stops unconverged: exit non-zero, one `error:` line naming the non-convergence,
 /// `--allow-unconverged`, the lock-up and the helical buckling; no output directory.
 #[test]

@@ -1,7 +1,7 @@
 //! Stiff-string buckling (issue 5): the FEM's own sinusoidal onset against Dawson & Paslay
 //! (1984), and the buckling marks of `drillpath::models::buckling` on the FEM's axial force.
 //!
-//! Run with `cargo test --release --test buckling -- --nocapture` to see the ramp.
+//! Run with `cargo test --release --test verification buckling:: -- --nocapture` to see the ramp.
 
 use drillpath::analytical::buckling::sinusoidal_dawson_paslay;
 use drillpath::case::Case;
@@ -157,7 +157,7 @@ fn marks_below_onset_are_not_buckled() {
 /// Measured: at 1.57 x helical the contact points roll 90 deg off the low side (contact angles
 /// 90-270 deg). Beyond about 1.8 x helical
 /// the quasi-static branch has a limit point (the snap to a full helix), where load
-/// continuation stops: that case ends flagged non-converged (tests/extremes.rs).
+/// continuation stops: that case ends flagged non-converged (tests/verification/extremes.rs).
 #[test]
 fn post_buckled_pipe_lies_on_the_wall_beyond_the_helical_load() {
     let (ei, w_b, r) = pipe_props();

@@ -4,7 +4,7 @@
 //! no NaN, or ends with a clear non-convergence (`converged == false` or an error) - never a
 //! panic, never garbage. Cases that are physically benign are also required to converge.
 //!
-//! Run with `cargo test --release --test extremes -- --nocapture` to see the table.
+//! Run with `cargo test --release --test verification extremes:: -- --nocapture` to see the table.
 
 use drillpath::case::Case;
 use drillpath::io::case_toml::{load_case, CaseOverrides};

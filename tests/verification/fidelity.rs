@@ -1,7 +1,7 @@
 //! Fidelity levels (issue 5) against independent references: the whole-string FEM (bit
 //! forces, hook load, torque), the exact hanging-weight hook load (docs/theory.md 10.5 (a)).
 //!
-//! Run with `cargo test --release --test fidelity -- --nocapture` to see the numbers.
+//! Run with `cargo test --release --test verification fidelity:: -- --nocapture` to see the numbers.
 
 use drillpath::case::{choose, Case, Fidelity, Level, Mode, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};

@@ -1,7 +1,7 @@
 //! Geometry verification: minimum curvature (`drillpath::geometry`) against hand-computed arcs,
 //! published / real-well survey reports and properties that must hold for every valid survey.
 //!
-//! Run with `cargo test --release --test geometry -- --nocapture` to see the measured errors.
+//! Run with `cargo test --release --test verification geometry:: -- --nocapture` to see the measured errors.
 //!
 //! Data files under `/work/shared/data` are located beside the repository
 //! (`$CARGO_MANIFEST_DIR/../shared/data/...`); if one is absent the test prints a note and returns.
@@ -542,8 +542,9 @@ fn survey_deg() -> impl Strategy<Value = Vec<(f64, f64, f64)>> {
         })
 }
 
-/// `cases` cases; a failing case is saved to `tests/geometry.proptest-regressions` (the default
-/// source-parallel location needs a `lib.rs` beside the test file).
+/// `cases` cases; a failing case is saved beside this file, to
+/// `tests/verification/geometry.proptest-regressions` (proptest's default source-parallel
+/// location would be `tests/proptest-regressions/geometry.txt`).
 fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {
         cases,

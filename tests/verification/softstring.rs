@@ -3,7 +3,7 @@
 //! (b) straight inclined section, (c) capstan, and the ordering property
 //! trip out >= rotating >= trip in.
 //!
-//! Run with `cargo test --release --test softstring -- --nocapture` to see the numbers.
+//! Run with `cargo test --release --test verification softstring:: -- --nocapture` to see the numbers.
 
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::path::Path;
