@@ -11,3 +11,4 @@ mod loads;
 mod output;
 mod predict;
 mod report;
+mod solve;
