@@ -7,8 +7,9 @@
 //! (`case.toml` + `survey.csv`), then breaks exactly one thing.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use tempfile::TempDir;
+
+use crate::common::{assert_error_names, run_in, Run};
 
 /// The valid survey. Line 1 is a comment, so the header is line 2 and the stations are lines
 /// 3 to 6 (errors must count lines of the original file).
@@ -72,39 +73,6 @@ element_length = "1 m"
 
 /// The exact header of `survey --out` (interface.md).
 const SURVEY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,dls_deg_per_30m";
-
-/// Output of one run of the binary.
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    fn describe(&self) -> String {
-        format!(
-            "exit code {:?}\n--- stdout ---\n{}\n--- stderr ---\n{}",
-            self.code, self.stdout, self.stderr
-        )
-    }
-}
-
-/// Run `drillpath` with `args` in `dir`, with a clean logging environment.
-fn run_in(dir: &Path, args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .args(args)
-        .current_dir(dir)
-        .env_remove("DRILLPATH_LOG")
-        .env_remove("RUST_LOG")
-        .env("RUST_BACKTRACE", "1") // a panic would print a backtrace: make it visible to the checks
-        .output()
-        .expect("cannot start the drillpath binary");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
 
 /// The example wells of the repository.
 fn wells() -> PathBuf {
@@ -184,26 +152,14 @@ impl Fixture {
 }
 
 /// A user error: non-zero exit (not a signal), exactly one stderr line `error: ...` naming
-/// every string of `must_name`, nothing on stdout, no panic or backtrace.
+/// every string of `must_name`, no panic or backtrace ([`assert_error_names`]), and nothing on
+/// stdout.
 fn check_error(r: &Run, must_name: &[&str]) {
-    let ctx = r.describe();
-    assert!(r.code.is_some(), "killed by a signal\n{ctx}");
-    assert_ne!(r.code, Some(0), "bad input accepted\n{ctx}");
-    for bad in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
-        assert!(!r.stderr.contains(bad), "`{bad}` on stderr\n{ctx}");
-    }
-    let lines: Vec<&str> = r.stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "expected exactly one line on stderr\n{ctx}");
-    assert!(
-        lines[0].starts_with("error: "),
-        "stderr must start with `error: `\n{ctx}"
-    );
-    for s in must_name {
-        assert!(lines[0].contains(s), "the message does not name `{s}`\n{ctx}");
-    }
+    assert_error_names(r, must_name);
     assert!(
         r.stdout.trim().is_empty(),
-        "nothing should be printed on stdout on error\n{ctx}"
+        "nothing should be printed on stdout on error\n{}",
+        r.describe()
     );
 }
 
@@ -214,14 +170,14 @@ fn check_error(r: &Run, must_name: &[&str]) {
 fn fixture_case_and_survey_are_valid() {
     let fx = Fixture::new();
     let r = fx.run(&["survey", "case.toml", "--out", "out.csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stderr.trim().is_empty(), "{}", r.describe());
     assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
     let csv = std::fs::read_to_string(fx.path().join("out.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5, "{csv}");
 
     let r = fx.run(&["survey", "survey.csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
 }
 
@@ -234,7 +190,7 @@ fn string_above_the_first_survey_station_is_a_stated_assumption() {
     // survey gives no note.
     let fx = Fixture::new();
     let full = fx.run(&["solve", "case.toml", "--json"]);
-    assert_eq!(full.code, Some(0), "{}", full.describe());
+    assert_eq!(full.code(), Some(0), "{}", full.describe());
     assert!(full.stderr.trim().is_empty(), "{}", full.describe());
     let json: serde_json::Value = serde_json::from_str(&full.stdout).unwrap();
     assert_eq!(json["notes"], serde_json::json!([]), "{}", full.describe());
@@ -242,7 +198,7 @@ fn string_above_the_first_survey_station_is_a_stated_assumption() {
     fx.edit_survey("azi [deg]\n0,0,0\n", "azi [deg]\n");
     for fidelity in ["whole", "soft"] {
         let r = fx.run(&["solve", "case.toml", "--json", "--fidelity", fidelity]);
-        assert_eq!(r.code, Some(0), "{}", r.describe());
+        assert_eq!(r.code(), Some(0), "{}", r.describe());
         let warning: Vec<&str> = r.stderr.lines().filter(|l| l.contains("WARN")).collect();
         assert_eq!(warning.len(), 1, "{}", r.describe());
         for must in [
@@ -703,7 +659,7 @@ fn survey_of_the_j_shape_case_prints_the_summary() {
     let tmp = tempfile::tempdir().unwrap();
     let case = wells().join("j-shape/case.toml");
     let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stderr.trim().is_empty(), "{}", r.describe());
     for s in [
         "survey: J-shape, 8.5 in section, fulcrum BHA",
@@ -724,7 +680,7 @@ fn survey_out_writes_the_interface_csv() {
         tmp.path(),
         &["survey", case.to_str().unwrap(), "--out", "positions.csv"],
     );
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("wrote positions.csv"), "{}", r.describe());
     let csv = std::fs::read_to_string(tmp.path().join("positions.csv")).unwrap();
     let mut lines = csv.lines();
@@ -750,7 +706,7 @@ fn survey_of_the_forge_case_notes_the_assumed_feet() {
     let tmp = tempfile::tempdir().unwrap();
     let case = wells().join("forge-16a/case.toml");
     let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     let note = r
         .stdout
         .lines()
@@ -767,13 +723,13 @@ fn survey_directly_on_a_csv_matches_the_case() {
     let csv = wells().join("j-shape/survey.csv");
     let case = wells().join("j-shape/case.toml");
     let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--out", "from_csv.csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("stations: 88"), "{}", r.describe());
     let r = run_in(
         tmp.path(),
         &["survey", case.to_str().unwrap(), "--out", "from_case.csv"],
     );
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     let a = std::fs::read_to_string(tmp.path().join("from_csv.csv")).unwrap();
     let b = std::fs::read_to_string(tmp.path().join("from_case.csv")).unwrap();
     assert_eq!(a, b);
@@ -784,7 +740,7 @@ fn survey_csv_flag_prints_the_table() {
     let tmp = tempfile::tempdir().unwrap();
     let csv = wells().join("j-shape/survey.csv");
     let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert_eq!(r.stdout.lines().next(), Some(SURVEY_HEADER));
     assert_eq!(r.stdout.lines().count(), 89);
 }
@@ -794,7 +750,7 @@ fn survey_md_unit_option_reads_feet() {
     let fx = Fixture::new();
     fx.write("survey.csv", "md,inc,azi\n0,0,0\n1000,0,0\n");
     let r = fx.run(&["survey", "survey.csv", "--md-unit", "ft", "--csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     let last = r.stdout.lines().last().unwrap();
     assert!(last.starts_with("304.800,"), "{last}");
 }

@@ -3,8 +3,9 @@
 //! good runs write the interface's `trajectory.csv` columns and `summary.json` keys, no NaN.
 
 use std::path::Path;
-use std::process::{Command, Output};
 use tempfile::TempDir;
+
+use crate::common::{assert_error_names, run_in, Run};
 
 /// Straight 20 deg hole with stations every 10 m below 200 m.
 fn survey() -> String {
@@ -62,27 +63,16 @@ fn setup(case: &str) -> TempDir {
     dir
 }
 
-fn run(dir: &Path, cmd: &str, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .current_dir(dir)
-        .arg(cmd)
-        .arg("case.toml")
-        .args(args)
-        .output()
-        .unwrap()
+/// `drillpath cmd case.toml args` in `dir`.
+fn run(dir: &Path, cmd: &str, args: &[&str]) -> Run {
+    run_in(dir, &[&[cmd, "case.toml"], args].concat())
 }
 
-/// Exit code 2, one stderr line starting `error:` containing every needle, no panic, no `out/`.
-fn assert_error(dir: &Path, out: &Output, needles: &[&str]) {
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
-    let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(lines.len(), 1, "one line expected: {err}");
-    assert!(lines[0].starts_with("error:"), "{err}");
-    for n in needles {
-        assert!(lines[0].contains(n), "`{n}` missing in: {err}");
-    }
+/// Exit code 2, one stderr line starting `error:` containing every needle, no panic
+/// ([`assert_error_names`]), no `out/`.
+fn assert_error(dir: &Path, out: &Run, needles: &[&str]) {
+    assert_eq!(out.code(), Some(2), "stderr: {}", out.stderr);
+    assert_error_names(out, needles);
     assert!(!dir.join("out").exists(), "no output on error");
 }
 
@@ -110,7 +100,7 @@ fn predict_bad_options_are_named() {
     assert_error(dir.path(), &o, &["--ahead"]);
     // neither --to nor --ahead: the argument parser refuses with its usage text
     let o = run(dir.path(), "predict", &["--out", "out"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.code(), Some(2));
     assert!(!dir.path().join("out").exists());
 }
 
@@ -161,7 +151,7 @@ fn check_csv(text: &str, rows_at_least: usize) {
 fn predict_tracking_writes_the_interface_outputs() {
     let dir = setup(CASE);
     let o = run(dir.path(), "predict", &["--from", "200", "--to", "240", "--out", "out"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.success(), "{}", o.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
     check_csv(&csv, 21);
     // measured stations at 210..240 have measured and error columns filled
@@ -181,7 +171,7 @@ fn predict_tracking_writes_the_interface_outputs() {
 fn backanalyze_writes_errors_per_100m() {
     let dir = setup(CASE);
     let o = run(dir.path(), "backanalyze", &["--from", "200", "--out", "out"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.success(), "{}", o.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
     check_csv(&csv, 4);
     let s: serde_json::Value =
@@ -209,13 +199,10 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
         let mut all = vec!["--out", "out"];
         all.extend_from_slice(args);
         let o = run(dir.path(), "backanalyze", &all);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.success(), "{}", o.stderr);
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
-        (
-            s["intervals"].as_u64().unwrap(),
-            String::from_utf8_lossy(&o.stdout).into_owned(),
-        )
+        (s["intervals"].as_u64().unwrap(), o.stdout.clone())
     };
     let (n, stdout) = intervals(&wide, &[]);
     assert_eq!(n, 3, "{stdout}");
@@ -250,12 +237,11 @@ fn predict_compares_several_bhas() {
         "type = \"collar\"\nod = \"6.5 in\"",
     );
     std::fs::write(dir.path().join("slick.toml"), slick).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .current_dir(dir.path())
-        .args(["predict", "case.toml", "slick.toml", "--ahead", "20 m", "--out", "out"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run_in(
+        dir.path(),
+        &["predict", "case.toml", "slick.toml", "--ahead", "20 m", "--out", "out"],
+    );
+    assert!(o.success(), "{}", o.stderr);
     let table = std::fs::read_to_string(dir.path().join("out/comparison.csv")).unwrap();
     let rows: Vec<Vec<&str>> = table.lines().skip(1).map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 2, "{table}");
@@ -324,7 +310,7 @@ fn predict_fidelity_levels() {
             "predict",
             &["--ahead", "10 m", "--fidelity", level, "--out", "out"],
         );
-        assert!(o.status.success(), "{level}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.success(), "{level}: {}", o.stderr);
         let s = summary(dir.path());
         let used = if level == "whole" { "whole" } else { "bha" };
         assert_eq!(s["model"]["fidelity"], used, "{level}");
@@ -346,7 +332,7 @@ fn predict_accuracy_sets_the_step() {
         let mut all = vec!["--ahead", "4 m", "--out", "out"];
         all.extend_from_slice(args);
         let o = run(dir.path(), "predict", &all);
-        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.success(), "{args:?}: {}", o.stderr);
         summary(dir.path())["step_m"].as_f64().unwrap()
     };
     assert_eq!(step_of(CASE, &[]), 2.0, "the case's [bit_rock] step");
@@ -379,7 +365,7 @@ fn predict_extrapolate_reports_the_step_error() {
         "predict",
         &["--ahead", "8 m", "--extrapolate", "--out", "out"],
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.success(), "{}", o.stderr);
     let s = summary(dir.path());
     let e = &s["step_extrapolation"];
     assert_eq!(e["coarse_step_m"], 2.0);
@@ -388,9 +374,9 @@ fn predict_extrapolate_reports_the_step_error() {
     assert!(e["est_azi_err_deg"].as_f64().unwrap() >= 0.0);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
     check_csv(&csv, 5);
-    assert!(String::from_utf8_lossy(&o.stdout).contains("step extrapolation"));
+    assert!(o.stdout.contains("step extrapolation"));
     let dir = setup(CASE);
     let o = run(dir.path(), "predict", &["--ahead", "8 m", "--out", "out"]);
-    assert!(o.status.success());
+    assert!(o.success());
     assert!(summary(dir.path())["step_extrapolation"].is_null());
 }

@@ -5,27 +5,29 @@
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use std::path::Path;
 
+use crate::common::{root, run_in};
+
 #[test]
 fn fidelity_cli_levels_write_the_interface_files() {
     // Reference: interface.md `solve` outputs: summary.json keys (null where the level does not
     // compute a value), string.csv header + buckling columns, no NaN; `--fidelity` overrides
     // the case; an unknown level is one clear error naming the option, non-zero exit.
-    use std::process::Command;
-    let exe = env!("CARGO_BIN_EXE_drillpath");
     let case = "wells/seed-daqing/case.toml";
     for level in ["soft", "bha", "hybrid", "whole"] {
         let dir = tempfile::tempdir().unwrap();
-        let out = Command::new(exe)
-            .args(["solve", case, "--fidelity", level, "--out"])
-            .arg(dir.path())
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{level}: {}",
-            String::from_utf8_lossy(&out.stderr)
+        let out = run_in(
+            root(),
+            &[
+                "solve",
+                case,
+                "--fidelity",
+                level,
+                "--out",
+                dir.path().to_str().unwrap(),
+            ],
         );
-        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(out.success(), "{level}: {}", out.stderr);
+        let stdout = &out.stdout;
         assert!(stdout.contains(&format!("fidelity {level}")), "{stdout}");
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
@@ -68,12 +70,9 @@ fn fidelity_cli_levels_write_the_interface_files() {
         }
         assert!(rows > 10, "{level}: {rows} rows");
     }
-    let out = Command::new(exe)
-        .args(["solve", case, "--fidelity", "fast"])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
+    let out = run_in(root(), &["solve", case, "--fidelity", "fast"]);
+    assert!(!out.success());
+    let err = &out.stderr;
     assert!(
         err.contains("--fidelity") && err.contains("fast") && !err.contains("panicked"),
         "{err}"
@@ -114,17 +113,14 @@ fn accuracy_preset_in_case_file_and_on_the_command_line() {
         err.contains("accuracy") && err.contains("medium") && err.contains("case.toml"),
         "{err}"
     );
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .args(["solve", "wells/seed-daqing/case.toml", "--accuracy", "fast", "--json"])
-        .output()
-        .unwrap();
-    assert!(out.status.success());
-    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let out = run_in(
+        root(),
+        &["solve", "wells/seed-daqing/case.toml", "--accuracy", "fast", "--json"],
+    );
+    assert!(out.success());
+    let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     let fast_elements = s["solver"]["elements"].as_u64().unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .args(["solve", "wells/seed-daqing/case.toml", "--json"])
-        .output()
-        .unwrap();
-    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let out = run_in(root(), &["solve", "wells/seed-daqing/case.toml", "--json"]);
+    let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     assert!(fast_elements < s["solver"]["elements"].as_u64().unwrap());
 }

@@ -1,7 +1,12 @@
-//! Fixtures shared by the integration tests: cases written to a temporary directory and read
-//! as users' cases are, and the slick 6.5 in collar of the closed-form checks (docs/theory.md 9.2).
-//! Each test binary uses a part of this module.
+//! Shared by the two test binaries (`tests/verification`, `tests/cli`; each includes this
+//! module): the one runner of the `drillpath` binary ([`run`]), cases written to a temporary
+//! directory and read as users' cases are, and the slick 6.5 in collar of the closed-form checks
+//! (docs/theory.md 9.2). Each binary uses a part of this module.
 #![allow(dead_code)]
+
+mod run;
+#[allow(unused_imports)] // the verification binary runs no command
+pub use run::{assert_error_names, drillpath, root, run_in, run_ok, Run};
 
 use drillpath::analytical::section::Tube;
 use drillpath::case::Case;
