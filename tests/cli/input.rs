@@ -6,10 +6,14 @@
 //! Each test runs the built binary in a fresh temporary directory holding a small valid case
 //! (`case.toml` + `survey.csv`), then breaks exactly one thing.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use std::sync::LazyLock;
 use tempfile::TempDir;
 
-use crate::common::{assert_error_names, run_in, Run};
+use crate::common::{
+    assert_error_names, case_dir, collar, example_case, example_dir, run_in, stabilizer, Run, BIT, DRILL_PIPE,
+    DRILL_PIPE_BODY,
+};
 
 /// The valid survey. Line 1 is a comment, so the header is line 2 and the stations are lines
 /// 3 to 6 (errors must count lines of the original file).
@@ -22,15 +26,17 @@ md [m],inc [deg],azi [deg]
 1000,20,45
 ";
 
-/// The valid case. Components: string[0] bit, string[1] stabilizer, string[2] collar,
-/// string[3] pipe (no length: fills to surface).
-const CASE: &str = r#"name = "input test"
+/// The valid case. Components: string[0] bit, string[1] full-gauge stabilizer, string[2] 50 m
+/// of 6.5 in collars, string[3] 5 in drill pipe (no length: fills to surface).
+static CASE: LazyLock<String> = LazyLock::new(|| {
+    format!(
+        r#"name = "input test"
 
 [well]
 survey = "survey.csv"
 hole = [
-  { to_md = "500 m", diameter = "12.25 in", friction = 0.2 },
-  { to_md = "1000 m", diameter = "8.5 in" },
+  {{ to_md = "500 m", diameter = "12.25 in", friction = 0.2 }},
+  {{ to_md = "1000 m", diameter = "8.5 in" }},
 ]
 
 [mud]
@@ -42,42 +48,20 @@ bit_md = "1000 m"
 wob = "100 kN"
 rpm = 60
 
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "50 m"
-
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-
+{BIT}
+{}
+{}
+{DRILL_PIPE}
 [solver]
 element_length = "1 m"
-"#;
+"#,
+        stabilizer("8.5 in"),
+        collar("50 m")
+    )
+});
 
 /// The exact header of `survey --out` (interface.md).
 const SURVEY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,dls_deg_per_30m";
-
-/// The example wells of the repository.
-fn wells() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("wells")
-}
 
 /// A temporary directory with the valid case and survey.
 struct Fixture {
@@ -86,11 +70,9 @@ struct Fixture {
 
 impl Fixture {
     fn new() -> Self {
-        let dir = tempfile::tempdir().expect("cannot create a temporary directory");
-        let fx = Fixture { dir };
-        fx.write("survey.csv", SURVEY);
-        fx.write("case.toml", CASE);
-        fx
+        Fixture {
+            dir: case_dir(SURVEY, &CASE),
+        }
     }
 
     fn path(&self) -> &Path {
@@ -117,7 +99,7 @@ impl Fixture {
     }
 
     fn edit_case(&self, old: &str, new: &str) {
-        self.edit("case.toml", CASE, old, new);
+        self.edit("case.toml", &CASE, old, new);
     }
 
     fn edit_survey(&self, old: &str, new: &str) {
@@ -657,7 +639,7 @@ fn survey_reversal_is_rejected() {
 #[test]
 fn survey_of_the_j_shape_case_prints_the_summary() {
     let tmp = tempfile::tempdir().unwrap();
-    let case = wells().join("j-shape/case.toml");
+    let case = example_case("j-shape");
     let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
     assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stderr.trim().is_empty(), "{}", r.describe());
@@ -675,7 +657,7 @@ fn survey_of_the_j_shape_case_prints_the_summary() {
 #[test]
 fn survey_out_writes_the_interface_csv() {
     let tmp = tempfile::tempdir().unwrap();
-    let case = wells().join("j-shape/case.toml");
+    let case = example_case("j-shape");
     let r = run_in(
         tmp.path(),
         &["survey", case.to_str().unwrap(), "--out", "positions.csv"],
@@ -704,7 +686,7 @@ fn survey_out_writes_the_interface_csv() {
 #[test]
 fn survey_of_the_forge_case_notes_the_assumed_feet() {
     let tmp = tempfile::tempdir().unwrap();
-    let case = wells().join("forge-16a/case.toml");
+    let case = example_case("forge-16a");
     let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
     assert_eq!(r.code(), Some(0), "{}", r.describe());
     let note = r
@@ -720,8 +702,8 @@ fn survey_of_the_forge_case_notes_the_assumed_feet() {
 #[test]
 fn survey_directly_on_a_csv_matches_the_case() {
     let tmp = tempfile::tempdir().unwrap();
-    let csv = wells().join("j-shape/survey.csv");
-    let case = wells().join("j-shape/case.toml");
+    let csv = example_dir("j-shape").join("survey.csv");
+    let case = example_case("j-shape");
     let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--out", "from_csv.csv"]);
     assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("stations: 88"), "{}", r.describe());
@@ -738,7 +720,7 @@ fn survey_directly_on_a_csv_matches_the_case() {
 #[test]
 fn survey_csv_flag_prints_the_table() {
     let tmp = tempfile::tempdir().unwrap();
-    let csv = wells().join("j-shape/survey.csv");
+    let csv = example_dir("j-shape").join("survey.csv");
     let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--csv"]);
     assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert_eq!(r.stdout.lines().next(), Some(SURVEY_HEADER));
@@ -773,9 +755,10 @@ fn unconverged_solve_names_lock_up_and_buckling() {
     .unwrap();
     std::fs::write(
         dir.path().join("c.toml"),
-        r#"[well]
+        format!(
+            r#"[well]
 survey = "s.csv"
-hole = [{ to_md = "1050 m", diameter = "8.5 in" }]
+hole = [{{ to_md = "1050 m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
@@ -783,14 +766,10 @@ mode = "sliding"
 bit_md = "1050 m"
 wob = "250 kN"
 friction = 0.25
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-[solver]
+{DRILL_PIPE_BODY}[solver]
 max_iterations = 3
-"#,
+"#
+        ),
     )
     .unwrap();
     let r = run_in(dir.path(), &["solve", "c.toml", "--out", "out"]);

@@ -3,18 +3,22 @@
 //! file; a good run writes `loads.csv` with the interface's columns first.
 
 use std::path::Path;
+use std::sync::LazyLock;
 use tempfile::TempDir;
 
-use crate::common::{assert_error_names, run_in, Run};
+use crate::common::{assert_error_names, case_dir, collar, run_in, Run, DRILL_PIPE};
 
 const SURVEY: &str = "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n600,20,45\n1000,30,45\n";
 
-const CASE: &str = r#"name = "loads cli test"
+/// 60 m of 6.5 in collars and the 5 in drill pipe, grade S-135, drilling at 50 kN.
+static CASE: LazyLock<String> = LazyLock::new(|| {
+    format!(
+        r#"name = "loads cli test"
 [well]
 survey = "survey.csv"
 hole = [
-  { to_md = "500 m", diameter = "12.25 in", friction = 0.2 },
-  { to_md = "1000 m", diameter = "8.5 in" },
+  {{ to_md = "500 m", diameter = "12.25 in", friction = 0.2 }},
+  {{ to_md = "1000 m", diameter = "8.5 in" }},
 ]
 [mud]
 density = "1.2 sg"
@@ -23,25 +27,14 @@ mode = "drilling"
 wob = "50 kN"
 rpm = 60
 friction = 0.3
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "60 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-grade = "S-135"
-"#;
+{}{DRILL_PIPE}grade = "S-135"
+"#,
+        collar("60 m")
+    )
+});
 
 fn setup() -> TempDir {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), SURVEY).unwrap();
-    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
-    dir
+    case_dir(SURVEY, &CASE)
 }
 
 /// `drillpath loads case.toml args` in `dir`.
@@ -174,7 +167,7 @@ fn fidelity_options_are_checked_and_reported() {
     let out = run(dir.path(), &["--accuracy", "sloppy", "--out", "out"]);
     assert_error(dir.path(), &out, &["--accuracy", "sloppy"]);
     // [solver] fidelity = "bha" in the case: the error names the file and the key
-    let bha = format!("{CASE}[solver]\nfidelity = \"bha\"\n");
+    let bha = format!("{}[solver]\nfidelity = \"bha\"\n", *CASE);
     std::fs::write(dir.path().join("case.toml"), &bha).unwrap();
     let out = run(dir.path(), &["--out", "out"]);
     assert_error(dir.path(), &out, &["case.toml", "solver.fidelity", "bha"]);
@@ -205,7 +198,7 @@ fn fidelity_options_are_checked_and_reported() {
     );
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid")), "{csv}");
     // [solver] fidelity = "whole" in the case runs the whole string; auto runs soft and says why
-    let whole = format!("{CASE}[solver]\nfidelity = \"whole\"\n");
+    let whole = format!("{}[solver]\nfidelity = \"whole\"\n", *CASE);
     std::fs::write(dir.path().join("case.toml"), &whole).unwrap();
     let out = run(
         dir.path(),

@@ -10,19 +10,15 @@
 use std::io::Read;
 use std::process::{Command, Stdio};
 
-use crate::common::{drillpath, root, run_in, run_ok, Run};
+use crate::common::{drillpath, example_case, root, run_in, run_ok, Run};
 
 const FT: f64 = 0.3048;
 const KLBF_KN: f64 = 4.448_221_615_260_5;
 const FTLBF_KNM: f64 = 4.448_221_615_260_5 * 0.3048 / 1e3;
 
+/// The case file of example well `name`, as a command-line argument.
 fn well(name: &str) -> String {
-    root()
-        .join("wells")
-        .join(name)
-        .join("case.toml")
-        .to_string_lossy()
-        .into_owned()
+    example_case(name).to_string_lossy().into_owned()
 }
 
 /// `drillpath args` in the package root; it must succeed.

@@ -3,9 +3,10 @@
 //! good runs write the interface's `trajectory.csv` columns and `summary.json` keys, no NaN.
 
 use std::path::Path;
+use std::sync::LazyLock;
 use tempfile::TempDir;
 
-use crate::common::{assert_error_names, run_in, Run};
+use crate::common::{assert_error_names, case_dir, collar, run_in, stabilizer, Run, BIT, PIPE_TUBE};
 
 /// Straight 20 deg hole with stations every 10 m below 200 m.
 fn survey() -> String {
@@ -21,10 +22,14 @@ fn survey() -> String {
     s
 }
 
-const CASE: &str = r#"name = "predict cli test"
+/// Bit, full-gauge near-bit stabilizer, 40 m of 6.5 in collars and 5 in pipe ([`PIPE_TUBE`]),
+/// drilling at 80 kN from 200 m, 2 m prediction steps.
+static CASE: LazyLock<String> = LazyLock::new(|| {
+    format!(
+        r#"name = "predict cli test"
 [well]
 survey = "survey.csv"
-hole = [{ to_md = "1000 m", diameter = "8.5 in" }]
+hole = [{{ to_md = "1000 m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
@@ -33,34 +38,16 @@ bit_md = "200 m"
 wob = "80 kN"
 rpm = 60
 friction = 0.2
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "40 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-[bit_rock]
+{BIT}{}{}{PIPE_TUBE}[bit_rock]
 step = "2 m"
-"#;
+"#,
+        stabilizer("8.5 in"),
+        collar("40 m")
+    )
+});
 
 fn setup(case: &str) -> TempDir {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey()).unwrap();
-    std::fs::write(dir.path().join("case.toml"), case).unwrap();
-    dir
+    case_dir(&survey(), case)
 }
 
 /// `drillpath cmd case.toml args` in `dir`.
@@ -78,7 +65,7 @@ fn assert_error(dir: &Path, out: &Run, needles: &[&str]) {
 
 #[test]
 fn predict_bad_options_are_named() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "predict", &["--from", "200", "--to", "150", "--out", "out"]);
     assert_error(dir.path(), &o, &["--to", "150"]);
     let o = run(dir.path(), "predict", &["--from", "500", "--to", "600", "--out", "out"]);
@@ -116,7 +103,7 @@ fn predict_refuses_cases_without_wob_on_bottom() {
 
 #[test]
 fn backanalyze_bad_options_are_named() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "backanalyze",
@@ -149,7 +136,7 @@ fn check_csv(text: &str, rows_at_least: usize) {
 
 #[test]
 fn predict_tracking_writes_the_interface_outputs() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "predict", &["--from", "200", "--to", "240", "--out", "out"]);
     assert!(o.success(), "{}", o.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
@@ -169,7 +156,7 @@ fn predict_tracking_writes_the_interface_outputs() {
 
 #[test]
 fn backanalyze_writes_errors_per_100m() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "backanalyze", &["--from", "200", "--out", "out"]);
     assert!(o.success(), "{}", o.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
@@ -193,7 +180,7 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
         r#"hole = [{ to_md = "1000 m", diameter = "8.5 in" }]"#,
         r#"hole = [{ to_md = "210 m", diameter = "12.25 in" }, { to_md = "1000 m", diameter = "8.5 in" }]"#,
     );
-    assert_ne!(wide, CASE);
+    assert_ne!(wide, *CASE);
     let intervals = |case: &str, args: &[&str]| -> (u64, String) {
         let dir = setup(case);
         let mut all = vec!["--out", "out"];
@@ -207,7 +194,7 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
     let (n, stdout) = intervals(&wide, &[]);
     assert_eq!(n, 3, "{stdout}");
     assert!(stdout.contains("from: the hole below 210.0 m"), "{stdout}");
-    let (n, stdout) = intervals(CASE, &[]);
+    let (n, stdout) = intervals(&CASE, &[]);
     assert_eq!(n, 5, "{stdout}");
     assert!(!stdout.contains("from: the hole below"), "{stdout}");
     let (n, stdout) = intervals(&wide, &["--from", "200"]);
@@ -216,10 +203,7 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
     // a string without a bit component (a 6.5 in collar at the bottom) is measured against the
     // hole at the bottom of the survey (8.5 in), not against its lowest component: same 3
     // intervals
-    let bitless = wide.replace(
-        "[[string]]\ntype = \"bit\"\nod = \"8.5 in\"\nlength = \"0.3 m\"\n[[string]]\ntype = \"stabilizer\"\nod = \"8.5 in\"\nbody_od = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"1.5 m\"\n",
-        "",
-    );
+    let bitless = wide.replace(&format!("{BIT}{}", stabilizer("8.5 in")), "");
     assert!(!bitless.contains("type = \"bit\""));
     let (n, stdout) = intervals(&bitless, &[]);
     assert_eq!(n, 3, "{stdout}");
@@ -231,7 +215,7 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
 /// stabilized one builds more (textbook, docs/theory.md 9.3).
 #[test]
 fn predict_compares_several_bhas() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let slick = CASE.replace("name = \"predict cli test\"", "name = \"slick\"").replace(
         "type = \"stabilizer\"\nod = \"8.5 in\"\nbody_od = \"6.5 in\"",
         "type = \"collar\"\nod = \"6.5 in\"",
@@ -270,7 +254,7 @@ fn summary(dir: &Path) -> serde_json::Value {
 /// law's sensitivity over 10 m, with margin).
 #[test]
 fn predict_fidelity_levels() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "predict",
@@ -335,9 +319,9 @@ fn predict_accuracy_sets_the_step() {
         assert!(o.success(), "{args:?}: {}", o.stderr);
         summary(dir.path())["step_m"].as_f64().unwrap()
     };
-    assert_eq!(step_of(CASE, &[]), 2.0, "the case's [bit_rock] step");
-    assert_eq!(step_of(CASE, &["--accuracy", "precise"]), 0.5);
-    assert_eq!(step_of(CASE, &["--accuracy", "precise", "--step", "1 m"]), 1.0);
+    assert_eq!(step_of(&CASE, &[]), 2.0, "the case's [bit_rock] step");
+    assert_eq!(step_of(&CASE, &["--accuracy", "precise"]), 0.5);
+    assert_eq!(step_of(&CASE, &["--accuracy", "precise", "--step", "1 m"]), 1.0);
     let preset = CASE.replace("[bit_rock]\nstep = \"2 m\"", "[solver]\naccuracy = \"precise\"");
     assert_eq!(
         step_of(&preset, &[]),
@@ -346,7 +330,7 @@ fn predict_accuracy_sets_the_step() {
     );
     let both = CASE.replace("[bit_rock]", "[solver]\naccuracy = \"precise\"\n[bit_rock]");
     assert_eq!(step_of(&both, &[]), 2.0, "explicit [bit_rock] step wins");
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "predict",
@@ -359,7 +343,7 @@ fn predict_accuracy_sets_the_step() {
 /// the fine step (half) and finite error estimates; rows are those of the coarse march.
 #[test]
 fn predict_extrapolate_reports_the_step_error() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "predict",
@@ -375,7 +359,7 @@ fn predict_extrapolate_reports_the_step_error() {
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
     check_csv(&csv, 5);
     assert!(o.stdout.contains("step extrapolation"));
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "predict", &["--ahead", "8 m", "--out", "out"]);
     assert!(o.success());
     assert!(summary(dir.path())["step_extrapolation"].is_null());

@@ -8,7 +8,7 @@
 use std::path::Path;
 use tempfile::TempDir;
 
-use crate::common::{root, run_in, run_ok, Run};
+use crate::common::{example_case, root, run_in, run_ok, Run};
 
 /// `drillpath args` in `dir`; it must succeed.
 fn run(args: &[&str], dir: &Path) -> Run {
@@ -139,7 +139,7 @@ fn solve_report_for_every_example_well() {
 #[test]
 fn oilfield_units_in_the_solve_report_match_the_si_summary() {
     let tmp = TempDir::new().unwrap();
-    let case = root().join("wells/j-shape/case.toml");
+    let case = example_case("j-shape");
     let out = run(
         &[
             "solve",
@@ -184,7 +184,7 @@ fn oilfield_units_in_the_solve_report_match_the_si_summary() {
 #[test]
 fn axial_force_plot_shows_buckled_zones_only_when_buckled() {
     let tmp = TempDir::new().unwrap();
-    let case = root().join("wells/j-shape/case.toml");
+    let case = example_case("j-shape");
     for md in ["300 m", "1500 m"] {
         let out = run(
             &[
@@ -222,7 +222,7 @@ fn axial_force_plot_shows_buckled_zones_only_when_buckled() {
 #[test]
 fn predict_and_backanalyze_reports_on_the_seed_well() {
     let tmp = TempDir::new().unwrap();
-    let case = root().join("wells/seed-daqing/case.toml");
+    let case = example_case("seed-daqing");
     let c = case.to_str().unwrap();
     run(
         &[
@@ -274,7 +274,7 @@ fn init_writes_a_case_that_solve_and_predict_run_on() {
 fn unwritable_report_is_one_error_and_no_file() {
     let tmp = TempDir::new().unwrap();
     std::fs::write(tmp.path().join("blocker"), "a file, not a directory").unwrap();
-    let case = root().join("wells/seed-daqing/case.toml");
+    let case = example_case("seed-daqing");
     let out = run_in(
         tmp.path(),
         &["solve", case.to_str().unwrap(), "--report", "blocker/r.html"],

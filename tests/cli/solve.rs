@@ -2,10 +2,7 @@
 //! interface files it writes, the options that override the case, and the errors for unknown
 //! names. The levels' numbers against each other are checked in tests/verification/fidelity.rs.
 
-use drillpath::io::case_toml::{load_case, CaseOverrides};
-use std::path::Path;
-
-use crate::common::{root, run_in};
+use crate::common::{example_dir, root, run_in, try_load_temp_case};
 
 #[test]
 fn fidelity_cli_levels_write_the_interface_files() {
@@ -84,7 +81,7 @@ fn accuracy_preset_in_case_file_and_on_the_command_line() {
     // Reference: the preset table of src/case/accuracy.rs; explicit keys win over `[solver]
     // accuracy`; `--accuracy` wins over the case; unknown names are one clear error.
     use drillpath::case::accuracy::Accuracy;
-    let src = Path::new("wells/seed-daqing");
+    let src = example_dir("seed-daqing");
     let text: String = std::fs::read_to_string(src.join("case.toml"))
         .unwrap()
         .lines()
@@ -93,12 +90,10 @@ fn accuracy_preset_in_case_file_and_on_the_command_line() {
         })
         .map(|l| format!("{l}\n"))
         .collect();
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::copy(src.join("survey.csv"), dir.path().join("survey.csv")).unwrap();
+    let survey = std::fs::read_to_string(src.join("survey.csv")).unwrap();
     let write = |solver: &str| {
         let t = text.replace("[solver]\n", &format!("[solver]\n{solver}\n"));
-        std::fs::write(dir.path().join("case.toml"), t).unwrap();
-        load_case(&dir.path().join("case.toml"), &CaseOverrides::default())
+        try_load_temp_case(&survey, &t)
     };
     let precise = write("accuracy = \"precise\"").unwrap();
     let k = Accuracy::Precise.knobs();

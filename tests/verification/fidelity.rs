@@ -7,15 +7,8 @@ use drillpath::case::{choose, Case, Fidelity, Level, Mode, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::solve::SolveControls;
 use drillpath::models::levels::{run, upper_part, LevelResult};
-use std::path::Path;
 
-fn example(name: &str) -> Case {
-    load_case(
-        &Path::new("wells").join(name).join("case.toml"),
-        &CaseOverrides::default(),
-    )
-    .unwrap()
-}
+use crate::common::{example, example_dir};
 
 fn at(case: &Case, level: Fidelity) -> LevelResult {
     let r = run(
@@ -264,7 +257,7 @@ fn fidelity_upper_part_complements_truncated() {
 /// translated by `origin` (the `[well] origin` key, read as users give it).
 fn at_map_grid(name: &str, origin: [f64; 3]) -> Case {
     let dir = tempfile::tempdir().unwrap();
-    let src = Path::new("wells").join(name);
+    let src = example_dir(name);
     for entry in std::fs::read_dir(&src).unwrap() {
         let p = entry.unwrap().path();
         if p.is_file() {

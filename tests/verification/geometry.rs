@@ -15,6 +15,8 @@ use drillpath::units::lookup;
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
 
+use crate::common::example_dir;
+
 // ----------------------------------------------------------------------------------------------
 // Shared helpers
 // ----------------------------------------------------------------------------------------------
@@ -380,10 +382,7 @@ fn forge_16a_every_station() {
     // 2 decimals, feet): TVD, NS, EW within 0.005 ft at every station; final station TVD
     // 8,558.83 ft, NS -1,039.83 ft, EW 3,901.17 ft (0.005 ft). The header has no units: MD is
     // read as feet through `SurveyUnits`. DLS (deg/100 ft, 2 decimals) is also compared: 0.05.
-    let path = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/wells/forge-16a/Directional_Survey16A-32.csv"
-    ));
+    let path = example_dir("forge-16a").join("Directional_Survey16A-32.csv");
     let Some(path) = present(path.to_str().unwrap()) else {
         return;
     };
