@@ -361,7 +361,7 @@ pub const IP_STALL_STEPS: usize = 5;
 /// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
 /// boundary. Restarting far from the solution too was tried: it discards the warm start's
 /// contact set and made the outer iteration wander on the horizontal WOB case of
-/// tests/verification/extremes.rs (thousands of factorizations).
+/// tests/extremes.rs (thousands of factorizations).
 pub const IP_RESTARTS: usize = 2;
 
 /// Growth of the warm-start shift at each interior-point restart.

@@ -110,7 +110,7 @@
 //! its bit forces converge to this scheme's (seed-daqing, forge-16a, j-shape within 3e-6,
 //! volve-f10 within 2e-5 at 300x); without pins (s-shape, horizontal, the tests' curved well)
 //! the two agree within 1e-5. So the 0.25-0.5% was the default scheme's pin error, not two
-//! equilibria or a loose test here (tests/verification/paper.rs checks it on a full-gauge BHA).
+//! equilibria or a loose test here (tests/paper.rs checks it on a full-gauge BHA).
 //!
 //! # Status (honest; docs/performance.md "Paper scheme vs default")
 //! Converges on all six example wells (175-260 steps, 1-12 s; the default needs 7-11
