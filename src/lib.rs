@@ -7,7 +7,7 @@
 //! with an anisotropic bit-rock law. `docs/theory.md` gives the mechanics and the numerical
 //! methods with their verification references; `docs/guide.md` is the user's manual;
 //! `docs/architecture.md` states the rules this map follows (checked by
-//! `tests/architecture.rs`).
+//! `tests/verification/architecture.rs`).
 //!
 //! ## The pipeline
 //!

@@ -13,7 +13,7 @@
 //! (docs/theory.md 4), so the torque above the cut is consistent with the stiff part below.
 //! Against `whole` the surface torque of `hybrid` is then within 1% on the example wells,
 //! forge-16a aside (+6.8%: short doglegs of its real survey that the stiff pipe bridges);
-//! Johancsik's form gave +1% to +8.4% (tests/fidelity.rs).
+//! Johancsik's form gave +1% to +8.4% (tests/verification/fidelity.rs).
 //!
 
 use crate::case::fidelity::{Choice, Level};

@@ -1,41 +1,62 @@
-//! Fixtures shared by the integration tests: cases written to a temporary directory and read
-//! as users' cases are, and the slick 6.5 in collar of the closed-form checks (docs/theory.md 9.2).
-//! Each test binary uses a part of this module.
+//! Shared by the two test binaries (`tests/verification`, `tests/cli`; each includes this
+//! module): the one runner of the `drillpath` binary ([`run`]), the drill strings and BHAs used
+//! by more than one test ([`strings`]), the example wells, and cases written to a temporary
+//! directory and read as users' cases are. Each binary uses a part of this module.
 #![allow(dead_code)]
 
-use drillpath::analytical::section::Tube;
+mod run;
+mod strings;
+#[allow(unused_imports)] // each binary uses a part
+pub use run::{assert_error_names, drillpath, root, run_in, run_ok, Run};
+#[allow(unused_imports)]
+pub use strings::*;
+
 use drillpath::case::Case;
+use drillpath::error::InputResult;
 use drillpath::io::case_toml::{load_case, CaseOverrides};
+use std::path::PathBuf;
+use tempfile::TempDir;
 
-/// Collar outside diameter, 6.5 in, m.
-pub const OD: f64 = 6.5 * 0.0254;
-/// Collar bore, 2-13/16 in, m.
-pub const ID: f64 = 2.8125 * 0.0254;
-/// Hole diameter, 8.5 in, m.
-pub const HOLE: f64 = 8.5 * 0.0254;
+/// The directory of example well `name` (`wells/<name>`: its case file, survey and data).
+pub fn example_dir(name: &str) -> PathBuf {
+    root().join("wells").join(name)
+}
 
-/// Write `survey` (as `survey.csv`) and `case_toml` (as `case.toml`) into a fresh directory
-/// and read the case as users do.
+/// The case file of example well `name` (`wells/<name>/case.toml`).
+pub fn example_case(name: &str) -> PathBuf {
+    example_dir(name).join("case.toml")
+}
+
+/// Example well `name` read as users' cases are (`wells/<name>/case.toml`, no overrides).
+pub fn example(name: &str) -> Case {
+    load_case(&example_case(name), &CaseOverrides::default()).unwrap()
+}
+
+/// A fresh temporary directory holding `survey` as `survey.csv` and `case_toml` as `case.toml`
+/// (a case whose `[well] survey` is `"survey.csv"`).
+pub fn case_dir(survey: &str, case_toml: &str) -> TempDir {
+    let dir = tempfile::tempdir().expect("cannot create a temporary directory");
+    std::fs::write(dir.path().join("survey.csv"), survey).expect("cannot write survey.csv");
+    std::fs::write(dir.path().join("case.toml"), case_toml).expect("cannot write case.toml");
+    dir
+}
+
+/// Write `survey` and `case_toml` to a fresh directory ([`case_dir`]) and read the case as users
+/// do, errors included.
+pub fn try_load_temp_case(survey: &str, case_toml: &str) -> InputResult<Case> {
+    let dir = case_dir(survey, case_toml);
+    load_case(&dir.path().join("case.toml"), &CaseOverrides::default())
+}
+
+/// [`try_load_temp_case`] of a valid case.
 pub fn load_temp_case(survey: &str, case_toml: &str) -> Case {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
-    std::fs::write(dir.path().join("case.toml"), case_toml).unwrap();
-    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
+    try_load_temp_case(survey, case_toml).unwrap()
 }
 
-/// Bending stiffness EI (N.m2, E = 207 GPa), buoyed weight (N/m, steel 7,850 kg/m3 in 1.2 sg
-/// mud) and radial clearance (m) of the slick collar in its hole.
-pub fn collar_properties() -> (f64, f64, f64) {
-    let tube = Tube::new(OD, ID).unwrap();
-    let ei = 207e9 * tube.second_moment();
-    let w_b = tube.air_weight(7850.0) * (1.0 - 1200.0 / 7850.0);
-    (ei, w_b, (HOLE - OD) / 2.0)
-}
-
-/// A slick collar string `length_m` long in a straight 8.5 in hole of inclination `inc_deg`
-/// and azimuth `azi_deg`, 1.2 sg mud, sliding without friction at `wob_kn`, elements of
-/// `element_m` everywhere; `solver_extra` is appended to the `[solver]` table (e.g.
-/// `method = "paper"`).
+/// A slick collar string ([`COLLAR_TO_SURFACE`], properties [`collar_properties`]) `length_m`
+/// long in a straight 8.5 in hole of inclination `inc_deg` and azimuth `azi_deg` (deg), 1.2 sg
+/// mud, sliding without friction at `wob_kn` (kN), elements of `element_m` (m) everywhere;
+/// `solver_extra` is appended to the `[solver]` table (e.g. `method = "paper"`).
 pub fn slick_collar_case(
     inc_deg: f64,
     azi_deg: f64,
@@ -57,11 +78,7 @@ mode = "sliding"
 wob = "{wob_kn} kN"
 rop = "0 m/h"
 friction = 0.0
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-[solver]
+{COLLAR_TO_SURFACE}[solver]
 element_length = "{element_m} m"
 bha_element_length = "{element_m} m"
 {solver_extra}

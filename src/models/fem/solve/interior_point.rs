@@ -29,7 +29,7 @@ pub const IP_STALL_STEPS: usize = 5;
 /// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
 /// boundary. Far from the solution it does not restart: a restart there discards the warm
 /// start's contact set and makes the outer iteration wander on the horizontal WOB case of
-/// tests/extremes.rs (thousands of factorizations).
+/// tests/verification/extremes.rs (thousands of factorizations).
 pub const IP_RESTARTS: usize = 2;
 
 /// Growth of the warm-start shift at each interior-point restart.

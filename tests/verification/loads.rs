@@ -2,7 +2,6 @@
 //! its reference and tolerance.
 
 use drillpath::case::{Case, Mode};
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::loads::calibrate::calibrate;
 use drillpath::loads::calibrate::MeasuredPoint;
 use drillpath::loads::chart::{case_at_depth, soft_chart, ChartSettings};
@@ -10,10 +9,7 @@ use drillpath::loads::row::{LoadRow, StiffOutcome};
 use drillpath::loads::stiff::stiff_row;
 use drillpath::loads::{set_row_operation, ChartOperation, MODES};
 
-const G: f64 = 9.80665;
-
-mod common;
-use common::load_temp_case as temp_case;
+use crate::common::{collar, example, load_temp_case as temp_case, pipe_properties, DRILL_PIPE, DRILL_PIPE_BODY};
 
 /// Survey rows every 10 m from (md, inc, azi) knots with inclination and azimuth linear in MD
 /// between knots (constant build/turn rate).
@@ -39,7 +35,7 @@ fn survey(knots: &[(f64, f64, f64)]) -> String {
 
 /// A case of plain 5 in pipe (29 kg/m, optional 6-5/8 in joints) in 8.5 in hole, 1.2 sg mud.
 fn pipe_case(survey_csv: &str, td: f64, friction: f64, joints: bool, element: f64) -> Case {
-    let tj = if joints { "tool_joint_od = \"6.625 in\"" } else { "" };
+    let pipe = if joints { DRILL_PIPE } else { DRILL_PIPE_BODY };
     temp_case(
         survey_csv,
         &format!(
@@ -54,13 +50,7 @@ mode = "trip_out"
 rpm = 60
 friction = {friction}
 viscous_torque = false
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-{tj}
-[solver]
+{pipe}[solver]
 element_length = "{element} m"
 bha_element_length = "{element} m"
 max_iterations = 500
@@ -69,8 +59,9 @@ max_iterations = 500
     )
 }
 
+/// Buoyed weight of the 5 in pipe, N/m.
 fn w_b() -> f64 {
-    29.0 * G * (1.0 - 1200.0 / 7850.0)
+    pipe_properties().1
 }
 
 fn row(rows: &[LoadRow], depth_index: usize, mode: Mode) -> &LoadRow {
@@ -305,18 +296,8 @@ density = "1.2 sg"
 mode = "trip_out"
 rpm = 60
 friction = 0.3
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "60 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-"#
+{}{DRILL_PIPE}"#,
+                collar("60 m")
             ),
         )
     };
@@ -383,11 +364,7 @@ tool_joint_od = "6.625 in"
 fn warm_started_rows_equal_cold_started_rows() {
     use drillpath::loads::row::Start;
     use drillpath::loads::stiff::stiff_depth;
-    let case = load_case(
-        std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/wells/seed-daqing/case.toml")),
-        &CaseOverrides::default(),
-    )
-    .unwrap();
+    let case = example("seed-daqing");
     let op = ChartOperation::from_case(&case);
     let wobs: Vec<f64> = MODES
         .iter()

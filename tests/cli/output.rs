@@ -8,34 +8,22 @@
 //! must agree to the rounding of the printed digits (half a unit of the last digit of each).
 
 use std::io::Read;
-use std::path::PathBuf;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
+
+use crate::common::{drillpath, example_case, root, run_in, run_ok, Run};
 
 const FT: f64 = 0.3048;
 const KLBF_KN: f64 = 4.448_221_615_260_5;
 const FTLBF_KNM: f64 = 4.448_221_615_260_5 * 0.3048 / 1e3;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_drillpath"))
-}
-
+/// The case file of example well `name`, as a command-line argument.
 fn well(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("wells")
-        .join(name)
-        .join("case.toml")
-        .to_string_lossy()
-        .into_owned()
+    example_case(name).to_string_lossy().into_owned()
 }
 
-fn run(args: &[&str]) -> Output {
-    let out = bin().args(args).output().expect("run drillpath");
-    assert!(
-        out.status.success(),
-        "drillpath {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
+/// `drillpath args` in the package root; it must succeed.
+fn run(args: &[&str]) -> Run {
+    run_ok(root(), args)
 }
 
 /// stdout of `args` with `--units si` and `--units oilfield`; both checked for units of the
@@ -46,12 +34,8 @@ fn both(args: &[&str]) -> (String, String) {
         let mut a = args.to_vec();
         a.extend(["--units", units]);
         let out = run(&a);
-        assert!(
-            out.stderr.is_empty(),
-            "stderr not empty into a pipe: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(out.stderr.is_empty(), "stderr not empty into a pipe: {}", out.stderr);
+        let text = out.stdout;
         let foreign: &[&str] = if units == "si" {
             // (not "in": case names say "8.5 in section")
             &["ft", "klbf", "ft.lbf", "ksi"]
@@ -308,7 +292,7 @@ fn a_closed_stdout_pipe_is_a_clean_exit() {
         vec!["solve", &case, "--bit-md", "800 m"],
         vec!["solve", &case, "--bit-md", "800 m", "--json"],
     ] {
-        let mut child = bin()
+        let mut child = drillpath()
             .args(&args)
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())
@@ -422,18 +406,18 @@ fn report_at_the_cut_levels() {
     let tmp = tempfile::tempdir().unwrap();
     for level in ["hybrid", "bha"] {
         let file = tmp.path().join(format!("{level}.html"));
-        let out = bin()
-            .args([
+        let out = run_in(
+            root(),
+            &[
                 "solve",
                 &well("j-shape"),
                 "--fidelity",
                 level,
                 "--report",
                 file.to_str().unwrap(),
-            ])
-            .output()
-            .unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+            ],
+        );
+        assert!(out.success(), "{}", out.stderr);
         let html = std::fs::read_to_string(&file).unwrap();
         assert!(
             html.contains(&format!("Fidelity {level}: stiff model of the bottom")),
@@ -443,19 +427,19 @@ fn report_at_the_cut_levels() {
         assert!(!html.contains("NaN"));
     }
     let file = tmp.path().join("soft.html");
-    let out = bin()
-        .args([
+    let out = run_in(
+        root(),
+        &[
             "solve",
             &well("j-shape"),
             "--fidelity",
             "soft",
             "--report",
             file.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+        ],
+    );
+    assert_eq!(out.code(), Some(2));
+    let err = &out.stderr;
     assert!(err.contains("--report") && err.contains("soft"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(!file.exists());

@@ -252,7 +252,7 @@ fn layers_import_only_downward() {
         }
         let (Some(la), Some(lb)) = (layer_of(a), layer_of(b)) else {
             bad.push(format!(
-                "{file}:{line}: `{a}` or `{b}` is in no layer of tests/architecture.rs"
+                "{file}:{line}: `{a}` or `{b}` is in no layer of tests/verification/architecture.rs"
             ));
             continue;
         };

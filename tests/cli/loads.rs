@@ -3,17 +3,22 @@
 //! file; a good run writes `loads.csv` with the interface's columns first.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::sync::LazyLock;
 use tempfile::TempDir;
+
+use crate::common::{assert_error_names, case_dir, collar, run_in, Run, DRILL_PIPE};
 
 const SURVEY: &str = "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n600,20,45\n1000,30,45\n";
 
-const CASE: &str = r#"name = "loads cli test"
+/// 60 m of 6.5 in collars and the 5 in drill pipe, grade S-135, drilling at 50 kN.
+static CASE: LazyLock<String> = LazyLock::new(|| {
+    format!(
+        r#"name = "loads cli test"
 [well]
 survey = "survey.csv"
 hole = [
-  { to_md = "500 m", diameter = "12.25 in", friction = 0.2 },
-  { to_md = "1000 m", diameter = "8.5 in" },
+  {{ to_md = "500 m", diameter = "12.25 in", friction = 0.2 }},
+  {{ to_md = "1000 m", diameter = "8.5 in" }},
 ]
 [mud]
 density = "1.2 sg"
@@ -22,49 +27,26 @@ mode = "drilling"
 wob = "50 kN"
 rpm = 60
 friction = 0.3
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "60 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-grade = "S-135"
-"#;
+{}{DRILL_PIPE}grade = "S-135"
+"#,
+        collar("60 m")
+    )
+});
 
 fn setup() -> TempDir {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), SURVEY).unwrap();
-    std::fs::write(dir.path().join("case.toml"), CASE).unwrap();
-    dir
+    case_dir(SURVEY, &CASE)
 }
 
-fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .current_dir(dir)
-        .arg("loads")
-        .arg("case.toml")
-        .args(args)
-        .output()
-        .unwrap()
+/// `drillpath loads case.toml args` in `dir`.
+fn run(dir: &Path, args: &[&str]) -> Run {
+    run_in(dir, &[&["loads", "case.toml"], args].concat())
 }
 
 /// Exit code 2, exactly one stderr line starting `error:` containing every `needles` item, no
-/// panic, and no `out/` directory content.
-fn assert_error(dir: &Path, out: &Output, needles: &[&str]) {
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    let lines: Vec<&str> = err.lines().collect();
-    assert_eq!(lines.len(), 1, "stderr: {err}");
-    assert!(lines[0].starts_with("error: "), "{err}");
-    assert!(!err.contains("panicked"), "{err}");
-    for n in needles {
-        assert!(err.contains(n), "`{n}` not in: {err}");
-    }
+/// panic ([`assert_error_names`]), and no `out/` directory content.
+fn assert_error(dir: &Path, out: &Run, needles: &[&str]) {
+    assert_eq!(out.code(), Some(2), "stderr: {}", out.stderr);
+    assert_error_names(out, needles);
     assert!(!dir.join("out/loads.csv").exists(), "partial output left behind");
     assert!(!dir.join("out/calibration.csv").exists(), "partial output left behind");
 }
@@ -73,7 +55,7 @@ fn assert_error(dir: &Path, out: &Output, needles: &[&str]) {
 fn good_run_writes_interface_columns() {
     let dir = setup();
     let out = run(dir.path(), &["--every", "100 m", "--out", "out"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.success(), "{}", out.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     let header = csv.lines().next().unwrap();
     assert!(header.starts_with("bit_md_m,mode,hook_load_kN,surface_torque_kNm,max_contact_force_kN,buckled_length_m,"));
@@ -162,7 +144,7 @@ fn calibration_writes_overlay() {
         dir.path(),
         &["--measured", "measured.csv", "--every", "100", "--out", "out"],
     );
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.success(), "{}", out.stderr);
     let overlay = std::fs::read_to_string(dir.path().join("out/calibration.csv")).unwrap();
     assert_eq!(overlay.lines().count(), 10);
     assert!(overlay.starts_with("line,bit_md_m,mode,measured_hook_load_kN"));
@@ -185,7 +167,7 @@ fn fidelity_options_are_checked_and_reported() {
     let out = run(dir.path(), &["--accuracy", "sloppy", "--out", "out"]);
     assert_error(dir.path(), &out, &["--accuracy", "sloppy"]);
     // [solver] fidelity = "bha" in the case: the error names the file and the key
-    let bha = format!("{CASE}[solver]\nfidelity = \"bha\"\n");
+    let bha = format!("{}[solver]\nfidelity = \"bha\"\n", *CASE);
     std::fs::write(dir.path().join("case.toml"), &bha).unwrap();
     let out = run(dir.path(), &["--out", "out"]);
     assert_error(dir.path(), &out, &["case.toml", "solver.fidelity", "bha"]);
@@ -203,8 +185,8 @@ fn fidelity_options_are_checked_and_reported() {
             "out",
         ],
     );
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.success(), "{}", out.stderr);
+    let stdout = &out.stdout;
     assert!(stdout.contains("fidelity hybrid: requested"), "{stdout}");
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     assert!(csv.lines().next().unwrap().ends_with(",stiff_model"));
@@ -216,7 +198,7 @@ fn fidelity_options_are_checked_and_reported() {
     );
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid")), "{csv}");
     // [solver] fidelity = "whole" in the case runs the whole string; auto runs soft and says why
-    let whole = format!("{CASE}[solver]\nfidelity = \"whole\"\n");
+    let whole = format!("{}[solver]\nfidelity = \"whole\"\n", *CASE);
     std::fs::write(dir.path().join("case.toml"), &whole).unwrap();
     let out = run(
         dir.path(),
@@ -231,13 +213,13 @@ fn fidelity_options_are_checked_and_reported() {
             "out",
         ],
     );
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(out.success(), "{}", out.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole")), "{csv}");
     // stdout prints a second table with the stiff values: its last line (1,000 m) shows the
     // stiff trip-out hook load of loads.csv (reference: the CSV, to the printed 0.1 kN), which
     // differs from the soft one printed in the first table
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stdout = &out.stdout;
     let tables: Vec<&str> = stdout
         .lines()
         .filter(|l| l.trim_start().starts_with("1000.0 |"))
@@ -269,7 +251,7 @@ fn fidelity_options_are_checked_and_reported() {
     );
     assert!((trip_out(tables[0]) - trip_out(tables[1])).abs() > 0.2, "{stdout}");
     let out = run(dir.path(), &["--fidelity", "auto", "--out", "out"]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stdout = &out.stdout;
     assert!(stdout.contains("fidelity soft: auto:"), "{stdout}");
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     assert!(

@@ -5,14 +5,14 @@
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
 use drillpath::case::{Case, Method};
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::contact::gap::ZERO_CLEARANCE_M;
 use drillpath::models::fem::model::Model;
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, Solution, SolveControls};
 
-mod common;
-use common::{collar_properties, load_temp_case, slick_collar_case};
+use crate::common::{
+    collar, collar_properties, example, load_temp_case, slick_collar_case, stabilizer, BIT, DRILL_PIPE,
+};
 
 /// Solve `case` with `method`, gap tolerance `gap_tol` and an iteration limit.
 fn run(case: &Case, method: Method, gap_tol: f64, max_iterations: usize) -> (Solution, SolveResults) {
@@ -140,16 +140,6 @@ fn curved_case(mode: &str, rpm: f64, friction: f64) -> Case {
     curved_case_with(mode, rpm, friction, "")
 }
 
-/// A full-gauge (8.5 in: zero clearance) near-bit stabilizer, as a `[[string]]` entry.
-const NEAR_BIT_STABILIZER: &str = r#"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-"#;
-
 /// [`curved_case`] with `extra` (`[[string]]` entries) between the bit and the first collar.
 fn curved_case_with(mode: &str, rpm: f64, friction: f64, extra: &str) -> Case {
     let survey = "md_m,inc_deg,azi_deg\n0,20,30\n60,32,36\n120,44,42\n";
@@ -167,37 +157,13 @@ rpm = {rpm}
 rop = "5 m/h"
 friction = {friction}
 viscous_torque = false
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-{extra}
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "9 m"
-[[string]]
-type = "stabilizer"
-od = "8.375 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "27 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-[solver]
+{BIT}{extra}{}{}{}{DRILL_PIPE}[solver]
 element_length = "1 m"
 bha_element_length = "0.5 m"
-"#
+"#,
+        collar("9 m"),
+        stabilizer("8.375 in"),
+        collar("27 m")
     );
     load_temp_case(survey, &case)
 }
@@ -305,7 +271,8 @@ fn both_schemes_hold_full_gauge_stabilizers_on_the_hole_axis() {
     // schemes at the default penalty agree to 1e-4. Before the default scheme updated its pin
     // multipliers, its pin sat R/k_n (~5 um) off the axis and its bit side force was ~0.3% off:
     // (1) and (3) fail then.
-    let case = curved_case_with("drilling", 80.0, 0.25, NEAR_BIT_STABILIZER);
+    // a full-gauge (8.5 in: zero clearance) near-bit stabilizer
+    let case = curved_case_with("drilling", 80.0, 0.25, &stabilizer("8.5 in"));
     let model = Model::from_case(&case);
     let pin_nodes = pins(&model);
     assert!(!pin_nodes.is_empty(), "the near-bit stabilizer is a pin");
@@ -351,8 +318,7 @@ fn paper_scheme_converges_on_the_seed_paper_well() {
     // full-gauge near-bit stabilizer, rotating with friction) with the case's own tolerance
     // and iteration limit. Reference: the default scheme with its pin penalty raised 1000x;
     // 1e-4 relative on bit forces, WOB, hook load and surface torque (measured ~3e-6).
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/seed-daqing/case.toml");
-    let case = load_case(&path, &CaseOverrides::default()).unwrap();
+    let case = example("seed-daqing");
     let (sp, p) = run(&case, Method::Paper, case.solver.tolerance, case.solver.max_iterations);
     assert!(sp.converged, "converged within the case's max_iterations");
     let (sn, nw) = run_model(

@@ -1,7 +1,7 @@
 //! Geometry verification: minimum curvature (`drillpath::geometry`) against hand-computed arcs,
 //! published / real-well survey reports and properties that must hold for every valid survey.
 //!
-//! Run with `cargo test --release --test geometry -- --nocapture` to see the measured errors.
+//! Run with `cargo test --release --test verification geometry:: -- --nocapture` to see the measured errors.
 //!
 //! Data files under `/work/shared/data` are located beside the repository
 //! (`$CARGO_MANIFEST_DIR/../shared/data/...`); if one is absent the test prints a note and returns.
@@ -14,6 +14,8 @@ use drillpath::io::survey_csv::{read_survey_csv, SurveyUnits};
 use drillpath::units::lookup;
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
+
+use crate::common::example_dir;
 
 // ----------------------------------------------------------------------------------------------
 // Shared helpers
@@ -380,10 +382,7 @@ fn forge_16a_every_station() {
     // 2 decimals, feet): TVD, NS, EW within 0.005 ft at every station; final station TVD
     // 8,558.83 ft, NS -1,039.83 ft, EW 3,901.17 ft (0.005 ft). The header has no units: MD is
     // read as feet through `SurveyUnits`. DLS (deg/100 ft, 2 decimals) is also compared: 0.05.
-    let path = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/wells/forge-16a/Directional_Survey16A-32.csv"
-    ));
+    let path = example_dir("forge-16a").join("Directional_Survey16A-32.csv");
     let Some(path) = present(path.to_str().unwrap()) else {
         return;
     };
@@ -542,8 +541,9 @@ fn survey_deg() -> impl Strategy<Value = Vec<(f64, f64, f64)>> {
         })
 }
 
-/// `cases` cases; a failing case is saved to `tests/geometry.proptest-regressions` (the default
-/// source-parallel location needs a `lib.rs` beside the test file).
+/// `cases` cases; a failing case is saved beside this file, to
+/// `tests/verification/geometry.proptest-regressions` (proptest's default source-parallel
+/// location would be `tests/proptest-regressions/geometry.txt`).
 fn config(cases: u32) -> ProptestConfig {
     ProptestConfig {
         cases,

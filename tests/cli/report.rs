@@ -5,26 +5,14 @@
 //! never show NaN or infinity. Reference for the unit test: exact definitions (1 lbf =
 //! 4.4482216152605 N, 1 ft = 0.3048 m) against the SI summary.json of the same solve.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 use tempfile::TempDir;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_drillpath"))
-}
+use crate::common::{example_case, root, run_in, run_ok, Run};
 
-fn run(args: &[&str], dir: &Path) -> Output {
-    let out = bin().args(args).current_dir(dir).output().expect("run drillpath");
-    assert!(
-        out.status.success(),
-        "drillpath {args:?} failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
-}
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+/// `drillpath args` in `dir`; it must succeed.
+fn run(args: &[&str], dir: &Path) -> Run {
+    run_ok(dir, args)
 }
 
 /// (figure id, svg text) of every `<figure id="..">` of the report.
@@ -151,7 +139,7 @@ fn solve_report_for_every_example_well() {
 #[test]
 fn oilfield_units_in_the_solve_report_match_the_si_summary() {
     let tmp = TempDir::new().unwrap();
-    let case = root().join("wells/j-shape/case.toml");
+    let case = example_case("j-shape");
     let out = run(
         &[
             "solve",
@@ -166,7 +154,7 @@ fn oilfield_units_in_the_solve_report_match_the_si_summary() {
         ],
         tmp.path(),
     );
-    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     let html = std::fs::read_to_string(tmp.path().join("r.html")).unwrap();
     check_report(&html, SOLVE_SERIES);
     let value = |key: &str, unit: &str| -> f64 {
@@ -196,7 +184,7 @@ fn oilfield_units_in_the_solve_report_match_the_si_summary() {
 #[test]
 fn axial_force_plot_shows_buckled_zones_only_when_buckled() {
     let tmp = TempDir::new().unwrap();
-    let case = root().join("wells/j-shape/case.toml");
+    let case = example_case("j-shape");
     for md in ["300 m", "1500 m"] {
         let out = run(
             &[
@@ -210,7 +198,7 @@ fn axial_force_plot_shows_buckled_zones_only_when_buckled() {
             ],
             tmp.path(),
         );
-        let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
         let sin = s["buckling"]["sinusoidal_length_m"].as_f64().unwrap();
         let hel = s["buckling"]["helical_length_m"].as_f64().unwrap();
         if md == "300 m" {
@@ -234,7 +222,7 @@ fn axial_force_plot_shows_buckled_zones_only_when_buckled() {
 #[test]
 fn predict_and_backanalyze_reports_on_the_seed_well() {
     let tmp = TempDir::new().unwrap();
-    let case = root().join("wells/seed-daqing/case.toml");
+    let case = example_case("seed-daqing");
     let c = case.to_str().unwrap();
     run(
         &[
@@ -266,7 +254,7 @@ fn init_writes_a_case_that_solve_and_predict_run_on() {
         assert!(text.contains(table), "starter case lacks {table}");
     }
     let out = run(&["solve", "case.toml", "--json", "--report", "r.html"], &dir);
-    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     assert_eq!(s["solver"]["converged"], true);
     assert!((s["bit"]["md_m"].as_f64().unwrap() - 1000.0).abs() < 1e-9);
     check_report(&std::fs::read_to_string(dir.join("r.html")).unwrap(), SOLVE_SERIES);
@@ -274,30 +262,25 @@ fn init_writes_a_case_that_solve_and_predict_run_on() {
         &["predict", "case.toml", "--ahead", "30m", "--step", "3m", "--json"],
         &dir,
     );
-    let p: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let p: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     assert!((p["end"]["md_m"].as_f64().unwrap() - 1030.0).abs() < 1e-6);
     // a second init refuses to overwrite
-    let again = bin()
-        .args(["init", "new/case.toml"])
-        .current_dir(tmp.path())
-        .output()
-        .unwrap();
-    assert!(!again.status.success());
-    assert!(String::from_utf8_lossy(&again.stderr).contains("exists"));
+    let again = run_in(tmp.path(), &["init", "new/case.toml"]);
+    assert!(!again.success());
+    assert!(again.stderr.contains("exists"));
 }
 
 #[test]
 fn unwritable_report_is_one_error_and_no_file() {
     let tmp = TempDir::new().unwrap();
     std::fs::write(tmp.path().join("blocker"), "a file, not a directory").unwrap();
-    let case = root().join("wells/seed-daqing/case.toml");
-    let out = bin()
-        .args(["solve", case.to_str().unwrap(), "--report", "blocker/r.html"])
-        .current_dir(tmp.path())
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    let err = String::from_utf8_lossy(&out.stderr);
+    let case = example_case("seed-daqing");
+    let out = run_in(
+        tmp.path(),
+        &["solve", case.to_str().unwrap(), "--report", "blocker/r.html"],
+    );
+    assert_eq!(out.code(), Some(2));
+    let err = &out.stderr;
     assert!(err.starts_with("error: ") && err.contains("blocker/r.html"), "{err}");
     assert!(!err.contains("panicked"));
 }

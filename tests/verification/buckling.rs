@@ -1,33 +1,27 @@
 //! Stiff-string buckling (issue 5): the FEM's own sinusoidal onset against Dawson & Paslay
 //! (1984), and the buckling marks of `drillpath::models::buckling` on the FEM's axial force.
 //!
-//! Run with `cargo test --release --test buckling -- --nocapture` to see the ramp.
+//! Run with `cargo test --release --test verification buckling:: -- --nocapture` to see the ramp.
 
 use drillpath::analytical::buckling::sinusoidal_dawson_paslay;
 use drillpath::case::Case;
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::buckling::{stiff_marks, BuckleState};
 use drillpath::models::fem::model::{Model, State};
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use std::f64::consts::FRAC_PI_2;
 
-/// 5 in pipe body (no tool joints), 29 kg/m, 1.2 sg, 8.5 in hole.
-fn pipe_props() -> (f64, f64, f64) {
-    let ei = 207e9 * std::f64::consts::PI / 64.0 * (0.127f64.powi(4) - (4.276f64 * 0.0254).powi(4));
-    let w_b = 29.0 * 9.80665 * (1.0 - 1200.0 / 7850.0);
-    (ei, w_b, (8.5 - 5.0) * 0.0254 / 2.0)
-}
+use crate::common::{load_temp_case, pipe_properties, DRILL_PIPE_BODY};
 
-/// A horizontal hole from the surface, 245 m long, with a seeded imperfection (azimuth
-/// alternating 90 / 90.05 deg every 7 m), frictionless, 0.5 m elements, WOB `wob_n`.
-fn horizontal_case(dir: &std::path::Path, wob_n: f64) -> Case {
+/// The 5 in pipe body ([`DRILL_PIPE_BODY`]: no tool joints, 29 kg/m, 1.2 sg) in a horizontal
+/// 8.5 in hole from the surface, 245 m long, with a seeded imperfection (azimuth alternating
+/// 90 / 90.05 deg every 7 m), frictionless, 0.5 m elements, WOB `wob_n`.
+fn horizontal_case(wob_n: f64) -> Case {
     let mut survey = String::from("md_m,inc_deg,azi_deg\n");
     for k in 0..=35 {
         let a = if k % 2 == 0 { 90.0 } else { 90.05 };
         survey.push_str(&format!("{},90,{a}\n", 7 * k));
     }
-    std::fs::write(dir.join("survey.csv"), survey).unwrap();
     let toml = format!(
         r#"
 [well]
@@ -41,19 +35,13 @@ bit_md = "245 m"
 wob = "{} kN"
 rop = "0 m/h"
 friction = 0.0
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-[solver]
+{DRILL_PIPE_BODY}[solver]
 element_length = "0.5 m"
 bha_element_length = "0.5 m"
 "#,
         wob_n / 1e3
     );
-    std::fs::write(dir.join("case.toml"), toml).unwrap();
-    load_case(&dir.join("case.toml"), &CaseOverrides::default()).unwrap()
+    load_temp_case(&survey, &toml)
 }
 
 /// One load step of a continuation: the model of `case` solved from `prev` (the last step's
@@ -87,15 +75,14 @@ fn stiff_sinusoidal_onset_within_10_percent_of_dawson_paslay() {
     // the last (continuation keeps the stable branch). Onset: first load at which the contact
     // point rolls more than 5 deg off the low side (the imperfection alone gives < 2 deg).
     // Tolerance: 10% (the issue); measured onset 1.02 F_s (finite length, 0.5 m elements).
-    let (ei, w_b, r) = pipe_props();
+    let (ei, w_b, r) = pipe_properties();
     let fs = sinusoidal_dawson_paslay(ei, w_b, FRAC_PI_2, r).unwrap();
-    let dir = tempfile::tempdir().unwrap();
     let ctl = SolveControls::default();
     let mut prev: Option<State> = None;
     let mut onset = None;
     for k in 0..=40 {
         let frac = 0.85 + 0.01 * k as f64;
-        let case = horizontal_case(dir.path(), frac * fs);
+        let case = horizontal_case(frac * fs);
         let (model, sol) = continuation_step(&case, prev.take(), &ctl);
         assert!(sol.converged, "not converged at {frac} F_s");
         let res = extract(&model, &sol, case.mud.density_kg_m3);
@@ -128,10 +115,9 @@ fn marks_below_onset_are_not_buckled() {
     // Reference: Dawson & Paslay in the same horizontal hole: at 0.9 F_s the FEM's axial force
     // stays below the onset everywhere (marks `none`, the bit itself too since the pipe
     // reaches the face), and the pipe lies on the low side (roll < 2 deg).
-    let (ei, w_b, r) = pipe_props();
+    let (ei, w_b, r) = pipe_properties();
     let fs = sinusoidal_dawson_paslay(ei, w_b, FRAC_PI_2, r).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let case = horizontal_case(dir.path(), 0.9 * fs);
+    let case = horizontal_case(0.9 * fs);
     let model = Model::from_case(&case);
     let sol = solve(&model, &SolveControls::default()).unwrap();
     assert!(sol.converged);
@@ -157,20 +143,19 @@ fn marks_below_onset_are_not_buckled() {
 /// Measured: at 1.57 x helical the contact points roll 90 deg off the low side (contact angles
 /// 90-270 deg). Beyond about 1.8 x helical
 /// the quasi-static branch has a limit point (the snap to a full helix), where load
-/// continuation stops: that case ends flagged non-converged (tests/extremes.rs).
+/// continuation stops: that case ends flagged non-converged (tests/verification/extremes.rs).
 #[test]
 fn post_buckled_pipe_lies_on_the_wall_beyond_the_helical_load() {
-    let (ei, w_b, r) = pipe_props();
+    let (ei, w_b, r) = pipe_properties();
     let fs = sinusoidal_dawson_paslay(ei, w_b, FRAC_PI_2, r).unwrap();
     let fh = std::f64::consts::SQRT_2 * fs; // Chen-Lin-Cheatham helical onset, horizontal
-    let dir = tempfile::tempdir().unwrap();
     let ctl = SolveControls::default();
     let mut prev: Option<State> = None;
     let mut frac = 0.9;
     let target = 1.6 * fh / fs;
     let mut spread = 0.0;
     while frac <= target + 1e-9 {
-        let case = horizontal_case(dir.path(), frac * fs);
+        let case = horizontal_case(frac * fs);
         let (model, sol) = continuation_step(&case, prev.take(), &ctl);
         assert!(sol.converged, "not converged at {frac:.2} F_s");
         assert!(

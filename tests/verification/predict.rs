@@ -3,114 +3,19 @@
 //! back-analysis calibration round trip. References and tolerances are stated per test.
 
 use drillpath::case::Case;
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::predict::backanalysis::{cut_intervals, error_stats, run_intervals, IntervalPlan};
 use drillpath::predict::calibrate::{calibrate, FitParameter};
 use drillpath::predict::march::{predict, MarchSettings, Prediction, StepScheme};
 use drillpath::predict::track::interval_rates;
 
-/// 8.5 in fulcrum: full-gauge near-bit stabilizer, 60 m of 6.5 in collars above.
-const FULCRUM: &str = r#"
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "60 m"
-"#;
+use crate::common::{
+    example, fulcrum_bha, load_temp_case, packed_bha, pendulum_bha, slick_bha, try_load_temp_case, PIPE_TUBE,
+};
 
-/// 8.5 in pendulum: first (full-gauge) stabilizer 18.3-19.8 m above the bit.
-const PENDULUM: &str = r#"
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "18 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "45 m"
-"#;
-
-/// 8.5 in packed: full-gauge stabilizers at the bit, 5 m and 15 m.
-const PACKED: &str = r#"
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "3 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "8.5 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "45 m"
-"#;
-
-/// A slick collar string (no stabilizer).
-const SLICK: &str = r#"
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "80 m"
-"#;
-
-/// A case with `bha` + 5 in drill pipe to surface in an 8.5 in hole along `survey`, rotating
-/// at 60 rpm with `wob_kn`, friction 0.2, and extra `[bit_rock]` lines.
+/// A case with `bha` + 5 in drill pipe to surface ([`PIPE_TUBE`] with 6-5/8 in tool joints) in
+/// an 8.5 in hole along `survey`, rotating at 60 rpm with `wob_kn`, friction 0.2, and extra
+/// `[bit_rock]` lines.
 fn case_with(survey: &str, bha: &str, wob_kn: f64, bit_rock: &str) -> Case {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
     let text = format!(
         r#"
 [well]
@@ -124,18 +29,12 @@ wob = "{wob_kn} kN"
 rpm = 60
 rop = "15 m/h"
 friction = 0.2
-{bha}
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-tool_joint_od = "6.625 in"
+{bha}{PIPE_TUBE}tool_joint_od = "6.625 in"
 [bit_rock]
 {bit_rock}
 "#
     );
-    std::fs::write(dir.path().join("case.toml"), text).unwrap();
-    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
+    load_temp_case(survey, &text)
 }
 
 /// Straight hole at `inc_deg` toward azimuth `azi_deg`, 0 to 300 m.
@@ -162,9 +61,9 @@ fn build_rate(bha: &str, wob_kn: f64, step: f64) -> f64 {
 /// fulcrum and pendulum 0.2-5 deg/30 m in magnitude, packed below a quarter of both.
 #[test]
 fn textbook_bha_tendencies_at_20_degrees() {
-    let fulcrum = build_rate(FULCRUM, 80.0, 2.0);
-    let pendulum = build_rate(PENDULUM, 80.0, 2.0);
-    let packed = build_rate(PACKED, 80.0, 2.0);
+    let fulcrum = build_rate(&fulcrum_bha(), 80.0, 2.0);
+    let pendulum = build_rate(&pendulum_bha(), 80.0, 2.0);
+    let packed = build_rate(&packed_bha(), 80.0, 2.0);
     println!("build rates deg/30 m: fulcrum {fulcrum:.3}, pendulum {pendulum:.3}, packed {packed:.3}");
     assert!((0.2..5.0).contains(&fulcrum), "fulcrum should build: {fulcrum}");
     assert!((-5.0..-0.2).contains(&pendulum), "pendulum should drop: {pendulum}");
@@ -172,8 +71,8 @@ fn textbook_bha_tendencies_at_20_degrees() {
         packed.abs() < 0.25 * fulcrum.abs().min(pendulum.abs()),
         "packed should hold: {packed} vs {fulcrum} / {pendulum}"
     );
-    let fulcrum_more = build_rate(FULCRUM, 160.0, 2.0);
-    let pendulum_more = build_rate(PENDULUM, 160.0, 2.0);
+    let fulcrum_more = build_rate(&fulcrum_bha(), 160.0, 2.0);
+    let pendulum_more = build_rate(&pendulum_bha(), 160.0, 2.0);
     println!("with 160 kN: fulcrum {fulcrum_more:.3}, pendulum {pendulum_more:.3}");
     assert!(
         fulcrum_more > fulcrum * 1.05,
@@ -194,7 +93,7 @@ fn textbook_bha_tendencies_at_20_degrees() {
 #[test]
 fn arc_march_converges_to_the_step_limit() {
     use drillpath::predict::extrapolate::predict_extrapolated;
-    let case = case_with(&straight(20.0, 0.0), FULCRUM, 80.0, "");
+    let case = case_with(&straight(20.0, 0.0), &fulcrum_bha(), 80.0, "");
     let end_inc = |p: &Prediction| p.path.point_at(360.0).inc_rad.to_degrees();
     let mut chord = MarchSettings::from_case(&case);
     chord.scheme = StepScheme::Chord;
@@ -229,7 +128,7 @@ fn arc_march_converges_to_the_step_limit() {
 #[test]
 fn zero_length_prediction_reproduces_the_survey() {
     let survey = "md_m,inc_deg,azi_deg\n0,0,0\n100,0,0\n200,12,40\n300,25,47\n";
-    let case = case_with(survey, PACKED, 100.0, "");
+    let case = case_with(survey, &packed_bha(), 100.0, "");
     let p = run(&case, 300.0, 300.0, 1.0);
     assert_eq!(p.steps.len(), 1);
     for (a, b) in p.path.stations().iter().zip(case.well.path.stations()) {
@@ -250,7 +149,7 @@ fn zero_length_prediction_reproduces_the_survey() {
 /// vertical (inclination below 1e-6 deg after 30 m).
 #[test]
 fn vertical_hole_with_slick_bha_stays_vertical() {
-    let case = case_with(&straight(0.0, 0.0), SLICK, 100.0, "");
+    let case = case_with(&straight(0.0, 0.0), &slick_bha(), 100.0, "");
     let p = run(&case, 300.0, 330.0, 2.0);
     for s in &p.steps {
         assert!(
@@ -270,7 +169,7 @@ fn vertical_hole_with_slick_bha_stays_vertical() {
 fn formation_anisotropy_walks_up_dip_and_vanishes_with_the_index() {
     let walk = |ir: f64| {
         let br = format!("rock_anisotropy = {ir}\ndip = \"30 deg\"\ndip_direction = \"90 deg\"");
-        let case = case_with(&straight(20.0, 0.0), PACKED, 100.0, &br);
+        let case = case_with(&straight(20.0, 0.0), &packed_bha(), 100.0, &br);
         let p = run(&case, 300.0, 330.0, 2.0);
         interval_rates(&p).walk_rate_rad_per_30m.to_degrees()
     };
@@ -297,7 +196,7 @@ fn formation_anisotropy_walks_up_dip_and_vanishes_with_the_index() {
 #[test]
 fn calibration_round_trip_recovers_the_law() {
     let truth = "lateral_drillability = 0.3\nwalk_angle = \"8 deg\"";
-    let case = case_with(&straight(20.0, 0.0), PENDULUM, 100.0, truth);
+    let case = case_with(&straight(20.0, 0.0), &pendulum_bha(), 100.0, truth);
     let p = run(&case, 200.0, 300.0, 2.0);
     let mut survey = String::from("md_m,inc_deg,azi_deg\n0,20,0\n100,20,0\n200,20,0\n");
     for k in 1..=10 {
@@ -310,7 +209,7 @@ fn calibration_round_trip_recovers_the_law() {
         ));
     }
     let start = "lateral_drillability = 0.6\nwalk_angle = \"0 deg\"";
-    let case = case_with(&survey, PENDULUM, 100.0, start);
+    let case = case_with(&survey, &pendulum_bha(), 100.0, start);
     let list = cut_intervals(
         &case.well.path,
         &IntervalPlan {
@@ -362,7 +261,7 @@ fn calibration_round_trip_recovers_the_law() {
 #[test]
 fn step_extrapolation_beats_the_plain_march() {
     use drillpath::predict::extrapolate::predict_extrapolated;
-    let case = case_with(&straight(20.0, 0.0), FULCRUM, 80.0, "");
+    let case = case_with(&straight(20.0, 0.0), &fulcrum_bha(), 80.0, "");
     let mut s = MarchSettings::from_case(&case);
     s.scheme = StepScheme::Chord;
     let end_inc = |p: &Prediction| p.path.point_at(360.0).inc_rad.to_degrees();
@@ -402,8 +301,7 @@ fn step_extrapolation_beats_the_plain_march() {
 #[test]
 fn short_steps_on_the_horizontal_example_stop_at_the_ripple_and_name_the_remedy() {
     use drillpath::predict::march::{PredictError, RIPPLE_FAIL_DEG, RIPPLE_WARN_DEG};
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/horizontal/case.toml");
-    let case = load_case(&path, &CaseOverrides::default()).unwrap();
+    let case = example("horizontal");
     let from = case.operation.bit_md_m;
     let to = from + 100.0;
     let mut s = MarchSettings::from_case(&case);
@@ -452,7 +350,7 @@ fn short_steps_on_the_horizontal_example_stop_at_the_ripple_and_name_the_remedy(
 fn steps_below_the_minimum_are_refused() {
     use drillpath::predict::extrapolate::predict_extrapolated;
     use drillpath::predict::march::{PredictError, MIN_STEP_M};
-    let case = case_with(&straight(20.0, 0.0), FULCRUM, 80.0, "");
+    let case = case_with(&straight(20.0, 0.0), &fulcrum_bha(), 80.0, "");
     let mut s = MarchSettings::from_case(&case);
     s.step_m = 0.1;
     let e = predict(&case, 300.0, 310.0, &s, &mut |_| {}).unwrap_err();
@@ -467,13 +365,11 @@ fn steps_below_the_minimum_are_refused() {
     s.step_m = MIN_STEP_M;
     assert!(predict(&case, 300.0, 301.0, &s, &mut |_| {}).is_ok());
     // the case file
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), straight(20.0, 0.0)).unwrap();
     let text = format!(
-        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"2000 m\", diameter = \"8.5 in\" }}]\n[mud]\ndensity = \"1.2 sg\"\n[operation]\nmode = \"drilling\"\nwob = \"80 kN\"\n{FULCRUM}\n[[string]]\ntype = \"pipe\"\nod = \"5 in\"\nid = \"4.276 in\"\n[bit_rock]\nstep = \"0.1 m\"\n"
+        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"2000 m\", diameter = \"8.5 in\" }}]\n[mud]\ndensity = \"1.2 sg\"\n[operation]\nmode = \"drilling\"\nwob = \"80 kN\"\n{}{PIPE_TUBE}[bit_rock]\nstep = \"0.1 m\"\n",
+        fulcrum_bha()
     );
-    std::fs::write(dir.path().join("case.toml"), text).unwrap();
-    let e = load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap_err();
+    let e = try_load_temp_case(&straight(20.0, 0.0), &text).unwrap_err();
     assert!(
         e.to_string().contains("step") && e.to_string().contains("shortest"),
         "{e}"

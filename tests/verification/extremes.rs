@@ -4,14 +4,15 @@
 //! no NaN, or ends with a clear non-convergence (`converged == false` or an error) - never a
 //! panic, never garbage. Cases that are physically benign are also required to converge.
 //!
-//! Run with `cargo test --release --test extremes -- --nocapture` to see the table.
+//! Run with `cargo test --release --test verification extremes:: -- --nocapture` to see the table.
 
 use drillpath::case::Case;
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::model::Model;
 use drillpath::models::fem::results::extract;
 use drillpath::models::fem::solve::{solve, SolveControls};
 use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use crate::common::{collar, load_temp_case, pipe_properties, stabilizer, BIT, COLLAR_TO_SURFACE, DRILL_PIPE};
 
 /// Equilibrium tolerance: net external force / largest external force (docs/theory.md 10.4, the
 /// solver issue's 1e-6).
@@ -44,37 +45,12 @@ fn build_hold(kop_m: f64, dls_deg_30m: f64, inc_deg: f64, hold_m: f64, azi_deg: 
 /// The standard BHA (bit, near-bit stabilizer `stab_od`, 54 m of 6.5 in collars, 5 in pipe to
 /// the surface) as TOML components; `pipe` false leaves the pipe out (collars to the surface).
 fn string_toml(stab_od: &str, pipe: bool) -> String {
-    let mut s = format!(
-        r#"
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "stabilizer"
-od = "{stab_od}"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-"#
-    );
-    if pipe {
-        s.push_str(
-            r#"length = "54 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-"#,
-        );
-    }
-    s
+    let above = if pipe {
+        format!("{}{DRILL_PIPE}", collar("54 m"))
+    } else {
+        COLLAR_TO_SURFACE.to_string()
+    };
+    format!("{BIT}{}{above}", stabilizer(stab_od))
 }
 
 /// Case parameters varied by the tests.
@@ -110,8 +86,6 @@ impl Spec {
 
 /// Write the case files into a fresh directory and read them as users do.
 fn load(spec: &Spec) -> Case {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), &spec.survey).unwrap();
     let toml = format!(
         r#"
 [well]
@@ -140,8 +114,7 @@ bha_element_length = "{bel} m"
         el = spec.element_m,
         bel = spec.bha_element_m,
     );
-    std::fs::write(dir.path().join("case.toml"), toml).unwrap();
-    load_case(&dir.path().join("case.toml"), &CaseOverrides::default()).unwrap()
+    load_temp_case(&spec.survey, &toml)
 }
 
 /// How a case ended.
@@ -293,9 +266,8 @@ fn extremes_wob_to_three_times_helical() {
     // (Chen-Lin-Cheatham at 90 deg, r = (8.5 - 5)/2 in); below the sinusoidal onset (0.5 x
     // helical = 0.71 x sinusoidal) the solve must converge.
     use drillpath::analytical::buckling::helical_chen_lin_cheatham;
-    let ei = 207e9 * std::f64::consts::PI / 64.0 * (0.127f64.powi(4) - (4.276f64 * 0.0254).powi(4));
-    let w_b = 29.0 * 9.80665 * (1.0 - 1200.0 / 7850.0);
-    let f_h = helical_chen_lin_cheatham(ei, w_b, std::f64::consts::FRAC_PI_2, (8.5 - 5.0) * 0.0254 / 2.0).unwrap();
+    let (ei, w_b, r) = pipe_properties();
+    let f_h = helical_chen_lin_cheatham(ei, w_b, std::f64::consts::FRAC_PI_2, r).unwrap();
     // (k, friction): below the sinusoidal onset without friction the solve must converge;
     // with sliding friction the compression grows up the horizontal and the solve may stop
     // (50 iterations keep the test short; none of them converged in 300 either).

@@ -3,8 +3,10 @@
 //! good runs write the interface's `trajectory.csv` columns and `summary.json` keys, no NaN.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::sync::LazyLock;
 use tempfile::TempDir;
+
+use crate::common::{assert_error_names, case_dir, collar, run_in, stabilizer, Run, BIT, PIPE_TUBE};
 
 /// Straight 20 deg hole with stations every 10 m below 200 m.
 fn survey() -> String {
@@ -20,10 +22,14 @@ fn survey() -> String {
     s
 }
 
-const CASE: &str = r#"name = "predict cli test"
+/// Bit, full-gauge near-bit stabilizer, 40 m of 6.5 in collars and 5 in pipe ([`PIPE_TUBE`]),
+/// drilling at 80 kN from 200 m, 2 m prediction steps.
+static CASE: LazyLock<String> = LazyLock::new(|| {
+    format!(
+        r#"name = "predict cli test"
 [well]
 survey = "survey.csv"
-hole = [{ to_md = "1000 m", diameter = "8.5 in" }]
+hole = [{{ to_md = "1000 m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
@@ -32,63 +38,34 @@ bit_md = "200 m"
 wob = "80 kN"
 rpm = 60
 friction = 0.2
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "40 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-[bit_rock]
+{BIT}{}{}{PIPE_TUBE}[bit_rock]
 step = "2 m"
-"#;
+"#,
+        stabilizer("8.5 in"),
+        collar("40 m")
+    )
+});
 
 fn setup(case: &str) -> TempDir {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("survey.csv"), survey()).unwrap();
-    std::fs::write(dir.path().join("case.toml"), case).unwrap();
-    dir
+    case_dir(&survey(), case)
 }
 
-fn run(dir: &Path, cmd: &str, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .current_dir(dir)
-        .arg(cmd)
-        .arg("case.toml")
-        .args(args)
-        .output()
-        .unwrap()
+/// `drillpath cmd case.toml args` in `dir`.
+fn run(dir: &Path, cmd: &str, args: &[&str]) -> Run {
+    run_in(dir, &[&[cmd, "case.toml"], args].concat())
 }
 
-/// Exit code 2, one stderr line starting `error:` containing every needle, no panic, no `out/`.
-fn assert_error(dir: &Path, out: &Output, needles: &[&str]) {
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert!(!err.contains("panicked") && !err.contains("RUST_BACKTRACE"), "{err}");
-    let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
-    assert_eq!(lines.len(), 1, "one line expected: {err}");
-    assert!(lines[0].starts_with("error:"), "{err}");
-    for n in needles {
-        assert!(lines[0].contains(n), "`{n}` missing in: {err}");
-    }
+/// Exit code 2, one stderr line starting `error:` containing every needle, no panic
+/// ([`assert_error_names`]), no `out/`.
+fn assert_error(dir: &Path, out: &Run, needles: &[&str]) {
+    assert_eq!(out.code(), Some(2), "stderr: {}", out.stderr);
+    assert_error_names(out, needles);
     assert!(!dir.join("out").exists(), "no output on error");
 }
 
 #[test]
 fn predict_bad_options_are_named() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "predict", &["--from", "200", "--to", "150", "--out", "out"]);
     assert_error(dir.path(), &o, &["--to", "150"]);
     let o = run(dir.path(), "predict", &["--from", "500", "--to", "600", "--out", "out"]);
@@ -110,7 +87,7 @@ fn predict_bad_options_are_named() {
     assert_error(dir.path(), &o, &["--ahead"]);
     // neither --to nor --ahead: the argument parser refuses with its usage text
     let o = run(dir.path(), "predict", &["--out", "out"]);
-    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(o.code(), Some(2));
     assert!(!dir.path().join("out").exists());
 }
 
@@ -126,7 +103,7 @@ fn predict_refuses_cases_without_wob_on_bottom() {
 
 #[test]
 fn backanalyze_bad_options_are_named() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "backanalyze",
@@ -143,25 +120,34 @@ fn backanalyze_bad_options_are_named() {
     assert_error(dir.path(), &o, &["interval"]);
 }
 
+/// The interface columns of `trajectory.csv`.
+const TRAJECTORY_COLUMNS: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN";
+
+/// The direction-error columns back-analysis appends.
+const REFERENCE_COLUMNS: &str = "dir_err_deg,hold_dir_err_deg,rates_30m_dir_err_deg,rates_60m_dir_err_deg,rates_90m_dir_err_deg,statistic_dir_err_deg";
+
 fn check_csv(text: &str, rows_at_least: usize) {
+    check_csv_columns(text, rows_at_least, TRAJECTORY_COLUMNS);
+}
+
+/// `text` has the header `header`, at least `rows_at_least` rows, as many cells in each, no NaN.
+fn check_csv_columns(text: &str, rows_at_least: usize, header: &str) {
     let mut lines = text.lines();
-    assert_eq!(
-        lines.next().unwrap(),
-        "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN"
-    );
+    assert_eq!(lines.next().unwrap(), header);
     let rows: Vec<&str> = lines.collect();
     assert!(rows.len() >= rows_at_least, "{} rows", rows.len());
+    let n = header.split(',').count();
     for r in rows {
-        assert_eq!(r.split(',').count(), 15, "{r}");
+        assert_eq!(r.split(',').count(), n, "{r}");
         assert!(!r.to_lowercase().contains("nan") && !r.contains("inf"), "{r}");
     }
 }
 
 #[test]
 fn predict_tracking_writes_the_interface_outputs() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "predict", &["--from", "200", "--to", "240", "--out", "out"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.success(), "{}", o.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
     check_csv(&csv, 21);
     // measured stations at 210..240 have measured and error columns filled
@@ -179,11 +165,11 @@ fn predict_tracking_writes_the_interface_outputs() {
 
 #[test]
 fn backanalyze_writes_errors_per_100m() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(dir.path(), "backanalyze", &["--from", "200", "--out", "out"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.success(), "{}", o.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
-    check_csv(&csv, 4);
+    check_csv_columns(&csv, 4, &format!("{TRAJECTORY_COLUMNS},{REFERENCE_COLUMNS}"));
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
     assert_eq!(s["intervals"], 4);
@@ -203,24 +189,21 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
         r#"hole = [{ to_md = "1000 m", diameter = "8.5 in" }]"#,
         r#"hole = [{ to_md = "210 m", diameter = "12.25 in" }, { to_md = "1000 m", diameter = "8.5 in" }]"#,
     );
-    assert_ne!(wide, CASE);
+    assert_ne!(wide, *CASE);
     let intervals = |case: &str, args: &[&str]| -> (u64, String) {
         let dir = setup(case);
         let mut all = vec!["--out", "out"];
         all.extend_from_slice(args);
         let o = run(dir.path(), "backanalyze", &all);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.success(), "{}", o.stderr);
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
-        (
-            s["intervals"].as_u64().unwrap(),
-            String::from_utf8_lossy(&o.stdout).into_owned(),
-        )
+        (s["intervals"].as_u64().unwrap(), o.stdout.clone())
     };
     let (n, stdout) = intervals(&wide, &[]);
     assert_eq!(n, 3, "{stdout}");
     assert!(stdout.contains("from: the hole below 210.0 m"), "{stdout}");
-    let (n, stdout) = intervals(CASE, &[]);
+    let (n, stdout) = intervals(&CASE, &[]);
     assert_eq!(n, 5, "{stdout}");
     assert!(!stdout.contains("from: the hole below"), "{stdout}");
     let (n, stdout) = intervals(&wide, &["--from", "200"]);
@@ -229,10 +212,7 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
     // a string without a bit component (a 6.5 in collar at the bottom) is measured against the
     // hole at the bottom of the survey (8.5 in), not against its lowest component: same 3
     // intervals
-    let bitless = wide.replace(
-        "[[string]]\ntype = \"bit\"\nod = \"8.5 in\"\nlength = \"0.3 m\"\n[[string]]\ntype = \"stabilizer\"\nod = \"8.5 in\"\nbody_od = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"1.5 m\"\n",
-        "",
-    );
+    let bitless = wide.replace(&format!("{BIT}{}", stabilizer("8.5 in")), "");
     assert!(!bitless.contains("type = \"bit\""));
     let (n, stdout) = intervals(&bitless, &[]);
     assert_eq!(n, 3, "{stdout}");
@@ -244,18 +224,17 @@ fn backanalyze_starts_below_the_wider_hole_by_default() {
 /// stabilized one builds more (textbook, docs/theory.md 9.3).
 #[test]
 fn predict_compares_several_bhas() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let slick = CASE.replace("name = \"predict cli test\"", "name = \"slick\"").replace(
         "type = \"stabilizer\"\nod = \"8.5 in\"\nbody_od = \"6.5 in\"",
         "type = \"collar\"\nod = \"6.5 in\"",
     );
     std::fs::write(dir.path().join("slick.toml"), slick).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .current_dir(dir.path())
-        .args(["predict", "case.toml", "slick.toml", "--ahead", "20 m", "--out", "out"])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run_in(
+        dir.path(),
+        &["predict", "case.toml", "slick.toml", "--ahead", "20 m", "--out", "out"],
+    );
+    assert!(o.success(), "{}", o.stderr);
     let table = std::fs::read_to_string(dir.path().join("out/comparison.csv")).unwrap();
     let rows: Vec<Vec<&str>> = table.lines().skip(1).map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 2, "{table}");
@@ -284,7 +263,7 @@ fn summary(dir: &Path) -> serde_json::Value {
 /// law's sensitivity over 10 m, with margin).
 #[test]
 fn predict_fidelity_levels() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "predict",
@@ -324,7 +303,7 @@ fn predict_fidelity_levels() {
             "predict",
             &["--ahead", "10 m", "--fidelity", level, "--out", "out"],
         );
-        assert!(o.status.success(), "{level}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.success(), "{level}: {}", o.stderr);
         let s = summary(dir.path());
         let used = if level == "whole" { "whole" } else { "bha" };
         assert_eq!(s["model"]["fidelity"], used, "{level}");
@@ -346,12 +325,12 @@ fn predict_accuracy_sets_the_step() {
         let mut all = vec!["--ahead", "4 m", "--out", "out"];
         all.extend_from_slice(args);
         let o = run(dir.path(), "predict", &all);
-        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.success(), "{args:?}: {}", o.stderr);
         summary(dir.path())["step_m"].as_f64().unwrap()
     };
-    assert_eq!(step_of(CASE, &[]), 2.0, "the case's [bit_rock] step");
-    assert_eq!(step_of(CASE, &["--accuracy", "precise"]), 0.5);
-    assert_eq!(step_of(CASE, &["--accuracy", "precise", "--step", "1 m"]), 1.0);
+    assert_eq!(step_of(&CASE, &[]), 2.0, "the case's [bit_rock] step");
+    assert_eq!(step_of(&CASE, &["--accuracy", "precise"]), 0.5);
+    assert_eq!(step_of(&CASE, &["--accuracy", "precise", "--step", "1 m"]), 1.0);
     let preset = CASE.replace("[bit_rock]\nstep = \"2 m\"", "[solver]\naccuracy = \"precise\"");
     assert_eq!(
         step_of(&preset, &[]),
@@ -360,7 +339,7 @@ fn predict_accuracy_sets_the_step() {
     );
     let both = CASE.replace("[bit_rock]", "[solver]\naccuracy = \"precise\"\n[bit_rock]");
     assert_eq!(step_of(&both, &[]), 2.0, "explicit [bit_rock] step wins");
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "predict",
@@ -373,13 +352,13 @@ fn predict_accuracy_sets_the_step() {
 /// the fine step (half) and finite error estimates; rows are those of the coarse march.
 #[test]
 fn predict_extrapolate_reports_the_step_error() {
-    let dir = setup(CASE);
+    let dir = setup(&CASE);
     let o = run(
         dir.path(),
         "predict",
         &["--ahead", "8 m", "--extrapolate", "--out", "out"],
     );
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(o.success(), "{}", o.stderr);
     let s = summary(dir.path());
     let e = &s["step_extrapolation"];
     assert_eq!(e["coarse_step_m"], 2.0);
@@ -388,9 +367,9 @@ fn predict_extrapolate_reports_the_step_error() {
     assert!(e["est_azi_err_deg"].as_f64().unwrap() >= 0.0);
     let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
     check_csv(&csv, 5);
-    assert!(String::from_utf8_lossy(&o.stdout).contains("step extrapolation"));
-    let dir = setup(CASE);
+    assert!(o.stdout.contains("step extrapolation"));
+    let dir = setup(&CASE);
     let o = run(dir.path(), "predict", &["--ahead", "8 m", "--out", "out"]);
-    assert!(o.status.success());
+    assert!(o.success());
     assert!(summary(dir.path())["step_extrapolation"].is_null());
 }

@@ -3,14 +3,10 @@
 //! (b) straight inclined section, (c) capstan, and the ordering property
 //! trip out >= rotating >= trip in.
 //!
-//! Run with `cargo test --release --test softstring -- --nocapture` to see the numbers.
-
-use std::f64::consts::{FRAC_PI_2, TAU};
-use std::path::Path;
+//! Run with `cargo test --release --test verification softstring:: -- --nocapture` to see the numbers.
 
 use drillpath::case::{Case, Mode};
 use drillpath::geometry::{HoleSize, Station, Survey, Vec3, WellPath};
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::softstring::{
     from_case, soft_string, soft_string_stiff_contact, SoftStringInput, SoftStringResult,
 };
@@ -19,6 +15,9 @@ use drillpath::string::{Component, ComponentKind, DrillString};
 use drillpath::units::G;
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
+use std::f64::consts::{FRAC_PI_2, TAU};
+
+use crate::common::{example, load_temp_case, pipe_properties, DRILL_PIPE};
 
 // ----------------------------------------------------------------------------------------------
 // Helpers
@@ -105,36 +104,26 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
-/// docs/theory.md 10.5 worked example written as a case (survey CSV + TOML) in a temp dir.
-fn worked_example_case(dir: &Path) -> Case {
-    std::fs::write(
-        dir.join("survey.csv"),
+/// docs/theory.md 10.5 worked example written as a case (survey CSV + TOML) in a temp dir:
+/// [`DRILL_PIPE`] from the bit at 2,500 m to the surface.
+fn worked_example_case() -> Case {
+    load_temp_case(
         "md_m,inc_deg,azi_deg\n0,0,0\n500,0,0\n950,45,0\n2500,45,0\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("case.toml"),
-        r#"
+        &format!(
+            r#"
 name = "docs/theory.md 10.5 worked example"
 [well]
 survey = "survey.csv"
-hole = [ { to_md = "2500 m", diameter = "8.5 in" } ]
+hole = [ {{ to_md = "2500 m", diameter = "8.5 in" }} ]
 [mud]
 density = "1.2 sg"
 [operation]
 mode = "trip_out"
 bit_md = "2500 m"
 friction = 0.25
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29.0 kg/m"
-tool_joint_od = "6.625 in"
-"#,
+{DRILL_PIPE}"#
+        ),
     )
-    .unwrap();
-    load_case(&dir.join("case.toml"), &CaseOverrides::default()).unwrap()
 }
 
 /// The worked example's inputs built directly (R_c = 84.14 mm exactly as in docs/theory.md).
@@ -251,8 +240,7 @@ fn worked_example_10m_elements() {
 /// through `from_case` for every mode; 0.1 % of docs/theory.md 10.5.
 #[test]
 fn worked_example_from_case_file() {
-    let dir = tempfile::tempdir().unwrap();
-    let base = worked_example_case(dir.path());
+    let base = worked_example_case();
     let run = |mode: Mode, wob: f64, tb: Option<f64>| {
         let mut c = base.clone();
         c.operation.mode = mode;
@@ -321,11 +309,7 @@ fn hanging_weight(p: &WellPath, s: &DrillString, mud: f64, bit_md: f64) -> f64 {
 /// 482.129 kN; 240.92 N/m x 2001.158 m = 482.12 kN).
 #[test]
 fn exact_hanging_weight_when_rotating() {
-    let case = load_case(
-        &Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/j-shape/case.toml"),
-        &CaseOverrides::default(),
-    )
-    .unwrap();
+    let case = example("j-shape");
     let mut c = case.clone();
     c.operation.mode = Mode::RotatingOffBottom;
     for el in [1.0, 9.0, 30.0] {
@@ -377,7 +361,7 @@ fn exact_hanging_weight_when_rotating() {
     assert!(rel(r.hook_load_n, w) < 1e-9, "{} vs {w}", r.hook_load_n);
 
     let ex = worked_direct().run(0.0, 0.0, 0.0, RPM60, 10.0);
-    let w_b = 29.0 * G * (1.0 - 1200.0 / 7850.0);
+    let (_, w_b, _) = pipe_properties();
     assert!(rel(ex.hook_load_n, w_b * 2001.158) < 1e-6);
 }
 

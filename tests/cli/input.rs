@@ -6,9 +6,14 @@
 //! Each test runs the built binary in a fresh temporary directory holding a small valid case
 //! (`case.toml` + `survey.csv`), then breaks exactly one thing.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
+use std::sync::LazyLock;
 use tempfile::TempDir;
+
+use crate::common::{
+    assert_error_names, case_dir, collar, example_case, example_dir, run_in, stabilizer, Run, BIT, DRILL_PIPE,
+    DRILL_PIPE_BODY,
+};
 
 /// The valid survey. Line 1 is a comment, so the header is line 2 and the stations are lines
 /// 3 to 6 (errors must count lines of the original file).
@@ -21,15 +26,17 @@ md [m],inc [deg],azi [deg]
 1000,20,45
 ";
 
-/// The valid case. Components: string[0] bit, string[1] stabilizer, string[2] collar,
-/// string[3] pipe (no length: fills to surface).
-const CASE: &str = r#"name = "input test"
+/// The valid case. Components: string[0] bit, string[1] full-gauge stabilizer, string[2] 50 m
+/// of 6.5 in collars, string[3] 5 in drill pipe (no length: fills to surface).
+static CASE: LazyLock<String> = LazyLock::new(|| {
+    format!(
+        r#"name = "input test"
 
 [well]
 survey = "survey.csv"
 hole = [
-  { to_md = "500 m", diameter = "12.25 in", friction = 0.2 },
-  { to_md = "1000 m", diameter = "8.5 in" },
+  {{ to_md = "500 m", diameter = "12.25 in", friction = 0.2 }},
+  {{ to_md = "1000 m", diameter = "8.5 in" }},
 ]
 
 [mud]
@@ -41,75 +48,20 @@ bit_md = "1000 m"
 wob = "100 kN"
 rpm = 60
 
-[[string]]
-type = "bit"
-od = "8.5 in"
-length = "0.3 m"
-
-[[string]]
-type = "stabilizer"
-od = "8.5 in"
-body_od = "6.5 in"
-id = "2.8125 in"
-length = "1.5 m"
-
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "50 m"
-
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-
+{BIT}
+{}
+{}
+{DRILL_PIPE}
 [solver]
 element_length = "1 m"
-"#;
+"#,
+        stabilizer("8.5 in"),
+        collar("50 m")
+    )
+});
 
 /// The exact header of `survey --out` (interface.md).
 const SURVEY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,dls_deg_per_30m";
-
-/// Output of one run of the binary.
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl Run {
-    fn describe(&self) -> String {
-        format!(
-            "exit code {:?}\n--- stdout ---\n{}\n--- stderr ---\n{}",
-            self.code, self.stdout, self.stderr
-        )
-    }
-}
-
-/// Run `drillpath` with `args` in `dir`, with a clean logging environment.
-fn run_in(dir: &Path, args: &[&str]) -> Run {
-    let out = Command::new(env!("CARGO_BIN_EXE_drillpath"))
-        .args(args)
-        .current_dir(dir)
-        .env_remove("DRILLPATH_LOG")
-        .env_remove("RUST_LOG")
-        .env("RUST_BACKTRACE", "1") // a panic would print a backtrace: make it visible to the checks
-        .output()
-        .expect("cannot start the drillpath binary");
-    Run {
-        code: out.status.code(),
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-    }
-}
-
-/// The example wells of the repository.
-fn wells() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("wells")
-}
 
 /// A temporary directory with the valid case and survey.
 struct Fixture {
@@ -118,11 +70,9 @@ struct Fixture {
 
 impl Fixture {
     fn new() -> Self {
-        let dir = tempfile::tempdir().expect("cannot create a temporary directory");
-        let fx = Fixture { dir };
-        fx.write("survey.csv", SURVEY);
-        fx.write("case.toml", CASE);
-        fx
+        Fixture {
+            dir: case_dir(SURVEY, &CASE),
+        }
     }
 
     fn path(&self) -> &Path {
@@ -149,7 +99,7 @@ impl Fixture {
     }
 
     fn edit_case(&self, old: &str, new: &str) {
-        self.edit("case.toml", CASE, old, new);
+        self.edit("case.toml", &CASE, old, new);
     }
 
     fn edit_survey(&self, old: &str, new: &str) {
@@ -184,26 +134,14 @@ impl Fixture {
 }
 
 /// A user error: non-zero exit (not a signal), exactly one stderr line `error: ...` naming
-/// every string of `must_name`, nothing on stdout, no panic or backtrace.
+/// every string of `must_name`, no panic or backtrace ([`assert_error_names`]), and nothing on
+/// stdout.
 fn check_error(r: &Run, must_name: &[&str]) {
-    let ctx = r.describe();
-    assert!(r.code.is_some(), "killed by a signal\n{ctx}");
-    assert_ne!(r.code, Some(0), "bad input accepted\n{ctx}");
-    for bad in ["panicked", "RUST_BACKTRACE", "stack backtrace"] {
-        assert!(!r.stderr.contains(bad), "`{bad}` on stderr\n{ctx}");
-    }
-    let lines: Vec<&str> = r.stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "expected exactly one line on stderr\n{ctx}");
-    assert!(
-        lines[0].starts_with("error: "),
-        "stderr must start with `error: `\n{ctx}"
-    );
-    for s in must_name {
-        assert!(lines[0].contains(s), "the message does not name `{s}`\n{ctx}");
-    }
+    assert_error_names(r, must_name);
     assert!(
         r.stdout.trim().is_empty(),
-        "nothing should be printed on stdout on error\n{ctx}"
+        "nothing should be printed on stdout on error\n{}",
+        r.describe()
     );
 }
 
@@ -214,14 +152,14 @@ fn check_error(r: &Run, must_name: &[&str]) {
 fn fixture_case_and_survey_are_valid() {
     let fx = Fixture::new();
     let r = fx.run(&["survey", "case.toml", "--out", "out.csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stderr.trim().is_empty(), "{}", r.describe());
     assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
     let csv = std::fs::read_to_string(fx.path().join("out.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5, "{csv}");
 
     let r = fx.run(&["survey", "survey.csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
 }
 
@@ -234,7 +172,7 @@ fn string_above_the_first_survey_station_is_a_stated_assumption() {
     // survey gives no note.
     let fx = Fixture::new();
     let full = fx.run(&["solve", "case.toml", "--json"]);
-    assert_eq!(full.code, Some(0), "{}", full.describe());
+    assert_eq!(full.code(), Some(0), "{}", full.describe());
     assert!(full.stderr.trim().is_empty(), "{}", full.describe());
     let json: serde_json::Value = serde_json::from_str(&full.stdout).unwrap();
     assert_eq!(json["notes"], serde_json::json!([]), "{}", full.describe());
@@ -242,7 +180,7 @@ fn string_above_the_first_survey_station_is_a_stated_assumption() {
     fx.edit_survey("azi [deg]\n0,0,0\n", "azi [deg]\n");
     for fidelity in ["whole", "soft"] {
         let r = fx.run(&["solve", "case.toml", "--json", "--fidelity", fidelity]);
-        assert_eq!(r.code, Some(0), "{}", r.describe());
+        assert_eq!(r.code(), Some(0), "{}", r.describe());
         let warning: Vec<&str> = r.stderr.lines().filter(|l| l.contains("WARN")).collect();
         assert_eq!(warning.len(), 1, "{}", r.describe());
         for must in [
@@ -701,9 +639,9 @@ fn survey_reversal_is_rejected() {
 #[test]
 fn survey_of_the_j_shape_case_prints_the_summary() {
     let tmp = tempfile::tempdir().unwrap();
-    let case = wells().join("j-shape/case.toml");
+    let case = example_case("j-shape");
     let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stderr.trim().is_empty(), "{}", r.describe());
     for s in [
         "survey: J-shape, 8.5 in section, fulcrum BHA",
@@ -719,12 +657,12 @@ fn survey_of_the_j_shape_case_prints_the_summary() {
 #[test]
 fn survey_out_writes_the_interface_csv() {
     let tmp = tempfile::tempdir().unwrap();
-    let case = wells().join("j-shape/case.toml");
+    let case = example_case("j-shape");
     let r = run_in(
         tmp.path(),
         &["survey", case.to_str().unwrap(), "--out", "positions.csv"],
     );
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("wrote positions.csv"), "{}", r.describe());
     let csv = std::fs::read_to_string(tmp.path().join("positions.csv")).unwrap();
     let mut lines = csv.lines();
@@ -748,9 +686,9 @@ fn survey_out_writes_the_interface_csv() {
 #[test]
 fn survey_of_the_forge_case_notes_the_assumed_feet() {
     let tmp = tempfile::tempdir().unwrap();
-    let case = wells().join("forge-16a/case.toml");
+    let case = example_case("forge-16a");
     let r = run_in(tmp.path(), &["survey", case.to_str().unwrap()]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     let note = r
         .stdout
         .lines()
@@ -764,16 +702,16 @@ fn survey_of_the_forge_case_notes_the_assumed_feet() {
 #[test]
 fn survey_directly_on_a_csv_matches_the_case() {
     let tmp = tempfile::tempdir().unwrap();
-    let csv = wells().join("j-shape/survey.csv");
-    let case = wells().join("j-shape/case.toml");
+    let csv = example_dir("j-shape").join("survey.csv");
+    let case = example_case("j-shape");
     let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--out", "from_csv.csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert!(r.stdout.contains("stations: 88"), "{}", r.describe());
     let r = run_in(
         tmp.path(),
         &["survey", case.to_str().unwrap(), "--out", "from_case.csv"],
     );
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     let a = std::fs::read_to_string(tmp.path().join("from_csv.csv")).unwrap();
     let b = std::fs::read_to_string(tmp.path().join("from_case.csv")).unwrap();
     assert_eq!(a, b);
@@ -782,9 +720,9 @@ fn survey_directly_on_a_csv_matches_the_case() {
 #[test]
 fn survey_csv_flag_prints_the_table() {
     let tmp = tempfile::tempdir().unwrap();
-    let csv = wells().join("j-shape/survey.csv");
+    let csv = example_dir("j-shape").join("survey.csv");
     let r = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     assert_eq!(r.stdout.lines().next(), Some(SURVEY_HEADER));
     assert_eq!(r.stdout.lines().count(), 89);
 }
@@ -794,7 +732,7 @@ fn survey_md_unit_option_reads_feet() {
     let fx = Fixture::new();
     fx.write("survey.csv", "md,inc,azi\n0,0,0\n1000,0,0\n");
     let r = fx.run(&["survey", "survey.csv", "--md-unit", "ft", "--csv"]);
-    assert_eq!(r.code, Some(0), "{}", r.describe());
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
     let last = r.stdout.lines().last().unwrap();
     assert!(last.starts_with("304.800,"), "{last}");
 }
@@ -804,7 +742,7 @@ fn survey_md_unit_option_reads_feet() {
 
 /// Sliding 250 kN onto the bit at the end of a 300 m lateral (300 m vertical, 90 deg build of
 /// 450 m, 5 in pipe, friction 0.25): the soft string needs the top pushed down (hook load < 0,
-/// lock-up, src/diagnose.rs) and buckles the pipe helically. With 3 iterations allowed the
+/// lock-up, src/models/diagnose.rs) and buckles the pipe helically. With 3 iterations allowed the
 /// stiff solve stops unconverged: exit non-zero, one `error:` line naming the non-convergence,
 /// `--allow-unconverged`, the lock-up and the helical buckling; no output directory.
 #[test]
@@ -817,9 +755,10 @@ fn unconverged_solve_names_lock_up_and_buckling() {
     .unwrap();
     std::fs::write(
         dir.path().join("c.toml"),
-        r#"[well]
+        format!(
+            r#"[well]
 survey = "s.csv"
-hole = [{ to_md = "1050 m", diameter = "8.5 in" }]
+hole = [{{ to_md = "1050 m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
@@ -827,14 +766,10 @@ mode = "sliding"
 bit_md = "1050 m"
 wob = "250 kN"
 friction = 0.25
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-[solver]
+{DRILL_PIPE_BODY}[solver]
 max_iterations = 3
-"#,
+"#
+        ),
     )
     .unwrap();
     let r = run_in(dir.path(), &["solve", "c.toml", "--out", "out"]);

@@ -4,13 +4,14 @@
 //! `drillpath::analytical` (written and tested separately from the FEM, docs/theory.md 10).
 
 use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
-use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::model::{GapTreatment, Model};
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, SolveControls};
 
-mod common;
-use common::{collar_properties, load_temp_case, slick_collar_case};
+use crate::common::{
+    collar, collar_properties, example, load_temp_case, slick_collar_case, COLLAR_TO_SURFACE, DRILL_PIPE,
+    DRILL_PIPE_BODY,
+};
 
 struct Run {
     res: SolveResults,
@@ -225,13 +226,7 @@ rpm = 60
 friction = {friction}
 viscous_torque = false
 trip_speed = "0.3 m/s"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-[solver]
+{DRILL_PIPE}[solver]
 element_length = "2 m"
 "#
     );
@@ -374,12 +369,8 @@ max_iterations = 150
     }
 }
 
-const COLLAR_60M: &str = r#"
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-"#;
+/// The slick collar filling the 60 m test wells' strings to the surface.
+const COLLAR_60M: &str = COLLAR_TO_SURFACE;
 
 /// A converged result must be finite and in equilibrium; a failure must be reported, never a
 /// panic (the caller gets `None` or `converged = false`, which the CLI turns into exit 2).
@@ -444,14 +435,7 @@ fn compression_beyond_helical_buckling_keeps_the_pipe_in_the_hole() {
         survey.push_str(&format!("{},{},{}\n", 10 * k, 90.0 + w, w));
     }
     let survey = survey.as_str();
-    let pipe = r#"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-"#;
-    let out = solve_case(survey, 8.5, 3.0 * 230.9, pipe, "");
+    let out = solve_case(survey, 8.5, 3.0 * 230.9, DRILL_PIPE_BODY, "");
     if let Some((true, res)) = &out {
         // nodes with a gap (clearance > 0): the top node has none, it is held on the axis at
         // its reference MD by the boundary condition, and after the buckled pipe's axial
@@ -507,7 +491,9 @@ fn paper_method_runs_the_paper_scheme_not_the_default() {
     // solve_modified_newton does.
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,10,0\n40,10,0\n",
-        "[well]\nsurvey = \"survey.csv\"\nhole = [{ to_md = \"40 m\", diameter = \"8.5 in\" }]\n[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\n[solver]\nmethod = \"paper\"\n",
+        &format!(
+            "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"40 m\", diameter = \"8.5 in\" }}]\n{COLLAR_TO_SURFACE}[solver]\nmethod = \"paper\"\n"
+        ),
     );
     let model = Model::from_case(&case);
     let ctl = SolveControls {
@@ -533,10 +519,11 @@ fn wind_up_start_and_solution_match_saint_venant_torsion() {
     // vertical hole, no contact forces).
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n",
-        r#"
+        &format!(
+            r#"
 [well]
 survey = "survey.csv"
-hole = [{ to_md = "300 m", diameter = "8.5 in" }]
+hole = [{{ to_md = "300 m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
@@ -545,14 +532,11 @@ wob = "20 kN"
 rpm = 60
 bit_torque = "4 kN.m"
 friction = 0.0
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-[solver]
+{COLLAR_TO_SURFACE}[solver]
 element_length = "2 m"
 bha_element_length = "2 m"
-"#,
+"#
+        ),
     );
     let model = Model::from_case(&case);
     let gj = model.sections[0].gj;
@@ -588,8 +572,7 @@ fn smoothed_start_limits_the_lateral_slope() {
     // 2 START_MAX_SLOPE times their distance (one slope for the size of the offset, one for
     // its direction). Case: the J-shape example (stabilizers between collars, a side change at
     // the end of the build).
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/j-shape/case.toml");
-    let case = load_case(&path, &CaseOverrides::default()).unwrap();
+    let case = example("j-shape");
     let model = Model::from_case(&case);
     let mut raw = model.initial_state();
     drillpath::models::fem::solve::start::soft_string_start(&model, &mut raw);
@@ -628,8 +611,7 @@ fn evaluation_reusing_element_responses_equals_a_fresh_one_bit_for_bit() {
     // (`evaluate_reusing_elements`); residual, gap forces and nearest-axis MDs must be
     // identical to the last bit (rotating string with wall friction and mud drag torque, whose
     // lumped moments depend on the MDs the evaluation updates).
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/seed-daqing/case.toml");
-    let case = load_case(&path, &CaseOverrides::default()).unwrap();
+    let case = example("seed-daqing");
     let model = Model::from_case(&case);
     assert!(model.loads.omega_rad_s > 0.0 && model.loads.mud_viscosity_pa_s > 0.0);
     let sol = solve(&model, &SolveControls::default()).unwrap();
@@ -662,10 +644,11 @@ fn stretched_start_and_solution_match_the_hanging_string_stretch() {
     // the same forces); the converged FEM solution to 1e-3 (the co-rotational axial strain).
     let case = load_temp_case(
         "md_m,inc_deg,azi_deg\n0,0,0\n2000,0,0\n",
-        r#"
+        &format!(
+            r#"
 [well]
 survey = "survey.csv"
-hole = [{ to_md = "2000 m", diameter = "8.5 in" }]
+hole = [{{ to_md = "2000 m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
@@ -673,21 +656,12 @@ mode = "drilling"
 wob = "50 kN"
 rpm = 60
 friction = 0.0
-[[string]]
-type = "collar"
-od = "6.5 in"
-id = "2.8125 in"
-length = "100 m"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "29 kg/m"
-tool_joint_od = "6.625 in"
-[solver]
+{}{DRILL_PIPE}[solver]
 element_length = "2 m"
 bha_element_length = "1 m"
 "#,
+            collar("100 m")
+        ),
     );
     let model = Model::from_case(&case);
     let top = model.nodes() - 1;

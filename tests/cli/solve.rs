@@ -1,0 +1,121 @@
+//! `drillpath solve` through the built binary at each fidelity level and accuracy preset: the
+//! interface files it writes, the options that override the case, and the errors for unknown
+//! names. The levels' numbers against each other are checked in tests/verification/fidelity.rs.
+
+use crate::common::{example_dir, root, run_in, try_load_temp_case};
+
+#[test]
+fn fidelity_cli_levels_write_the_interface_files() {
+    // Reference: interface.md `solve` outputs: summary.json keys (null where the level does not
+    // compute a value), string.csv header + buckling columns, no NaN; `--fidelity` overrides
+    // the case; an unknown level is one clear error naming the option, non-zero exit.
+    let case = "wells/seed-daqing/case.toml";
+    for level in ["soft", "bha", "hybrid", "whole"] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = run_in(
+            root(),
+            &[
+                "solve",
+                case,
+                "--fidelity",
+                level,
+                "--out",
+                dir.path().to_str().unwrap(),
+            ],
+        );
+        assert!(out.success(), "{level}: {}", out.stderr);
+        let stdout = &out.stdout;
+        assert!(stdout.contains(&format!("fidelity {level}")), "{stdout}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
+        assert_eq!(s["fidelity"]["used"], level);
+        assert!(s["buckling"]["sinusoidal_length_m"].is_number());
+        for key in [
+            "md_m",
+            "wob_kN",
+            "build_force_kN",
+            "walk_force_kN",
+            "tilt_inc_deg",
+            "tilt_azi_deg",
+            "torque_kNm",
+        ] {
+            let v = &s["bit"][key];
+            assert!(
+                v.is_number() || (level == "soft" && v.is_null()),
+                "{level} bit.{key} = {v}"
+            );
+        }
+        for key in ["hook_load_kN", "torque_kNm"] {
+            let v = &s["surface"][key];
+            assert!(
+                v.is_number() || (level == "bha" && v.is_null()),
+                "{level} surface.{key} = {v}"
+            );
+        }
+        assert!(s["solver"]["converged"].as_bool().unwrap());
+        let csv = std::fs::read_to_string(dir.path().join("string.csv")).unwrap();
+        let mut lines = csv.lines();
+        let header = lines.next().unwrap();
+        assert!(header.starts_with("md_m,north_m,east_m,tvd_m,disp_high_mm,disp_right_mm,clearance_mm,contact_force_kN,contact_angle_deg,axial_force_kN,torque_kNm,bending_moment_kNm,von_mises_MPa,"));
+        assert!(header.ends_with(",sinusoidal_onset_kN,helical_onset_kN,buckling"));
+        let n = header.split(',').count();
+        let mut rows = 0;
+        for l in lines {
+            assert_eq!(l.split(',').count(), n, "{level}: {l}");
+            assert!(!l.to_lowercase().contains("nan") && !l.contains("inf"), "{level}: {l}");
+            rows += 1;
+        }
+        assert!(rows > 10, "{level}: {rows} rows");
+    }
+    let out = run_in(root(), &["solve", case, "--fidelity", "fast"]);
+    assert!(!out.success());
+    let err = &out.stderr;
+    assert!(
+        err.contains("--fidelity") && err.contains("fast") && !err.contains("panicked"),
+        "{err}"
+    );
+}
+
+#[test]
+fn accuracy_preset_in_case_file_and_on_the_command_line() {
+    // Reference: the preset table of src/case/accuracy.rs; explicit keys win over `[solver]
+    // accuracy`; `--accuracy` wins over the case; unknown names are one clear error.
+    use drillpath::case::accuracy::Accuracy;
+    let src = example_dir("seed-daqing");
+    let text: String = std::fs::read_to_string(src.join("case.toml"))
+        .unwrap()
+        .lines()
+        .filter(|l| {
+            !l.starts_with("element_length") && !l.starts_with("bha_element_length") && !l.starts_with("tolerance")
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let survey = std::fs::read_to_string(src.join("survey.csv")).unwrap();
+    let write = |solver: &str| {
+        let t = text.replace("[solver]\n", &format!("[solver]\n{solver}\n"));
+        try_load_temp_case(&survey, &t)
+    };
+    let precise = write("accuracy = \"precise\"").unwrap();
+    let k = Accuracy::Precise.knobs();
+    assert_eq!(precise.solver.element_length_m, k.element_length_m);
+    assert_eq!(precise.solver.bha_element_length_m, k.bha_element_length_m);
+    assert_eq!(precise.solver.tolerance, k.tolerance);
+    let explicit = write("accuracy = \"precise\"\nelement_length = \"2 m\"").unwrap();
+    assert_eq!(explicit.solver.element_length_m, 2.0);
+    assert_eq!(explicit.solver.tolerance, k.tolerance);
+    let err = write("accuracy = \"medium\"").unwrap_err().to_string();
+    assert!(
+        err.contains("accuracy") && err.contains("medium") && err.contains("case.toml"),
+        "{err}"
+    );
+    let out = run_in(
+        root(),
+        &["solve", "wells/seed-daqing/case.toml", "--accuracy", "fast", "--json"],
+    );
+    assert!(out.success());
+    let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
+    let fast_elements = s["solver"]["elements"].as_u64().unwrap();
+    let out = run_in(root(), &["solve", "wells/seed-daqing/case.toml", "--json"]);
+    let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
+    assert!(fast_elements < s["solver"]["elements"].as_u64().unwrap());
+}

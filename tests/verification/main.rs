@@ -1,0 +1,20 @@
+//! Verification of the library against independent references: closed forms, published and
+//! real-well data, and consistency checks. One test binary; one module per topic. Each test
+//! states its reference and tolerance.
+//!
+//! Run one topic with `cargo test --release --test verification solver::`; add
+//! `-- --nocapture` to see the measured numbers.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod architecture;
+mod buckling;
+mod extremes;
+mod fidelity;
+mod geometry;
+mod loads;
+mod paper;
+mod predict;
+mod softstring;
+mod solver;
