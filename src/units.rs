@@ -6,7 +6,7 @@
 
 use std::fmt;
 
-/// Standard gravity, m/s2 (interface.md).
+/// Standard gravity, m/s2 (docs/guide.md).
 pub const G: f64 = 9.80665;
 /// Density of fresh water used for specific gravity, kg/m3.
 pub const WATER_DENSITY: f64 = 1000.0;

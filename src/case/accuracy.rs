@@ -114,7 +114,7 @@ mod tests {
     use super::*;
     use crate::case::SolverSettings;
 
-    /// Reference: the documented defaults of `[solver]` (SolverSettings::default, interface.md):
+    /// Reference: the documented defaults of `[solver]` (SolverSettings::default, docs/guide.md):
     /// the `default` preset must equal them; presets are ordered fast -> precise on every knob.
     #[test]
     fn default_preset_is_the_documented_default() {

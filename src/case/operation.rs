@@ -1,6 +1,6 @@
 //! What the string is doing: the load case, the operating parameters and the drilling fluid, SI.
 
-/// Load case: what the string is doing (interface.md `[operation] mode`).
+/// Load case: what the string is doing (docs/guide.md `[operation] mode`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
     /// Rotating on bottom.

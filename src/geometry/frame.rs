@@ -3,7 +3,7 @@
 //! Global frame NED: x = north, y = east, z = true vertical depth (down); gravity along +z.
 //! `t` is the unit tangent down the hole, `h` the high side (perpendicular to `t`, pointing
 //! up-hole in the vertical plane through `t`), `r = t x h` the right side (toward increasing
-//! azimuth). docs/theory.md 2.4; interface.md "Conventions".
+//! azimuth). docs/theory.md 2.4; docs/guide.md, Conventions.
 
 use nalgebra::Vector3;
 
@@ -50,7 +50,7 @@ pub struct Frame {
 impl Frame {
     /// Frame of the unit tangent `t`. Where the hole is vertical (sin I < [`VERTICAL_SIN_INC`])
     /// `h` points toward `ref_azi_rad` (at inclination 0; away from it at 180 deg), as
-    /// interface.md prescribes.
+    /// docs/guide.md prescribes.
     pub fn from_tangent(t: &Vec3, ref_azi_rad: f64) -> Frame {
         let t = t.normalize();
         let horiz = (t.x * t.x + t.y * t.y).sqrt();

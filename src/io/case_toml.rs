@@ -1,4 +1,4 @@
-//! TOML case files -> validated [`Case`] (interface.md "Case file").
+//! TOML case files -> validated [`Case`] (docs/guide.md "Case file").
 //!
 //! Default units of bare numbers (documented in docs/guide.md, "Case-file reference"): measured depths and lengths m,
 //! diameters (`od`, `id`, `body_od`, `tool_joint_od`, `diameter`) in, forces kN, torques kN.m,

@@ -1,7 +1,7 @@
 //! Survey CSV reader: measured depth, inclination and azimuth columns found by name, converted
 //! to SI and validated into a [`Survey`].
 //!
-//! The contract (interface.md, "Survey CSV"):
+//! The contract (docs/guide.md, "Survey CSV"):
 //! - a UTF-8 BOM is stripped, CRLF is accepted, blank lines and lines whose first non-space
 //!   character is `#` are skipped; the first remaining line is the header;
 //! - the delimiter is a comma, or `;` / tab when the header has no comma but has one of those;

@@ -57,7 +57,7 @@ impl LawParams {
 }
 
 /// What the bit does: forces of the bit on the rock (N) and tilt of its axis (rad) in the hole
-/// frame at the bit (interface.md sign conventions).
+/// frame at the bit (docs/guide.md sign conventions).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BitAction {
     /// Weight on bit (along t), N.

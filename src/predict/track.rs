@@ -1,5 +1,5 @@
 //! Tracking: a prediction compared with measured stations, rates over the interval, and the
-//! output rows of `trajectory.csv` (interface.md).
+//! output rows of `trajectory.csv` (docs/guide.md).
 
 use super::march::{Prediction, StepRecord};
 use crate::geometry::survey::wrap_pi;

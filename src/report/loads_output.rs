@@ -1,4 +1,4 @@
-//! Outputs of `drillpath loads`: `loads.csv` (interface.md columns first, then extensions),
+//! Outputs of `drillpath loads`: `loads.csv` (docs/guide.md columns first, then extensions),
 //! the calibration overlay `calibration.csv` and `calibration.json`.
 
 use super::{num, Finite};

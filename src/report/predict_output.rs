@@ -1,4 +1,4 @@
-//! Outputs of `predict` and `backanalyze`: `trajectory.csv` (interface.md columns) and the
+//! Outputs of `predict` and `backanalyze`: `trajectory.csv` (docs/guide.md columns) and the
 //! JSON summaries.
 
 use super::tracking_output::{
@@ -15,7 +15,7 @@ use crate::predict::track::{IntervalRates, TrackingErrors, TrajectoryRow};
 use serde::Serialize;
 use std::path::Path;
 
-/// Header of `trajectory.csv` (interface.md).
+/// Header of `trajectory.csv` (docs/guide.md).
 pub const TRAJECTORY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN";
 
 fn opt(x: Option<f64>, decimals: usize) -> Result<String, String> {

@@ -3,7 +3,7 @@
 use super::num;
 use crate::geometry::WellPath;
 
-/// Header of the survey table (interface.md).
+/// Header of the survey table (docs/guide.md).
 pub const HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,dls_deg_per_30m";
 
 /// One row per station: minimum-curvature positions and the DLS of the interval ending there.

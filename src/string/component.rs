@@ -113,7 +113,7 @@ impl Component {
     pub fn gj_nm2(&self) -> f64 {
         self.material.shear_modulus_pa * 2.0 * self.inertia_m4()
     }
-    /// Buoyed weight per length for mud of `mud_density_kg_m3` inside and outside (interface.md):
+    /// Buoyed weight per length for mud of `mud_density_kg_m3` inside and outside (docs/guide.md):
     /// `w_air (1 - rho_mud / rho_material)`, N/m.
     pub fn buoyed_weight_n_per_m(&self, mud_density_kg_m3: f64) -> f64 {
         self.weight_air_n_per_m * (1.0 - mud_density_kg_m3 / self.material.density_kg_m3)

@@ -19,7 +19,7 @@ pub struct Material {
 /// Names accepted for `material`.
 pub const MATERIAL_NAMES: &[&str] = &["steel", "aluminium", "titanium", "nonmagnetic"];
 
-/// Built-in material by name (`steel` default: E 207 GPa, G 79.6 GPa, 7850 kg/m3; interface.md).
+/// Built-in material by name (`steel` default: E 207 GPa, G 79.6 GPa, 7850 kg/m3; docs/guide.md).
 /// Aluminium: drill-pipe alloy 2014-T6 (E 72.4 GPa, G 27.6 GPa, 2800 kg/m3); titanium:
 /// Ti-6Al-4V (113.8 GPa, 44 GPa, 4430 kg/m3); nonmagnetic: austenitic stainless steel for
 /// non-magnetic collars (196 GPa, 75.8 GPa, 7900 kg/m3). Typical handbook values.

@@ -60,7 +60,7 @@ element_length = "1 m"
     )
 });
 
-/// The exact header of `survey --out` (interface.md).
+/// The exact header of `survey --out` (docs/guide.md).
 const SURVEY_HEADER: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,dls_deg_per_30m";
 
 /// A temporary directory with the valid case and survey.
@@ -599,7 +599,7 @@ fn out_is_a_directory() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Known problems, kept as ignored tests (run with `--ignored`); see the test report.
+// Problems found by probing with bad input, each fixed and kept as a test.
 
 #[test]
 fn typo_of_a_required_key_is_named() {

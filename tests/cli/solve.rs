@@ -6,7 +6,7 @@ use crate::common::{example_dir, root, run_in, try_load_temp_case};
 
 #[test]
 fn fidelity_cli_levels_write_the_interface_files() {
-    // Reference: interface.md `solve` outputs: summary.json keys (null where the level does not
+    // Reference: docs/guide.md `solve` outputs: summary.json keys (null where the level does not
     // compute a value), string.csv header + buckling columns, no NaN; `--fidelity` overrides
     // the case; an unknown level is one clear error naming the option, non-zero exit.
     let case = "wells/seed-daqing/case.toml";

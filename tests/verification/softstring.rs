@@ -473,9 +473,12 @@ fn no_motion_is_frictionless() {
     assert!(rel(r.hook_load_n, rot.hook_load_n) < 1e-12);
 }
 
-/// Speed: a 3,000 m pass with 1 m elements well under 1 ms (best of 20 in release builds).
+/// Reference: the segment rule (elements of at most `max_element_m`, nodes at component ends):
+/// a 3,000 m single-component string in 1 m elements has 3,001 nodes, the last at the surface.
+/// Its speed is measured by the benchmark `softstring_3000m` (`cargo bench --bench solve`),
+/// not here.
 #[test]
-fn fast_3000m_pass() {
+fn pass_of_3000m_has_a_node_every_metre() {
     let p = path(&[
         (0.0, 0.0, 0.0),
         (800.0, 0.0, 0.0),
@@ -499,18 +502,10 @@ fn fast_3000m_pass() {
         friction: 0.25,
         max_element_m: 1.0,
     };
-    let mut best = f64::INFINITY;
-    for _ in 0..20 {
-        let t = std::time::Instant::now();
-        let r = soft_string(&input);
-        best = best.min(t.elapsed().as_secs_f64());
-        assert_eq!(r.points.len(), 3001);
-    }
-    println!("3000 m, 1 m elements: {:.1} us", best * 1e6);
-    if cfg!(debug_assertions) {
-        return;
-    }
-    assert!(best < 1e-3, "{best} s");
+    let r = soft_string(&input);
+    assert_eq!(r.points.len(), 3001);
+    assert!(r.points[3000].md_m.abs() < 1e-9, "{}", r.points[3000].md_m);
+    assert!(r.points.windows(2).all(|w| (w[0].md_m - w[1].md_m - 1.0).abs() < 1e-9));
 }
 
 // ----------------------------------------------------------------------------------------------

@@ -248,9 +248,10 @@ element_length = "2 m"
 #[test]
 fn soft_string_limit_in_a_smooth_well() {
     // Reference: Johancsik et al. (1984) soft-string torque and drag (drillpath::models::softstring,
-    // verified separately against docs/theory.md 10.5). Tolerance 5% (issue 3); a stiff string
-    // that rotates on the wall carries 1/sqrt(1+f^2) of the soft-string torque (docs/theory.md 4,
-    // -3% at f = 0.25), hook loads agree much closer.
+    // verified separately against docs/theory.md 10.5). Hook loads within 0.5% (measured
+    // 0.00%, +0.19%, -0.20%: the same weight and friction, the contact pattern differs); torque
+    // within 5%: a stiff string that rotates on the wall carries 1/sqrt(1+f^2) of the soft-string
+    // torque (docs/theory.md 4, -3% at f = 0.25; measured -4.2% in this build and hold).
     for mode in ["rotating_off_bottom", "trip_in", "trip_out"] {
         let (case, fem) = pipe_in_build_and_hold(mode, 0.25);
         let soft = drillpath::models::softstring::from_case(&case, 1.0);
@@ -263,7 +264,7 @@ fn soft_string_limit_in_a_smooth_well() {
             fem.surface_torque_nm / 1e3,
             soft.surface_torque_nm / 1e3
         );
-        assert!(e_h.abs() < 0.05, "{mode}: hook load off by {:.2}%", 100.0 * e_h);
+        assert!(e_h.abs() < 0.005, "{mode}: hook load off by {:.2}%", 100.0 * e_h);
         if soft.surface_torque_nm > 1.0 {
             let e_t = (fem.surface_torque_nm - soft.surface_torque_nm) / soft.surface_torque_nm;
             assert!(e_t.abs() < 0.05, "{mode}: torque off by {:.2}%", 100.0 * e_t);

@@ -1,5 +1,5 @@
 //! Post-processing: bit forces and tilt, top reactions, and per-node results along the string
-//! (interface.md `summary.json` and `string.csv`), all SI.
+//! (docs/guide.md `summary.json` and `string.csv`), all SI.
 
 use super::model::Model;
 use super::solve::Solution;
