@@ -26,17 +26,6 @@ pub const SOLVE_FIGURES: &[&str] = &[
 /// Contact nodes closer than this along the string form one contact zone, m.
 pub const ZONE_GAP_M: f64 = 1.5;
 
-/// Bending stress at the outer fibre, Pa: M (OD/2) / I of the body at distance `x_m` from the bit.
-pub fn bending_stress_pa(case: &Case, x_m: f64, moment_nm: f64) -> f64 {
-    let c = case.string.component_at(x_m.max(0.0));
-    let i = c.inertia_m4();
-    if i > 0.0 {
-        moment_nm * c.body_od_m / 2.0 / i
-    } else {
-        0.0
-    }
-}
-
 /// Legend names of the buckling marks on the axial-force plot (the tests look for them).
 pub const BUCKLING_SERIES: [&str; 4] = [
     "sinusoidal buckling",
@@ -388,7 +377,10 @@ fn string_figures(
     )
     .with(Series::new(
         "bending stress",
-        along(&|n| stress_unit.show(bending_stress_pa(case, b.md_m - n.md_m, n.bending_moment_nm))),
+        along(&|n| {
+            let c = case.string.component_at((b.md_m - n.md_m).max(0.0));
+            stress_unit.show(c.bending_stress_pa(n.bending_moment_nm))
+        }),
         Style::Line,
         3,
     ))

@@ -101,6 +101,16 @@ impl Component {
     pub fn inertia_m4(&self) -> f64 {
         PI / 64.0 * (self.body_od_m.powi(4) - self.id_m.powi(4))
     }
+    /// Bending stress at the outer fibre of the body under bending moment `moment_nm` (N.m),
+    /// `M (OD/2) / I`, Pa (0 for a section without inertia).
+    pub fn bending_stress_pa(&self, moment_nm: f64) -> f64 {
+        let i = self.inertia_m4();
+        if i > 0.0 {
+            moment_nm * self.body_od_m / 2.0 / i
+        } else {
+            0.0
+        }
+    }
     /// Axial stiffness EA, N.
     pub fn ea_n(&self) -> f64 {
         self.material.youngs_modulus_pa * self.area_m2()

@@ -382,7 +382,7 @@ fn empty_case_file() {
 #[test]
 fn unknown_key_typo_od_odd() {
     // The collar's `od` is misspelt: the key is then missing, and the message must point at
-    // the collar (see also the ignored `typo_of_a_required_key_is_named` below).
+    // the collar (see also `typo_of_a_required_key_is_named` below).
     let fx = Fixture::new();
     fx.edit_case("type = \"collar\"\nod = ", "type = \"collar\"\nodd = ");
     fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[2].od"]);

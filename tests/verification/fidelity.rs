@@ -205,6 +205,50 @@ fn bit_torque_is_the_same_in_every_model() {
 }
 
 #[test]
+fn soft_string_is_the_same_in_every_model() {
+    // Reference: one soft-string pass and one segment rule (models::softstring::segment_length_m,
+    // min(element length, 1 m)) for the soft level, the torque-and-drag chart's row at the
+    // case's depth and the non-convergence diagnosis. With 6 m pipe elements the three must give
+    // the same hook load and torque to round-off (1e-12 relative), and differ from a pass at the
+    // element length itself (the rule is in force).
+    use drillpath::loads::chart::{case_at_depth, soft_row};
+    use drillpath::loads::{set_row_operation, ChartOperation};
+    use drillpath::models::softstring::{from_case, segment_length_m};
+    let mut case = example("j-shape");
+    case.solver.element_length_m = 6.0;
+    let seg = segment_length_m(&case.solver);
+    assert_eq!(seg, 1.0);
+    let level = at(&case, Fidelity::Level(Level::Soft));
+    let direct = from_case(&case, seg);
+    let mut row_case = case_at_depth(&case, case.operation.bit_md_m);
+    set_row_operation(
+        &mut row_case,
+        case.operation.bit_md_m,
+        Mode::Drilling,
+        &ChartOperation::from_case(&case),
+    );
+    let row = soft_row(&row_case, seg);
+    let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+    for (what, h, t) in [
+        ("level", level.hook_load_n.unwrap(), level.surface_torque_nm.unwrap()),
+        ("chart", row.soft.hook_load_n, row.soft.surface_torque_nm),
+    ] {
+        assert!(
+            rel(h, direct.hook_load_n) < 1e-12,
+            "{what}: hook load {h} vs {}",
+            direct.hook_load_n
+        );
+        assert!(
+            rel(t, direct.surface_torque_nm) < 1e-12,
+            "{what}: torque {t} vs {}",
+            direct.surface_torque_nm
+        );
+    }
+    let coarse = from_case(&case, case.solver.element_length_m);
+    assert!(rel(coarse.surface_torque_nm, direct.surface_torque_nm) > 1e-6);
+}
+
+#[test]
 fn fidelity_levels_report_only_what_they_compute() {
     // Reference: the level table of src/case/fidelity.rs: soft has no bit side forces, bha no
     // surface values; auto picks per command.
