@@ -113,9 +113,19 @@ pub struct CoverageJson {
     both: Finite,
 }
 
+/// One filter of the bank with its weight at the end.
+#[derive(Serialize)]
+pub struct VariantJson {
+    correlation_length_m: Finite,
+    lasting_offset: bool,
+    weight: Finite,
+}
+
 /// The `assimilation` key.
 #[derive(Serialize)]
 pub struct AssimilationJson {
+    /// The bank's filters and their weights at the end.
+    variants: Vec<VariantJson>,
     coverage: CoverageJson,
     tendency_offset_deg_per_30m: TurnJson,
     tendency_offset_sd_deg_per_30m: TurnJson,
@@ -154,6 +164,16 @@ impl AssimilationJson {
             })
             .collect();
         AssimilationJson {
+            variants: a
+                .filter
+                .variants()
+                .into_iter()
+                .map(|(l, o, w)| VariantJson {
+                    correlation_length_m: Finite(l),
+                    lasting_offset: o,
+                    weight: Finite(w),
+                })
+                .collect(),
             coverage: CoverageJson {
                 inclination: Finite(inc),
                 azimuth: Finite(azi),

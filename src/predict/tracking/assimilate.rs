@@ -4,15 +4,13 @@
 //! The frozen assimilation runs the same filter on the model's tendency held at its value on
 //! the first interval: pure statistics through the filter.
 
-use super::estimator::TendencyFilter;
+use super::bank::FilterBank;
 use super::references::Direction;
 use crate::case::bit_rock::LawParameter;
 use crate::case::{BitRock, Case, TrackingSettings};
 use crate::geometry::frame::{inc_azi, tangent};
-use crate::geometry::{Frame, Vec3};
-use crate::predict::intervals::{
-    intervals as cut_intervals, predict_interval_path, result_of, Interval, IntervalPlan, IntervalResult,
-};
+use crate::geometry::{Frame, Vec3, WellPath};
+use crate::predict::intervals::{predict_interval_path, result_of, Interval, IntervalResult};
 use crate::predict::law::deviation;
 use crate::predict::march::{MarchSettings, PredictError, WarmStart};
 use nalgebra::{DMatrix, Matrix2};
@@ -60,7 +58,7 @@ pub struct Assimilation {
     /// The intervals that could not be predicted, with why.
     pub skipped: Vec<(Interval, PredictError)>,
     /// The filter after the last station.
-    pub filter: TendencyFilter,
+    pub filter: FilterBank,
     /// The model's tendency held by the frozen assimilation (toward the high side, toward the
     /// right), rad/m.
     pub frozen_model_tendency: [f64; 2],
@@ -116,7 +114,7 @@ pub fn survey_covariance(settings: &TrackingSettings, inc_rad: f64) -> Matrix2<f
 }
 
 /// The case's law with the filter's parameter estimates.
-fn law_of(case: &Case, filter: &TendencyFilter) -> BitRock {
+fn law_of(case: &Case, filter: &FilterBank) -> BitRock {
     let mut br = case.bit_rock.clone();
     for (p, u, _, _) in filter.parameters() {
         p.set(&mut br, p.natural(u));
@@ -124,42 +122,176 @@ fn law_of(case: &Case, filter: &TendencyFilter) -> BitRock {
     br
 }
 
-/// Sensitivity (2 x n) of the end direction of `iv` to the filter's law parameters, by
-/// differences of marches started from `warm`, in the frame of the march's end `end`.
-fn sensitivity(
+/// The direction of `path` at `md_m`.
+fn direction_at(path: &WellPath, md_m: f64) -> Direction {
+    let p = path.point_at(md_m);
+    Direction {
+        inc_rad: p.inc_rad,
+        azi_rad: p.azi_rad,
+    }
+}
+
+/// The marches of `iv` with each law parameter of `filter` stepped by [`PARAMETER_STEP`] (in
+/// the unbounded variable), started from `warm`.
+fn stepped_marches(
     case: &Case,
-    filter: &TendencyFilter,
+    filter: &FilterBank,
     iv: &Interval,
     settings: &MarchSettings,
     warm: &WarmStart,
-    end: &Direction,
-) -> Result<DMatrix<f64>, PredictError> {
-    let params = filter.parameters();
-    let mut j = DMatrix::zeros(2, params.len());
-    for (k, &(p, u, _, _)) in params.iter().enumerate() {
-        let mut law = law_of(case, filter);
-        p.set(&mut law, p.natural(u + PARAMETER_STEP));
-        let mut w = warm.clone();
-        let pred = predict_interval_path(case, &law, iv, settings, &mut w)?;
-        let r = result_of(iv, &pred);
-        let t = turn_between(
-            end,
-            &Direction {
-                inc_rad: r.inc_rad,
-                azi_rad: r.azi_rad,
-            },
-        );
-        j[(0, k)] = t[0] / PARAMETER_STEP;
-        j[(1, k)] = t[1] / PARAMETER_STEP;
+) -> Result<Vec<WellPath>, PredictError> {
+    filter
+        .parameters()
+        .iter()
+        .map(|&(p, u, _, _)| {
+            let mut law = law_of(case, filter);
+            p.set(&mut law, p.natural(u + PARAMETER_STEP));
+            let mut w = warm.clone();
+            Ok(predict_interval_path(case, &law, iv, settings, &mut w)?.path)
+        })
+        .collect()
+}
+
+/// Sensitivity (2 x n, rad per unbounded unit) of the turn from `from_md` to `to_md` to the law
+/// parameters: the turns of the stepped marches `stepped` against the march `path`'s.
+fn turn_sensitivity(path: &WellPath, stepped: &[WellPath], from_md: f64, to_md: f64) -> DMatrix<f64> {
+    let base = turn_between(&direction_at(path, from_md), &direction_at(path, to_md));
+    let mut j = DMatrix::zeros(2, stepped.len());
+    for (k, sp) in stepped.iter().enumerate() {
+        let t = turn_between(&direction_at(sp, from_md), &direction_at(sp, to_md));
+        for c in 0..2 {
+            j[(c, k)] = (t[c] - base[c]) / PARAMETER_STEP;
+        }
     }
-    Ok(j)
+    j
 }
 
 /// The filters of an assimilation and the frozen model tendency, carried over the intervals.
 struct Filters {
-    filter: TendencyFilter,
-    frozen: TendencyFilter,
+    filter: FilterBank,
+    frozen: FilterBank,
     frozen_tendency: Option<[f64; 2]>,
+}
+
+/// How the filters are scored while they take in the hole behind the first interval: at each
+/// station, on their prediction over the `horizon_m` of hole that follows it, when that hole
+/// ends at or above `limit_md` (no station below the first interval's start).
+#[derive(Clone, Copy)]
+struct WarmUpScoring {
+    horizon_m: f64,
+    limit_md: f64,
+}
+
+/// The steps between the measured stations from `from_md` to `to_md` (both stations, or the
+/// first station after `from_md`): consecutive, each at least the tracking interval long but
+/// the last, which ends at `to_md` (a remainder shorter than half an interval joins the step
+/// before it).
+fn steps(case: &Case, from_md: f64, to_md: f64, tracking: &TrackingSettings) -> Vec<Interval> {
+    let mds: Vec<f64> = case
+        .well
+        .path
+        .stations()
+        .iter()
+        .map(|s| s.md_m)
+        .filter(|&m| m >= from_md - 1e-9 && m <= to_md + 1e-9)
+        .collect();
+    let mut ends: Vec<usize> = Vec::new();
+    let mut last = 0;
+    for (k, &m) in mds.iter().enumerate().skip(1) {
+        if m - mds[last] >= tracking.interval_m - 1e-9 {
+            ends.push(k);
+            last = k;
+        }
+    }
+    let n = mds.len();
+    if n >= 2 && last != n - 1 {
+        let rest = mds[n - 1] - mds[last];
+        match ends.last_mut() {
+            Some(e) if rest < 0.5 * tracking.interval_m => *e = n - 1,
+            _ => ends.push(n - 1),
+        }
+    }
+    let mut out = Vec::with_capacity(ends.len());
+    let mut a = 0;
+    for e in ends {
+        out.push(Interval {
+            from_md_m: mds[a],
+            to_md_m: mds[e],
+            measured: (0.0, 0.0),
+        });
+        a = e;
+    }
+    out
+}
+
+/// Take in the measured hole between `from_md` and `to_md` step by step: the assimilated
+/// filter against the model's turns `model_turn(a, b)` and sensitivities `sensitivity(a, b)`,
+/// the frozen one against the frozen model tendency `kappa` (rad/m).
+fn take_in(
+    case: &Case,
+    (from_md, to_md): (f64, f64),
+    model_turn: &dyn Fn(f64, f64) -> [f64; 2],
+    sensitivity: &dyn Fn(f64, f64) -> DMatrix<f64>,
+    kappa: [f64; 2],
+    tracking: &TrackingSettings,
+    f: &mut Filters,
+    scoring: Option<WarmUpScoring>,
+) {
+    let path = &case.well.path;
+    for st in steps(case, from_md, to_md, tracking) {
+        if let Some(w) = scoring {
+            score_behind(case, st.from_md_m, kappa, w, tracking, f);
+        }
+        let d = st.to_md_m - st.from_md_m;
+        let (a, b) = (direction_at(path, st.from_md_m), direction_at(path, st.to_md_m));
+        let measured = turn_between(&a, &b);
+        let r = survey_covariance(tracking, b.inc_rad);
+        let m = model_turn(st.from_md_m, st.to_md_m);
+        f.filter.advance(d);
+        f.filter.observe(
+            [measured[0] - m[0], measured[1] - m[1]],
+            d,
+            &sensitivity(st.from_md_m, st.to_md_m),
+            &r,
+        );
+        f.frozen.advance(d);
+        f.frozen.observe(
+            [measured[0] - kappa[0] * d, measured[1] - kappa[1] * d],
+            d,
+            &DMatrix::zeros(2, 0),
+            &r,
+        );
+    }
+}
+
+/// Where the hole taken in behind the first interval (starting at `start_md`) begins: the
+/// tracking window above it, but not above the survey's first station nor into hole drilled by a
+/// larger bit (an earlier section, another assembly and often another steering).
+pub fn warm_up_start_md(case: &Case, start_md: f64, tracking: &TrackingSettings) -> f64 {
+    let path = &case.well.path;
+    let bit = case
+        .string
+        .bit_diameter_m()
+        .unwrap_or_else(|| case.well.hole.diameter_at(path.md_end()));
+    let previous = case.well.hole.previous_hole_bottom_md(bit).unwrap_or(f64::NEG_INFINITY);
+    (start_md - tracking.window_m).max(path.md_start()).max(previous.min(start_md))
+}
+
+/// Score both banks at `md` on the measured hole behind the first interval (see
+/// [`WarmUpScoring`]): the model's turn taken as `kappa` (rad/m).
+fn score_behind(case: &Case, md: f64, kappa: [f64; 2], w: WarmUpScoring, tracking: &TrackingSettings, f: &mut Filters) {
+    let end = md + w.horizon_m;
+    if end > w.limit_md + 1e-9 {
+        return;
+    }
+    let path = &case.well.path;
+    let (a, b) = (direction_at(path, md), direction_at(path, end));
+    let t = turn_between(&a, &b);
+    let z = [t[0] - kappa[0] * w.horizon_m, t[1] - kappa[1] * w.horizon_m];
+    let r = survey_covariance(tracking, b.inc_rad);
+    let np = f.filter.parameter_count();
+    f.filter.score(z, w.horizon_m, &DMatrix::zeros(2, np), &r);
+    f.frozen.score(z, w.horizon_m, &DMatrix::zeros(2, 0), &r);
 }
 
 /// Assimilate the survey of `case` over the consecutive intervals `list`, predicting each with
@@ -176,23 +308,38 @@ pub fn assimilate(
         .iter()
         .map(|&p| (p, p.unbounded(p.value(&case.bit_rock)), prior_sd(p)))
         .collect();
+    let first_md = list
+        .first()
+        .map(|iv| warm_up_start_md(case, iv.from_md_m, tracking))
+        .unwrap_or(case.well.path.md_start());
+    let first = survey_covariance(tracking, case.well.path.point_at(first_md).inc_rad);
     let mut f = Filters {
-        filter: TendencyFilter::new(tracking, &priors),
-        frozen: TendencyFilter::new(tracking, &[]),
+        filter: FilterBank::new(tracking, &priors, &first),
+        frozen: FilterBank::new(tracking, &[], &first),
         frozen_tendency: None,
     };
     let mut out = Vec::with_capacity(list.len());
     let mut skipped = Vec::new();
     let mut warm: WarmStart = None;
     for (k, iv) in list.iter().enumerate() {
-        let len = iv.to_md_m - iv.from_md_m;
         match assimilate_interval(case, iv, settings, tracking, &mut f, &mut warm) {
             Ok(a) => out.push(a),
             Err(e) => {
                 tracing::warn!(from = iv.from_md_m, to = iv.to_md_m, error = %e, "interval skipped");
                 skipped.push((*iv, e));
-                f.filter.propagate(len);
-                f.frozen.propagate(len);
+                // the stations of the interval still come in, against the frozen tendency
+                let kappa = f.frozen_tendency.unwrap_or([0.0; 2]);
+                let np = f.filter.parameter_count();
+                take_in(
+                    case,
+                    (iv.from_md_m, iv.to_md_m),
+                    &|a, b| [kappa[0] * (b - a), kappa[1] * (b - a)],
+                    &|_, _| DMatrix::zeros(2, np),
+                    kappa,
+                    tracking,
+                    &mut f,
+                    None,
+                );
             }
         }
         progress(k + 1, list.len());
@@ -205,39 +352,8 @@ pub fn assimilate(
     }
 }
 
-/// Warm both filters up on the measured hole behind `start_md` (at most the tracking window,
-/// in steps of at least its interval between stations), the model's tendency there taken as
-/// `kappa` (rad/m, toward the high side and the right): its value on the first interval, so
-/// no march is run for it.
-fn warm_up(case: &Case, start_md: f64, kappa: [f64; 2], tracking: &TrackingSettings, f: &mut Filters) {
-    let path = &case.well.path;
-    let plan = IntervalPlan {
-        from_md_m: (start_md - tracking.window_m).max(path.md_start()),
-        to_md_m: start_md,
-        horizon_m: tracking.interval_m,
-    };
-    let dir = |md: f64| {
-        let p = path.point_at(md);
-        Direction {
-            inc_rad: p.inc_rad,
-            azi_rad: p.azi_rad,
-        }
-    };
-    for iv in cut_intervals(path, &plan) {
-        let len = iv.to_md_m - iv.from_md_m;
-        let (a, b) = (dir(iv.from_md_m), dir(iv.to_md_m));
-        let r = survey_covariance(tracking, a.inc_rad) + survey_covariance(tracking, b.inc_rad);
-        for filter in [&mut f.filter, &mut f.frozen] {
-            let t = filter.predicted_turn(len);
-            let predicted = turned(&a, [kappa[0] * len + t[0], kappa[1] * len + t[1]]);
-            let h = filter.observation(len, &DMatrix::zeros(2, filter.parameters().len()));
-            filter.update(turn_between(&predicted, &b), len, &h, &r);
-            filter.propagate(len);
-        }
-    }
-}
-
-/// Predict one interval with the filters' corrections, then take in its measured end.
+/// Predict one interval with the filters' corrections (the first one after warming them up on
+/// the hole behind it), then take in its measured stations.
 fn assimilate_interval(
     case: &Case,
     iv: &Interval,
@@ -250,39 +366,52 @@ fn assimilate_interval(
     let start_warm = warm.clone();
     let pred = predict_interval_path(case, &law_of(case, &f.filter), iv, settings, warm)?;
     let plain = result_of(iv, &pred);
-    let march_end = Direction {
-        inc_rad: plain.inc_rad,
-        azi_rad: plain.azi_rad,
-    };
-    let j = sensitivity(case, &f.filter, iv, settings, &start_warm, &march_end)?;
-    let h = f.filter.observation(len, &j);
-    let s = case.well.path.point_at(iv.from_md_m);
-    let start = Direction {
-        inc_rad: s.inc_rad,
-        azi_rad: s.azi_rad,
-    };
+    let stepped = stepped_marches(case, &f.filter, iv, settings, &start_warm)?;
+    let start = direction_at(&case.well.path, iv.from_md_m);
+    let march_end = direction_at(&pred.path, iv.to_md_m);
     let kappa = match f.frozen_tendency {
         Some(k) => k,
         None => {
+            // the model's tendency on the first interval, also taken for the hole behind it
             let k = turn_between(&start, &march_end).map(|t| t / len);
             f.frozen_tendency = Some(k);
-            warm_up(case, iv.from_md_m, k, tracking, f);
+            let np = f.filter.parameter_count();
+            let behind = (warm_up_start_md(case, iv.from_md_m, tracking), iv.from_md_m);
+            let scoring = WarmUpScoring {
+                horizon_m: len,
+                limit_md: iv.from_md_m,
+            };
+            take_in(
+                case,
+                behind,
+                &|a, b| [k[0] * (b - a), k[1] * (b - a)],
+                &|_, _| DMatrix::zeros(2, np),
+                k,
+                tracking,
+                f,
+                Some(scoring),
+            );
             k
         }
     };
     let correction = f.filter.predicted_turn(len);
+    tracing::debug!(
+        from = iv.from_md_m,
+        correction_deg = ?correction.map(f64::to_degrees),
+        offset = ?f.filter.offset().0.map(|x| (x * 30.0).to_degrees()),
+        fluctuation = ?f.filter.fluctuation().map(|x| (x * 30.0).to_degrees()),
+        weights = ?f.filter.weights().iter().map(|w| (w * 100.0).round() / 100.0).collect::<Vec<_>>(),
+        "assimilated interval"
+    );
     let assimilated = turned(&march_end, correction);
     let offset = f.filter.predicted_offset(len);
+    let s = case.well.path.point_at(iv.from_md_m);
     let sf = Frame::from_tangent(&s.tangent, s.azi_rad);
     let position = plain.position + sf.h * offset[0] + sf.r * offset[1];
     let ft = f.frozen.predicted_turn(len);
     let frozen = turned(&start, [kappa[0] * len + ft[0], kappa[1] * len + ft[1]]);
-    let r = survey_covariance(tracking, start.inc_rad) + survey_covariance(tracking, assimilated.inc_rad);
-    let cov = f.filter.turn_covariance(len, &h) + r;
-    let measured = Direction {
-        inc_rad: iv.measured.0,
-        azi_rad: iv.measured.1,
-    };
+    let j_end = turn_sensitivity(&pred.path, &stepped, iv.from_md_m, iv.to_md_m);
+    let cov = f.filter.turn_covariance(len, &j_end) + survey_covariance(tracking, iv.measured.0);
     let out = AssimilatedInterval {
         plain,
         assimilated,
@@ -292,10 +421,25 @@ fn assimilate_interval(
         azi_sd_rad: (cov[(1, 1)].sqrt() / assimilated.inc_rad.sin().max(1e-6)).min(std::f64::consts::PI),
         correction_rad: correction,
     };
-    f.filter.update(turn_between(&assimilated, &measured), len, &h, &r);
-    f.filter.propagate(len);
-    let hf = f.frozen.observation(len, &DMatrix::zeros(2, 0));
-    f.frozen.update(turn_between(&frozen, &measured), len, &hf, &r);
-    f.frozen.propagate(len);
+    // each filter is scored on its prediction of this interval, then takes in its stations
+    let measured = Direction {
+        inc_rad: iv.measured.0,
+        azi_rad: iv.measured.1,
+    };
+    let r_end = survey_covariance(tracking, iv.measured.0);
+    f.filter.score(turn_between(&march_end, &measured), len, &j_end, &r_end);
+    let frozen_model = turned(&start, [kappa[0] * len, kappa[1] * len]);
+    f.frozen.score(turn_between(&frozen_model, &measured), len, &DMatrix::zeros(2, 0), &r_end);
+    let model_path = &pred.path;
+    take_in(
+        case,
+        (iv.from_md_m, iv.to_md_m),
+        &|a, b| turn_between(&direction_at(model_path, a), &direction_at(model_path, b)),
+        &|a, b| turn_sensitivity(model_path, &stepped, a, b),
+        kappa,
+        tracking,
+        f,
+        None,
+    );
     Ok(out)
 }

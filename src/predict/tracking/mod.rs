@@ -5,11 +5,14 @@
 //!   statistic; the direction error;
 //! - [`estimator`]: the tendency filter (a Kalman filter on the turn the model does not
 //!   explain);
+//! - [`bank`]: filters that differ in how the unexplained turn behaves, weighted by how well
+//!   each predicted the hole so far;
 //! - [`assimilate`]: the filter run over consecutive intervals, with the frozen assimilation;
 //! - [`skill`]: mean errors per predictor over the same intervals, the best naive projection,
 //!   the skill and the physics' share.
 
 pub mod assimilate;
+pub mod bank;
 pub mod estimator;
 pub mod references;
 pub mod skill;
