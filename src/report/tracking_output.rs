@@ -117,7 +117,12 @@ pub struct CoverageJson {
 #[derive(Serialize)]
 pub struct VariantJson {
     correlation_length_m: Finite,
-    lasting_offset: bool,
+    /// `offset` (a lasting offset and a fading fluctuation), `fluctuation` (a fading
+    /// fluctuation only) or `steered` (a fading fluctuation, the hole turned back toward its
+    /// recent mean direction).
+    behaviour: &'static str,
+    /// True where the variant takes the model's changing tendency, false where it holds it.
+    model: bool,
     weight: Finite,
 }
 
@@ -132,6 +137,8 @@ pub struct AssimilationJson {
     fluctuation_sd_deg_per_30m: TurnJson,
     frozen_model_tendency_deg_per_30m: TurnJson,
     parameters: Vec<EstimatedJson>,
+    /// Share of the weight on the variants that take the model's changing tendency.
+    model_trust: Finite,
 }
 
 impl AssimilationJson {
@@ -168,9 +175,10 @@ impl AssimilationJson {
                 .filter
                 .variants()
                 .into_iter()
-                .map(|(l, o, w)| VariantJson {
+                .map(|(l, b, t, w)| VariantJson {
                     correlation_length_m: Finite(l),
-                    lasting_offset: o,
+                    behaviour: b.name(),
+                    model: t == crate::predict::tracking::bank::Trust::Model,
                     weight: Finite(w),
                 })
                 .collect(),
@@ -184,6 +192,7 @@ impl AssimilationJson {
             fluctuation_sd_deg_per_30m: TurnJson::per_30m(a.filter.fluctuation_sd()),
             frozen_model_tendency_deg_per_30m: TurnJson::per_30m(a.frozen_model_tendency),
             parameters,
+            model_trust: Finite(a.filter.model_trust()),
         }
     }
 }

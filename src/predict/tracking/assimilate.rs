@@ -4,7 +4,7 @@
 //! The frozen assimilation runs the same filter on the model's tendency held at its value on
 //! the first interval: pure statistics through the filter.
 
-use super::bank::FilterBank;
+use super::bank::{FilterBank, REVERSION_M};
 use super::references::Direction;
 use crate::case::bit_rock::LawParameter;
 use crate::case::{BitRock, Case, TrackingSettings};
@@ -166,6 +166,24 @@ fn turn_sensitivity(path: &WellPath, stepped: &[WellPath], from_md: f64, to_md: 
     j
 }
 
+/// The model's side of the steps taken in: its turn and its sensitivity to the law parameters
+/// between two MDs, and its tendency held (rad/m) for the frozen bank.
+struct ModelSide<'a> {
+    turn: &'a dyn Fn(f64, f64) -> [f64; 2],
+    sensitivity: &'a dyn Fn(f64, f64) -> DMatrix<f64>,
+    kappa: [f64; 2],
+}
+
+/// The model's turn with its tendency `kappa` (rad/m) held.
+fn held_turn(kappa: [f64; 2]) -> impl Fn(f64, f64) -> [f64; 2] {
+    move |a: f64, b: f64| [kappa[0] * (b - a), kappa[1] * (b - a)]
+}
+
+/// No sensitivity to the `np` law parameters.
+fn no_sensitivity(np: usize) -> impl Fn(f64, f64) -> DMatrix<f64> {
+    move |_: f64, _: f64| DMatrix::zeros(2, np)
+}
+
 /// The filters of an assimilation and the frozen model tendency, carried over the intervals.
 struct Filters {
     filter: FilterBank,
@@ -230,13 +248,12 @@ fn steps(case: &Case, from_md: f64, to_md: f64, tracking: &TrackingSettings) -> 
 fn take_in(
     case: &Case,
     (from_md, to_md): (f64, f64),
-    model_turn: &dyn Fn(f64, f64) -> [f64; 2],
-    sensitivity: &dyn Fn(f64, f64) -> DMatrix<f64>,
-    kappa: [f64; 2],
+    model: &ModelSide,
     tracking: &TrackingSettings,
     f: &mut Filters,
     scoring: Option<WarmUpScoring>,
 ) {
+    let (model_turn, sensitivity, kappa) = (model.turn, model.sensitivity, model.kappa);
     let path = &case.well.path;
     for st in steps(case, from_md, to_md, tracking) {
         if let Some(w) = scoring {
@@ -247,12 +264,16 @@ fn take_in(
         let measured = turn_between(&a, &b);
         let r = survey_covariance(tracking, b.inc_rad);
         let m = model_turn(st.from_md_m, st.to_md_m);
+        let dev = deviation_from_recent(case, st.from_md_m);
+        let excess = [m[0] - kappa[0] * d, m[1] - kappa[1] * d];
         f.filter.advance(d);
         f.filter.observe(
             [measured[0] - m[0], measured[1] - m[1]],
             d,
             &sensitivity(st.from_md_m, st.to_md_m),
             &r,
+            dev,
+            excess,
         );
         f.frozen.advance(d);
         f.frozen.observe(
@@ -260,21 +281,32 @@ fn take_in(
             d,
             &DMatrix::zeros(2, 0),
             &r,
+            dev,
+            [0.0; 2],
         );
     }
 }
 
-/// Where the hole taken in behind the first interval (starting at `start_md`) begins: the
-/// tracking window above it, but not above the survey's first station nor into hole drilled by a
-/// larger bit (an earlier section, another assembly and often another steering).
-pub fn warm_up_start_md(case: &Case, start_md: f64, tracking: &TrackingSettings) -> f64 {
+/// The deviation (rad, toward the high side and the right) of the measured hole's direction at
+/// `md` from its mean direction over the [`REVERSION_M`] of hole behind (or what there is).
+pub fn deviation_from_recent(case: &Case, md: f64) -> [f64; 2] {
     let path = &case.well.path;
-    let bit = case
-        .string
-        .bit_diameter_m()
-        .unwrap_or_else(|| case.well.hole.diameter_at(path.md_end()));
-    let previous = case.well.hole.previous_hole_bottom_md(bit).unwrap_or(f64::NEG_INFINITY);
-    (start_md - tracking.window_m).max(path.md_start()).max(previous.min(start_md))
+    let from = (md - REVERSION_M).max(path.md_start());
+    if md - from < 1e-6 {
+        return [0.0; 2];
+    }
+    let n = 12;
+    let mean = (0..n).fold(Vec3::zeros(), |acc, i| {
+        acc + path.point_at(from + (md - from) * (i as f64 + 0.5) / n as f64).tangent
+    });
+    let (inc_rad, azi_rad) = inc_azi(&mean, path.point_at(md).azi_rad);
+    turn_between(&Direction { inc_rad, azi_rad }, &direction_at(path, md))
+}
+
+/// Where the hole taken in behind the first interval (starting at `start_md`) begins: the
+/// tracking window above it, but not above the survey's first station.
+pub fn warm_up_start_md(case: &Case, start_md: f64, tracking: &TrackingSettings) -> f64 {
+    (start_md - tracking.window_m).max(case.well.path.md_start())
 }
 
 /// Score both banks at `md` on the measured hole behind the first interval (see
@@ -290,8 +322,10 @@ fn score_behind(case: &Case, md: f64, kappa: [f64; 2], w: WarmUpScoring, trackin
     let z = [t[0] - kappa[0] * w.horizon_m, t[1] - kappa[1] * w.horizon_m];
     let r = survey_covariance(tracking, b.inc_rad);
     let np = f.filter.parameter_count();
-    f.filter.score(z, w.horizon_m, &DMatrix::zeros(2, np), &r);
-    f.frozen.score(z, w.horizon_m, &DMatrix::zeros(2, 0), &r);
+    let dev = deviation_from_recent(case, md);
+    f.filter
+        .score(z, w.horizon_m, &DMatrix::zeros(2, np), &r, dev, [0.0; 2]);
+    f.frozen.score(z, w.horizon_m, &DMatrix::zeros(2, 0), &r, dev, [0.0; 2]);
 }
 
 /// Assimilate the survey of `case` over the consecutive intervals `list`, predicting each with
@@ -314,8 +348,8 @@ pub fn assimilate(
         .unwrap_or(case.well.path.md_start());
     let first = survey_covariance(tracking, case.well.path.point_at(first_md).inc_rad);
     let mut f = Filters {
-        filter: FilterBank::new(tracking, &priors, &first),
-        frozen: FilterBank::new(tracking, &[], &first),
+        filter: FilterBank::new(tracking, &priors, &first, true),
+        frozen: FilterBank::new(tracking, &[], &first, false),
         frozen_tendency: None,
     };
     let mut out = Vec::with_capacity(list.len());
@@ -329,17 +363,13 @@ pub fn assimilate(
                 skipped.push((*iv, e));
                 // the stations of the interval still come in, against the frozen tendency
                 let kappa = f.frozen_tendency.unwrap_or([0.0; 2]);
-                let np = f.filter.parameter_count();
-                take_in(
-                    case,
-                    (iv.from_md_m, iv.to_md_m),
-                    &|a, b| [kappa[0] * (b - a), kappa[1] * (b - a)],
-                    &|_, _| DMatrix::zeros(2, np),
+                let (turn, sensitivity) = (held_turn(kappa), no_sensitivity(f.filter.parameter_count()));
+                let model = ModelSide {
+                    turn: &turn,
+                    sensitivity: &sensitivity,
                     kappa,
-                    tracking,
-                    &mut f,
-                    None,
-                );
+                };
+                take_in(case, (iv.from_md_m, iv.to_md_m), &model, tracking, &mut f, None);
             }
         }
         progress(k + 1, list.len());
@@ -375,26 +405,25 @@ fn assimilate_interval(
             // the model's tendency on the first interval, also taken for the hole behind it
             let k = turn_between(&start, &march_end).map(|t| t / len);
             f.frozen_tendency = Some(k);
-            let np = f.filter.parameter_count();
             let behind = (warm_up_start_md(case, iv.from_md_m, tracking), iv.from_md_m);
             let scoring = WarmUpScoring {
                 horizon_m: len,
                 limit_md: iv.from_md_m,
             };
-            take_in(
-                case,
-                behind,
-                &|a, b| [k[0] * (b - a), k[1] * (b - a)],
-                &|_, _| DMatrix::zeros(2, np),
-                k,
-                tracking,
-                f,
-                Some(scoring),
-            );
+            let (turn, sensitivity) = (held_turn(k), no_sensitivity(f.filter.parameter_count()));
+            let model = ModelSide {
+                turn: &turn,
+                sensitivity: &sensitivity,
+                kappa: k,
+            };
+            take_in(case, behind, &model, tracking, f, Some(scoring));
             k
         }
     };
-    let correction = f.filter.predicted_turn(len);
+    let dev = deviation_from_recent(case, iv.from_md_m);
+    let march_turn = turn_between(&start, &march_end);
+    let excess = [march_turn[0] - kappa[0] * len, march_turn[1] - kappa[1] * len];
+    let correction = f.filter.predicted_turn(len, dev, excess);
     tracing::debug!(
         from = iv.from_md_m,
         correction_deg = ?correction.map(f64::to_degrees),
@@ -404,14 +433,14 @@ fn assimilate_interval(
         "assimilated interval"
     );
     let assimilated = turned(&march_end, correction);
-    let offset = f.filter.predicted_offset(len);
+    let offset = f.filter.predicted_offset(len, dev, excess);
     let s = case.well.path.point_at(iv.from_md_m);
     let sf = Frame::from_tangent(&s.tangent, s.azi_rad);
     let position = plain.position + sf.h * offset[0] + sf.r * offset[1];
-    let ft = f.frozen.predicted_turn(len);
+    let ft = f.frozen.predicted_turn(len, dev, [0.0; 2]);
     let frozen = turned(&start, [kappa[0] * len + ft[0], kappa[1] * len + ft[1]]);
     let j_end = turn_sensitivity(&pred.path, &stepped, iv.from_md_m, iv.to_md_m);
-    let cov = f.filter.turn_covariance(len, &j_end) + survey_covariance(tracking, iv.measured.0);
+    let cov = f.filter.turn_covariance(len, &j_end, dev, excess) + survey_covariance(tracking, iv.measured.0);
     let out = AssimilatedInterval {
         plain,
         assimilated,
@@ -427,19 +456,25 @@ fn assimilate_interval(
         azi_rad: iv.measured.1,
     };
     let r_end = survey_covariance(tracking, iv.measured.0);
-    f.filter.score(turn_between(&march_end, &measured), len, &j_end, &r_end);
+    f.filter
+        .score(turn_between(&march_end, &measured), len, &j_end, &r_end, dev, excess);
     let frozen_model = turned(&start, [kappa[0] * len, kappa[1] * len]);
-    f.frozen.score(turn_between(&frozen_model, &measured), len, &DMatrix::zeros(2, 0), &r_end);
-    let model_path = &pred.path;
-    take_in(
-        case,
-        (iv.from_md_m, iv.to_md_m),
-        &|a, b| turn_between(&direction_at(model_path, a), &direction_at(model_path, b)),
-        &|a, b| turn_sensitivity(model_path, &stepped, a, b),
-        kappa,
-        tracking,
-        f,
-        None,
+    f.frozen.score(
+        turn_between(&frozen_model, &measured),
+        len,
+        &DMatrix::zeros(2, 0),
+        &r_end,
+        dev,
+        [0.0; 2],
     );
+    let model_path = &pred.path;
+    let turn = |a: f64, b: f64| turn_between(&direction_at(model_path, a), &direction_at(model_path, b));
+    let sensitivity = |a: f64, b: f64| turn_sensitivity(model_path, &stepped, a, b);
+    let model = ModelSide {
+        turn: &turn,
+        sensitivity: &sensitivity,
+        kappa,
+    };
+    take_in(case, (iv.from_md_m, iv.to_md_m), &model, tracking, f, None);
     Ok(out)
 }

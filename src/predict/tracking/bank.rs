@@ -22,13 +22,64 @@ pub const CORRELATION_FACTORS: [f64; 3] = [1.0 / 3.0, 1.0, 3.0];
 /// `[tracking] tendency_sd`.
 pub const NO_OFFSET_FRACTION: f64 = 0.01;
 
+/// Length over which the steered variants turn the hole back toward its recent mean direction,
+/// m (a directional driller steering back to the plan), and the length of hole behind a station
+/// over which that mean is taken.
+pub const REVERSION_M: f64 = 90.0;
+
+/// How much of the model's own tendency a variant of the bank takes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Trust {
+    /// The model's turn, step by step as it changes.
+    Model,
+    /// The model's tendency held at its value on the first interval (the physics does not
+    /// change it): these variants predict as the frozen assimilation does.
+    Frozen,
+}
+
+/// What a variant of the bank assumes of the unexplained turn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Behaviour {
+    /// A lasting offset and a fading fluctuation.
+    Offset,
+    /// A fading fluctuation only.
+    Fluctuation,
+    /// A fading fluctuation, the hole turned back toward its recent mean direction over
+    /// [`REVERSION_M`].
+    Steered,
+}
+
+impl Behaviour {
+    /// Name in the outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Behaviour::Offset => "offset",
+            Behaviour::Fluctuation => "fluctuation",
+            Behaviour::Steered => "steered",
+        }
+    }
+}
+
+/// The turn (rad) toward the reference direction over `len_m` of a hole whose direction deviates
+/// from it by `deviation` (rad): `-deviation (1 - exp(-L / l))`.
+fn reversion_turn(len_m: f64, deviation: [f64; 2]) -> [f64; 2] {
+    let f = 1.0 - (-len_m / REVERSION_M).exp();
+    deviation.map(|d| -d * f)
+}
+
+/// The sideways offset (m) of that turn after `len_m`: `-deviation (L - l (1 - exp(-L / l)))`.
+fn reversion_offset(len_m: f64, deviation: [f64; 2]) -> [f64; 2] {
+    let g = len_m - REVERSION_M * (1.0 - (-len_m / REVERSION_M).exp());
+    deviation.map(|d| -d * g)
+}
+
 /// The bank.
 #[derive(Debug, Clone)]
 pub struct FilterBank {
     /// The filters.
     filters: Vec<TendencyFilter>,
-    /// Each filter's settings (for the outputs).
-    variants: Vec<(f64, bool)>,
+    /// Each filter's correlation length (m), behaviour and trust in the model.
+    variants: Vec<(f64, Behaviour, Trust)>,
     /// Forgetting-weighted log-likelihood of each filter's past predictions.
     score: Vec<f64>,
     /// Forgetting length, m.
@@ -36,19 +87,29 @@ pub struct FilterBank {
 }
 
 impl FilterBank {
-    /// The bank for `settings`, its filters at their prior (see [`TendencyFilter::new`]).
+    /// The bank for `settings`, its filters at their prior (see [`TendencyFilter::new`]); with
+    /// `frozen_variants`, each variant also in a version that holds the model's tendency.
     pub fn new(
         settings: &TrackingSettings,
         parameters: &[(LawParameter, f64, f64)],
         first_station: &Matrix2<f64>,
+        frozen_variants: bool,
     ) -> FilterBank {
         let mut filters = Vec::new();
         let mut variants = Vec::new();
-        for factor in CORRELATION_FACTORS {
-            for offset in [true, false] {
+        let trusts: &[Trust] = if frozen_variants {
+            &[Trust::Model, Trust::Frozen]
+        } else {
+            &[Trust::Model]
+        };
+        for (factor, &trust) in CORRELATION_FACTORS
+            .iter()
+            .flat_map(|f| trusts.iter().map(move |t| (*f, t)))
+        {
+            for behaviour in [Behaviour::Offset, Behaviour::Fluctuation, Behaviour::Steered] {
                 let s = TrackingSettings {
                     correlation_length_m: settings.correlation_length_m * factor,
-                    tendency_sd_rad_per_m: if offset {
+                    tendency_sd_rad_per_m: if behaviour == Behaviour::Offset {
                         settings.tendency_sd_rad_per_m
                     } else {
                         settings.tendency_sd_rad_per_m * NO_OFFSET_FRACTION
@@ -56,7 +117,7 @@ impl FilterBank {
                     ..settings.clone()
                 };
                 filters.push(TendencyFilter::new(&s, parameters, first_station));
-                variants.push((s.correlation_length_m, offset));
+                variants.push((s.correlation_length_m, behaviour, trust));
             }
         }
         let n = filters.len();
@@ -76,13 +137,46 @@ impl FilterBank {
         w.into_iter().map(|x| x / sum).collect()
     }
 
-    /// Each filter's (correlation length m, lasting offset or not) with its weight.
-    pub fn variants(&self) -> Vec<(f64, bool, f64)> {
+    /// Each filter's (correlation length m, behaviour, trust) with its weight.
+    pub fn variants(&self) -> Vec<(f64, Behaviour, Trust, f64)> {
         self.variants
             .iter()
             .zip(self.weights())
-            .map(|(&(l, o), w)| (l, o, w))
+            .map(|(&(l, b, t), w)| (l, b, t, w))
             .collect()
+    }
+
+    /// Share of the weight on the variants that take the model's changing tendency.
+    pub fn model_trust(&self) -> f64 {
+        self.variants()
+            .iter()
+            .filter(|v| v.2 == Trust::Model)
+            .map(|v| v.3)
+            .sum()
+    }
+
+    /// Filter `k`'s expected correction of the model's turn over `len_m` with the hole's
+    /// direction off its recent mean by `deviation`, the model turning `excess` (rad) more than
+    /// its tendency held.
+    fn turn_of(&self, k: usize, len_m: f64, deviation: [f64; 2], excess: [f64; 2]) -> [f64; 2] {
+        let (_, behaviour, trust) = self.variants[k];
+        let mut t = self.filters[k].predicted_turn(len_m);
+        if behaviour == Behaviour::Steered {
+            let r = reversion_turn(len_m, deviation);
+            t = [t[0] + r[0], t[1] + r[1]];
+        }
+        if trust == Trust::Frozen {
+            t = [t[0] - excess[0], t[1] - excess[1]];
+        }
+        t
+    }
+
+    /// The sensitivity filter `k` sees (none where it holds the model's tendency).
+    fn sensitivity_of(&self, k: usize, sensitivity: &DMatrix<f64>) -> DMatrix<f64> {
+        match self.variants[k].2 {
+            Trust::Model => sensitivity.clone(),
+            Trust::Frozen => DMatrix::zeros(2, sensitivity.ncols()),
+        }
     }
 
     /// Number of law parameters in the filters.
@@ -90,50 +184,83 @@ impl FilterBank {
         self.filters[0].parameter_count()
     }
 
-    /// The weighted mean of `f` over the filters.
-    fn mean2(&self, f: impl Fn(&TendencyFilter) -> [f64; 2]) -> [f64; 2] {
+    /// The weighted mean of `f` over the filters (by index).
+    fn mean2(&self, f: impl Fn(usize) -> [f64; 2]) -> [f64; 2] {
         let mut m = [0.0; 2];
-        for (flt, w) in self.filters.iter().zip(self.weights()) {
-            let v = f(flt);
+        for (k, w) in self.weights().into_iter().enumerate() {
+            let v = f(k);
             m[0] += w * v[0];
             m[1] += w * v[1];
         }
         m
     }
 
-    /// The mixture's expected correction over the next `len_m`, rad.
-    pub fn predicted_turn(&self, len_m: f64) -> [f64; 2] {
-        self.mean2(|f| f.predicted_turn(len_m))
+    /// The mixture's expected correction of the model's turn over the next `len_m`, with the
+    /// hole's direction off its recent mean by `deviation` (rad, toward the high side and the
+    /// right) and the model turning `excess` (rad) more than its tendency held, rad.
+    pub fn predicted_turn(&self, len_m: f64, deviation: [f64; 2], excess: [f64; 2]) -> [f64; 2] {
+        self.mean2(|k| self.turn_of(k, len_m, deviation, excess))
     }
 
-    /// The mixture's expected sideways offset after `len_m`, m.
-    pub fn predicted_offset(&self, len_m: f64) -> [f64; 2] {
-        self.mean2(|f| f.predicted_offset(len_m))
+    /// The mixture's expected sideways offset after `len_m` from the model's path, m (the
+    /// excess turn of the model taken as growing evenly along `len_m`).
+    pub fn predicted_offset(&self, len_m: f64, deviation: [f64; 2], excess: [f64; 2]) -> [f64; 2] {
+        self.mean2(|k| {
+            let (_, behaviour, trust) = self.variants[k];
+            let mut o = self.filters[k].predicted_offset(len_m);
+            if behaviour == Behaviour::Steered {
+                let r = reversion_offset(len_m, deviation);
+                o = [o[0] + r[0], o[1] + r[1]];
+            }
+            if trust == Trust::Frozen {
+                o = [o[0] - excess[0] * len_m / 2.0, o[1] - excess[1] * len_m / 2.0];
+            }
+            o
+        })
     }
 
     /// The mixture's covariance of the correction over `len_m`: each filter's, plus the spread
     /// of their means, rad^2 (without the end station's survey noise).
-    pub fn turn_covariance(&self, len_m: f64, sensitivity: &DMatrix<f64>) -> Matrix2<f64> {
-        let mean = self.predicted_turn(len_m);
+    pub fn turn_covariance(
+        &self,
+        len_m: f64,
+        sensitivity: &DMatrix<f64>,
+        deviation: [f64; 2],
+        excess: [f64; 2],
+    ) -> Matrix2<f64> {
+        let mean = self.predicted_turn(len_m, deviation, excess);
         let mut c = Matrix2::zeros();
-        for (f, w) in self.filters.iter().zip(self.weights()) {
-            let t = f.predicted_turn(len_m);
+        for (k, w) in self.weights().into_iter().enumerate() {
+            let t = self.turn_of(k, len_m, deviation, excess);
             let d = nalgebra::Vector2::new(t[0] - mean[0], t[1] - mean[1]);
-            c += (f.turn_covariance(len_m, sensitivity) + d * d.transpose()) * w;
+            let own = self.filters[k].turn_covariance(len_m, &self.sensitivity_of(k, sensitivity));
+            c += (own + d * d.transpose()) * w;
         }
         c
     }
 
     /// Score every filter on an observed correction `z` (the measured turn over `len_m` less the
-    /// model's, rad) that each predicted from the current state: its log-likelihood under that
-    /// filter's prediction (covariance plus the end station's survey noise `end_station`) is
-    /// added to its score, the older scores forgotten over the forgetting length.
-    pub fn score(&mut self, z: [f64; 2], len_m: f64, sensitivity: &DMatrix<f64>, end_station: &Matrix2<f64>) {
+    /// model's, rad) that each predicted from the current state with the hole's direction off
+    /// its recent mean by `deviation`: its log-likelihood under that filter's prediction
+    /// (covariance plus the end station's survey noise `end_station`) is added to its score, the
+    /// older scores forgotten over the forgetting length.
+    pub fn score(
+        &mut self,
+        z: [f64; 2],
+        len_m: f64,
+        sensitivity: &DMatrix<f64>,
+        end_station: &Matrix2<f64>,
+        deviation: [f64; 2],
+        excess: [f64; 2],
+    ) {
         let keep = (-len_m / self.forgetting_m).exp();
-        for (f, s) in self.filters.iter().zip(self.score.iter_mut()) {
-            let t = f.predicted_turn(len_m);
+        let n = self.filters.len();
+        let turns: Vec<[f64; 2]> = (0..n).map(|k| self.turn_of(k, len_m, deviation, excess)).collect();
+        let covs: Vec<Matrix2<f64>> = (0..n)
+            .map(|k| self.filters[k].turn_covariance(len_m, &self.sensitivity_of(k, sensitivity)) + end_station)
+            .collect();
+        for ((s, t), cov) in self.score.iter_mut().zip(turns).zip(covs) {
             let y = nalgebra::Vector2::new(z[0] - t[0], z[1] - t[1]);
-            let cov = f.turn_covariance(len_m, sensitivity) + end_station;
             let ll = match cov.try_inverse() {
                 Some(inv) => -0.5 * ((y.transpose() * inv * y)[(0, 0)] + cov.determinant().max(1e-300).ln()),
                 None => 0.0,
@@ -149,19 +276,44 @@ impl FilterBank {
         }
     }
 
-    /// Take in a step's observation in every filter (see [`TendencyFilter::observe`]).
-    pub fn observe(&mut self, z: [f64; 2], d_m: f64, sensitivity: &DMatrix<f64>, new_station: &Matrix2<f64>) {
-        for f in &mut self.filters {
-            f.observe(z, d_m, sensitivity, new_station);
+    /// Take in a step's observation `z` (the measured turn less the model's, rad) in every
+    /// filter (see [`TendencyFilter::observe`]): the steered variants first take out their turn
+    /// back toward the recent mean direction, from which the step's start deviated by
+    /// `deviation`; the variants holding the model's tendency see the model's `excess` turn
+    /// (over its tendency held) as unexplained.
+    pub fn observe(
+        &mut self,
+        z: [f64; 2],
+        d_m: f64,
+        sensitivity: &DMatrix<f64>,
+        new_station: &Matrix2<f64>,
+        deviation: [f64; 2],
+        excess: [f64; 2],
+    ) {
+        let r = reversion_turn(d_m, deviation);
+        let none = DMatrix::zeros(2, sensitivity.ncols());
+        for (f, &(_, b, t)) in self.filters.iter_mut().zip(&self.variants) {
+            let mut zz = z;
+            if b == Behaviour::Steered {
+                zz = [zz[0] - r[0], zz[1] - r[1]];
+            }
+            let sens = match t {
+                Trust::Model => sensitivity,
+                Trust::Frozen => {
+                    zz = [zz[0] + excess[0], zz[1] + excess[1]];
+                    &none
+                }
+            };
+            f.observe(zz, d_m, sens, new_station);
         }
     }
 
     /// The mixture's lasting offset (toward the high side, toward the right), rad/m, with its
     /// standard deviations.
     pub fn offset(&self) -> ([f64; 2], [f64; 2]) {
-        let mean = self.mean2(|f| f.offset().0);
-        let var = self.mean2(|f| {
-            let (m, sd) = f.offset();
+        let mean = self.mean2(|k| self.filters[k].offset().0);
+        let var = self.mean2(|k| {
+            let (m, sd) = self.filters[k].offset();
             [0, 1].map(|c| sd[c] * sd[c] + (m[c] - mean[c]).powi(2))
         });
         (mean, var.map(f64::sqrt))
@@ -169,12 +321,13 @@ impl FilterBank {
 
     /// The mixture's current fluctuation, rad/m.
     pub fn fluctuation(&self) -> [f64; 2] {
-        self.mean2(|f| f.fluctuation())
+        self.mean2(|k| self.filters[k].fluctuation())
     }
 
     /// The weighted adapted fluctuation standard deviations, rad/m.
     pub fn fluctuation_sd(&self) -> [f64; 2] {
-        self.mean2(|f| f.fluctuation_sd().map(|s| s * s)).map(f64::sqrt)
+        self.mean2(|k| self.filters[k].fluctuation_sd().map(|s| s * s))
+            .map(f64::sqrt)
     }
 
     /// The law parameters: (parameter, mixture mean, mixture standard deviation, prior standard
@@ -201,25 +354,32 @@ impl FilterBank {
 mod tests {
     use super::*;
 
-    /// Reference: the likelihood prefers the variant that matches the data. Noiseless 30 m steps
+    /// Reference: the likelihood prefers the variants that match the data. Noiseless 30 m steps
     /// with a lasting offset of 1 deg/30 m toward the right, scored on their 30 m predictions:
-    /// the variants with a lasting offset end with nearly all the weight (above 0.9), and the
-    /// bank's correction over 30 m is the offset within 5%.
+    /// the variants with a long memory (a lasting offset, or the longest correlation length)
+    /// end with nearly all the weight (above 0.9), and the bank's correction over 30 m is the
+    /// offset within 5%.
     #[test]
     fn the_weights_favour_the_variant_that_predicts() {
         let s = TrackingSettings::default();
         let tiny = Matrix2::from_diagonal_element(1e-12);
-        let mut bank = FilterBank::new(&s, &[], &tiny);
+        let mut bank = FilterBank::new(&s, &[], &tiny, false);
         let k = 1f64.to_radians() / 30.0;
         let none = DMatrix::zeros(2, 0);
         for _ in 0..30 {
-            bank.score([0.0, k * 30.0], 30.0, &none, &tiny);
+            bank.score([0.0, k * 30.0], 30.0, &none, &tiny, [0.0; 2], [0.0; 2]);
             bank.advance(30.0);
-            bank.observe([0.0, k * 30.0], 30.0, &none, &tiny);
+            bank.observe([0.0, k * 30.0], 30.0, &none, &tiny, [0.0; 2], [0.0; 2]);
         }
-        let lasting: f64 = bank.variants().iter().filter(|v| v.1).map(|v| v.2).sum();
+        let longest = s.correlation_length_m * CORRELATION_FACTORS[2];
+        let lasting: f64 = bank
+            .variants()
+            .iter()
+            .filter(|v| v.1 == Behaviour::Offset || v.0 == longest)
+            .map(|v| v.3)
+            .sum();
         assert!(lasting > 0.9, "{:?}", bank.variants());
-        let t = bank.predicted_turn(30.0);
+        let t = bank.predicted_turn(30.0, [0.0; 2], [0.0; 2]);
         assert!((t[1] / (k * 30.0) - 1.0).abs() < 0.05, "{t:?}");
     }
 }

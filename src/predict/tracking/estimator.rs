@@ -9,8 +9,8 @@
 //! ```
 //!
 //! per component, with the state `x = [b_h, b_r, a_h, a_r, e_h, e_r, p_1 .. p_n]`:
-//! - `b`: a slow tendency offset (rad/m), a random walk that may change by its prior standard
-//!   deviation over the forgetting length;
+//! - `b`: a slow tendency offset (rad/m), a random walk that may drift by a quarter of its prior
+//!   standard deviation over the forgetting length ([`SLOW_DRIFT_FRACTION`]);
 //! - `a`: the fast fluctuation (rad/m): the mean unexplained curvature of the last step, an
 //!   autoregressive process, `a' = phi a + w` with `phi = exp(-d / l_c)` (correlation length
 //!   `l_c`); its variance is adapted to the well's own innovations (covariance matching, from
@@ -35,6 +35,10 @@ pub const FLUCTUATION_PRIOR_WEIGHT: f64 = 3.0;
 
 /// Smallest fluctuation standard deviation the adaptation may reach, as a fraction of the prior.
 pub const MIN_FLUCTUATION_FRACTION: f64 = 0.05;
+
+/// Drift of the slow offset over the forgetting length, as a fraction of its prior standard
+/// deviation (its random-walk intensity is `(f sd)^2 / forgetting length`).
+pub const SLOW_DRIFT_FRACTION: f64 = 0.25;
 
 /// A parameter counts as identified when the data shrank its standard deviation below this
 /// fraction of the prior's.
@@ -62,6 +66,8 @@ pub struct TendencyFilter {
     prior_fluctuation_var: f64,
     /// Forgetting-weighted sum of the observations' weights in the adaptation.
     sum_weight: f64,
+    /// The prior's weight in the adaptation, forgotten like the observations.
+    prior_weight: f64,
     /// Forgetting-weighted sum of the fluctuation variances the observations indicate.
     sum_indicated: [f64; 2],
     /// Random-walk intensity of the slow offset, (rad/m)^2 per m.
@@ -108,8 +114,9 @@ impl TendencyFilter {
             fluctuation_var: [sa * sa; 2],
             prior_fluctuation_var: sa * sa,
             sum_weight: 0.0,
+            prior_weight: FLUCTUATION_PRIOR_WEIGHT,
             sum_indicated: [0.0; 2],
-            slow_intensity: sb * sb / settings.forgetting_length_m,
+            slow_intensity: (SLOW_DRIFT_FRACTION * sb).powi(2) / settings.forgetting_length_m,
             correlation_m: settings.correlation_length_m,
             interval_m: settings.interval_m,
             forgetting_m: settings.forgetting_length_m,
@@ -211,20 +218,22 @@ impl TendencyFilter {
     /// Covariance matching: each observation indicates the fluctuation variance that would
     /// explain its innovation (its square less the rest of its predicted variance, over the
     /// variance one unit of fluctuation variance adds to it); the fluctuation variance is the
-    /// mean of these, weighted with [`FLUCTUATION_PRIOR_WEIGHT`] observations at the prior and
-    /// forgotten over the forgetting length. The state's fluctuation variance follows.
+    /// mean of these and of the prior (worth [`FLUCTUATION_PRIOR_WEIGHT`] observations at the
+    /// start), all forgotten over the forgetting length. The state's fluctuation variance
+    /// follows.
     fn adapt(&mut self, innovation: &DVector<f64>, s: &DMatrix<f64>, d_m: f64) {
         let phi = self.phi(d_m);
         let per_var = d_m * d_m * (1.0 - phi * phi);
         let keep = (-d_m / self.forgetting_m).exp();
         self.sum_weight = self.sum_weight * keep + 1.0;
+        self.prior_weight *= keep;
         let floor = self.prior_fluctuation_var * MIN_FLUCTUATION_FRACTION * MIN_FLUCTUATION_FRACTION;
         for c in 0..2 {
             let old = self.fluctuation_var[c];
             let rest = s[(c, c)] - old * per_var;
             let indicated = ((innovation[c] * innovation[c] - rest) / per_var).max(0.0);
             self.sum_indicated[c] = self.sum_indicated[c] * keep + indicated;
-            let w0 = FLUCTUATION_PRIOR_WEIGHT;
+            let w0 = self.prior_weight;
             let new = ((w0 * self.prior_fluctuation_var + self.sum_indicated[c]) / (w0 + self.sum_weight)).max(floor);
             self.fluctuation_var[c] = new;
             // the fresh part of the state's fluctuation variance follows the new level
@@ -359,7 +368,7 @@ mod tests {
         let phi = (-30.0f64 / s.correlation_length_m).exp();
         assert!((f.fade(30.0) / (30.0 * phi) - 1.0).abs() < 1e-12);
         let var = s.fluctuation_sd_rad_per_m.powi(2);
-        let q = s.tendency_sd_rad_per_m.powi(2) / s.forgetting_length_m;
+        let q = (SLOW_DRIFT_FRACTION * s.tendency_sd_rad_per_m).powi(2) / s.forgetting_length_m;
         let want = var * (1.0 - phi * phi) * 900.0 + q * 27000.0 / 3.0;
         assert!((f.process_turn_variance(30.0)[0] / want - 1.0).abs() < 1e-12);
     }
