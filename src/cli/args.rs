@@ -88,6 +88,11 @@ pub struct PredictArgs {
     /// estimate [default: off].
     #[arg(long)]
     pub extrapolate: bool,
+    /// Correct the prediction by the tendency assimilated from the measured hole behind --from
+    /// (settings in the case's `[tracking]` table) and give one-standard-deviation bounds
+    /// (trajectory.csv: inc_sd_deg, azi_sd_deg, lateral_sd_m, vertical_sd_m).
+    #[arg(long)]
+    pub assimilate: bool,
     /// Write trajectory.csv and summary.json (several cases: comparison.csv and one folder per case)
     /// [default: no files].
     #[arg(long, value_name = "DIR")]

@@ -10,7 +10,7 @@ use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::forecast::{forecast, settings_at_level, Forecast, ForecastRequest};
 use crate::predict::march::{MarchSettings, MIN_STEP_M};
 use crate::report::display_units::UnitSystem;
-use crate::report::predict_output::{comparison_csv, trajectory_csv, ComparisonSummary, PredictSummary};
+use crate::report::predict_output::{comparison_csv, forecast_csv, ComparisonSummary, PredictSummary};
 use crate::report::predict_text::{comparison_table, write_forecast};
 use crate::report::{json_text, write_atomic};
 use anyhow::{bail, Context};
@@ -127,6 +127,7 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
         to_md_m: to,
         settings,
         extrapolate: a.extrapolate,
+        assimilate: a.assimilate,
     };
     let progress = StepProgress::new(&request, label, a.view.units, quiet);
     let result = forecast(&case, &request, &mut |md| progress.step(md));
@@ -215,7 +216,7 @@ pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
     let pairs: Vec<(&Case, &Forecast)> = runs.iter().map(|r| (&r.case, &r.forecast)).collect();
     if let Some(dir) = &a.out {
         let ctx = || format!("cannot write into {}", dir.display());
-        let csv = |f: &Forecast| trajectory_csv(&f.rows).map_err(internal);
+        let csv = |f: &Forecast| forecast_csv(f).map_err(internal);
         if single {
             write_atomic(&dir.join("trajectory.csv"), csv(&runs[0].forecast)?.as_bytes()).with_context(ctx)?;
         } else {

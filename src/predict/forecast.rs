@@ -7,6 +7,9 @@ use super::extrapolate::{predict_extrapolated, StepError};
 use super::law::LawParams;
 use super::march::{predict, MarchSettings, PredictError, Prediction};
 use super::track::{interval_rates, tracking_errors, trajectory_rows, IntervalRates, TrackingErrors, TrajectoryRow};
+use super::tracking::project::{project, Projection};
+use super::tracking::references::{project as project_reference, Direction, Reference};
+use super::tracking::skill::{skill, EndDirections, Skill};
 use crate::case::{Case, Level};
 
 /// What to predict.
@@ -20,6 +23,9 @@ pub struct ForecastRequest {
     pub settings: MarchSettings,
     /// March at the step and at half of it and combine the two ([`predict_extrapolated`]).
     pub extrapolate: bool,
+    /// Correct the march by the tendency assimilated from the hole behind the start, with
+    /// bounds ([`crate::predict::tracking::project`], the case's `[tracking]` settings).
+    pub assimilate: bool,
 }
 
 /// A prediction and what its outputs show, SI.
@@ -28,8 +34,13 @@ pub struct Forecast {
     pub prediction: Prediction,
     /// The step error estimated by the extrapolation, when asked for.
     pub step_error: Option<StepError>,
-    /// One row per step and per measured station in the interval.
+    /// One row per step and per measured station in the interval (assimilated when asked).
     pub rows: Vec<TrajectoryRow>,
+    /// The projection of the rows, when assimilating (in the order of `rows`).
+    pub projection: Option<Projection>,
+    /// The model against the naive projections at the survey stations drilled ahead (None
+    /// when there are none).
+    pub skill: Option<Skill>,
     /// Build and walk rates and mean bit values over the interval.
     pub rates: IntervalRates,
     /// Errors at the survey stations drilled ahead (None when there are none).
@@ -38,6 +49,19 @@ pub struct Forecast {
     pub law: LawParams,
     /// The settings the march ran with.
     pub settings: MarchSettings,
+}
+
+impl Forecast {
+    /// The plain march's inclination and azimuth (rad) at each row's MD.
+    pub fn prediction_rows(&self) -> Vec<(f64, f64)> {
+        self.rows
+            .iter()
+            .map(|r| {
+                let p = self.prediction.path.point_at(r.md_m);
+                (p.inc_rad, p.azi_rad)
+            })
+            .collect()
+    }
 }
 
 /// March settings of `case` for the model `level` with an explicit `step_m` and `cut_m`
@@ -57,6 +81,39 @@ pub fn settings_at_level(case: &Case, level: Level, step_m: Option<f64>, cut_m: 
     Some(s)
 }
 
+/// The model against the references at each measured station below `from` (m) in `rows`
+/// (the plain march `plain` and the frozen assimilation of `projection` beside an assimilated
+/// model).
+fn tracking_skill(
+    case: &Case,
+    from: f64,
+    rows: &[TrajectoryRow],
+    plain: &[TrajectoryRow],
+    projection: Option<&Projection>,
+) -> Option<Skill> {
+    let dir = |r: &TrajectoryRow| Direction {
+        inc_rad: r.inc_rad,
+        azi_rad: r.azi_rad,
+    };
+    let ends: Vec<EndDirections> = rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.md_m > from + 1e-6)
+        .filter_map(|(k, r)| {
+            let (inc_rad, azi_rad) = r.measured?;
+            Some(EndDirections {
+                length_m: r.md_m - from,
+                measured: Direction { inc_rad, azi_rad },
+                model: dir(r),
+                references: Reference::all().map(|q| project_reference(&case.well.path, from, r.md_m, q)),
+                plain: projection.map(|_| dir(&plain[k])),
+                frozen: projection.map(|p| p.rows[k].frozen),
+            })
+        })
+        .collect();
+    skill(&ends)
+}
+
 /// Predict `case` as `req` asks; `on_step` hears the bit MD after each step (of both marches
 /// when extrapolating, the coarse one first).
 pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)) -> Result<Forecast, PredictError> {
@@ -66,12 +123,27 @@ pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)
     } else {
         (predict(case, from, to, settings, on_step)?, None)
     };
-    let rows = trajectory_rows(&prediction, Some(&case.well.path));
+    let mut rows = trajectory_rows(&prediction, Some(&case.well.path));
+    let plain: Vec<TrajectoryRow> = rows.clone();
+    let projection = req.assimilate.then(|| {
+        let mds: Vec<f64> = rows.iter().map(|r| r.md_m).collect();
+        project(case, &prediction, &mds, &case.tracking)
+    });
+    if let Some(p) = &projection {
+        for (r, q) in rows.iter_mut().zip(&p.rows) {
+            r.inc_rad = q.direction.inc_rad;
+            r.azi_rad = q.direction.azi_rad;
+            r.position = q.position;
+        }
+    }
     let rates = interval_rates(&prediction);
     let tracking = tracking_errors(&rows, from);
+    let skill = tracking_skill(case, from, &rows, &plain, projection.as_ref());
     Ok(Forecast {
         step_error,
         rows,
+        projection,
+        skill,
         rates,
         tracking,
         law: LawParams::at(&case.bit_rock, from),

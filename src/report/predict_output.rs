@@ -2,7 +2,8 @@
 //! JSON summaries.
 
 use super::tracking_output::{
-    assimilation_cells, reference_cells, AssimilationJson, BaselinesJson, ASSIMILATION_COLUMNS, REFERENCE_COLUMNS,
+    assimilation_cells, reference_cells, AssimilationJson, BaselinesJson, TrackingSkillJson, ASSIMILATION_COLUMNS,
+    REFERENCE_COLUMNS,
 };
 use super::{num, Finite};
 use crate::case::{Case, Choice};
@@ -12,6 +13,7 @@ use crate::predict::calibrate::{Calibration, FitParameter};
 use crate::predict::forecast::Forecast;
 use crate::predict::law::LawParams;
 use crate::predict::track::{IntervalRates, TrackingErrors, TrajectoryRow};
+use crate::predict::tracking::skill::Skill;
 use serde::Serialize;
 use std::path::Path;
 
@@ -67,6 +69,42 @@ pub fn trajectory_csv(rows: &[TrajectoryRow]) -> Result<String, String> {
     }
     Ok(out)
 }
+
+/// `trajectory.csv` of a forecast: [`trajectory_csv`], and with an assimilation its bounds and
+/// the plain march ([`PROJECTION_COLUMNS`]).
+pub fn forecast_csv(f: &Forecast) -> Result<String, String> {
+    let plain = trajectory_csv(&f.rows)?;
+    let Some(p) = &f.projection else {
+        return Ok(plain);
+    };
+    let mut out = String::with_capacity(plain.len() * 2);
+    let mut lines = plain.lines();
+    out.push_str(lines.next().unwrap_or_default());
+    out.push(',');
+    out.push_str(PROJECTION_COLUMNS);
+    out.push('\n');
+    for ((line, q), r) in lines.zip(&p.rows).zip(&f.prediction_rows()) {
+        let cells = [
+            num(q.inc_sd_rad.to_degrees(), 4)?,
+            num(q.azi_sd_rad.to_degrees(), 4)?,
+            num(q.lateral_sd_m, 3)?,
+            num(q.vertical_sd_m, 3)?,
+            num(r.0.to_degrees(), 4)?,
+            num(r.1.to_degrees().rem_euclid(360.0), 4)?,
+        ];
+        out.push_str(line);
+        out.push(',');
+        out.push_str(&cells.join(","));
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Header of the columns an assimilating prediction adds to `trajectory.csv`: one standard
+/// deviation of the inclination and azimuth (deg) against a survey station at the row, of the
+/// position sideways and toward the high side (m, an upper bound), and the plain march's
+/// inclination and azimuth (deg).
+pub const PROJECTION_COLUMNS: &str = "inc_sd_deg,azi_sd_deg,lateral_sd_m,vertical_sd_m,plain_inc_deg,plain_azi_deg";
 
 /// `trajectory.csv` of `backanalyze`: one row per interval end, bit values at the end, then the
 /// direction errors of the model and the references ([`REFERENCE_COLUMNS`]) and, assimilating,
@@ -165,11 +203,25 @@ pub struct TrackingJson {
     azi_err_per_100m_deg: Finite,
     max_abs_inc_err_deg: Finite,
     max_abs_azi_err_deg: Finite,
+    /// The model against the naive projections at the same stations.
+    #[serde(flatten)]
+    skill: Option<TrackingSkillJson>,
+}
+
+impl TrackingJson {
+    /// The tracking errors `e` with the skill `s` at the same stations.
+    fn new(e: &TrackingErrors, s: Option<&Skill>) -> TrackingJson {
+        TrackingJson {
+            skill: s.map(TrackingSkillJson::new),
+            ..TrackingJson::from(e)
+        }
+    }
 }
 
 impl From<&TrackingErrors> for TrackingJson {
     fn from(e: &TrackingErrors) -> TrackingJson {
         TrackingJson {
+            skill: None,
             stations_compared: e.stations,
             end_md_m: Finite(e.end_md_m),
             end_inc_err_deg: Finite(e.end_inc_err_rad.to_degrees()),
@@ -347,13 +399,15 @@ pub struct PredictSummary {
     bit_rock: LawJson,
     step_extrapolation: Option<StepErrorJson>,
     model: ModelJson,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    assimilation: Option<AssimilationJson>,
 }
 
 impl PredictSummary {
     /// The summary of the forecast `f` of `case` (file `case_file`) with the model `choice`.
     pub fn new(case: &Case, case_file: &Path, choice: &Choice, f: &Forecast) -> PredictSummary {
         let p = &f.prediction;
-        let end = p.steps.last().expect("a prediction has a start record");
+        let end = f.rows.last().expect("a prediction has a start row");
         PredictSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
@@ -370,7 +424,11 @@ impl PredictSummary {
                 east_m: Finite(end.position.y),
             },
             rates: RatesJson::from(&f.rates),
-            tracking: f.tracking.as_ref().map(TrackingJson::from),
+            tracking: f.tracking.as_ref().map(|t| TrackingJson::new(t, f.skill.as_ref())),
+            assimilation: f
+                .projection
+                .as_ref()
+                .map(|pr| AssimilationJson::of_bank(&pr.bank, pr.model_tendency, &[])),
             bit_rock: LawJson::new(&case.bit_rock.law, &f.law, case.bit_rock.formations.len()),
             step_extrapolation: f.step_error.as_ref().map(|e| StepErrorJson {
                 coarse_step_m: Finite(e.coarse_step_m),

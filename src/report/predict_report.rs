@@ -12,6 +12,9 @@ use crate::predict::backanalysis::Backanalysis;
 use crate::predict::forecast::Forecast;
 use crate::predict::intervals::IntervalResult;
 use crate::predict::march::StepRecord;
+use crate::predict::tracking::project::{ProjectedRow, Projection};
+use crate::predict::tracking::references::{Direction, Reference};
+use crate::predict::tracking::skill::EndDirections;
 
 /// Ids of the figures of a predict report (the tests look for each).
 pub const PREDICT_FIGURES: &[&str] = &[
@@ -294,6 +297,9 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
             Style::Line,
             c,
         ));
+        if let Some(pr) = &forecast.projection {
+            (inc, azi) = assimilated_series(inc, azi, pr, &label, c, tj.azi_ref, units);
+        }
         (forces, tilt) = bit_series(forces, tilt, &pred.steps, &label, k, units);
         let errs: Vec<(f64, (f64, f64))> = forecast
             .rows
@@ -334,6 +340,58 @@ fn predict_figures(page: &mut Page, runs: &[(&Case, &Forecast)], units: UnitSyst
         "bit tilt against the hole axis at each solved step",
     );
     errors_figure(page, errors, any_error, (from, to), units)
+}
+
+/// The assimilated inclination and azimuth with their one-standard-deviation bounds added to
+/// the `inc` and `azi` charts (colour `c`, azimuths kept continuous near `azi_ref`).
+fn assimilated_series(
+    inc: Chart,
+    azi: Chart,
+    p: &Projection,
+    label: &dyn Fn(&str) -> String,
+    c: usize,
+    azi_ref: f64,
+    units: UnitSystem,
+) -> (Chart, Chart) {
+    let depth_unit = units.depth();
+    let md = |r: &ProjectedRow| depth_unit.show(r.md_m);
+    let line = |f: &dyn Fn(&ProjectedRow) -> f64| p.rows.iter().map(|r| (md(r), f(r))).collect::<Vec<_>>();
+    let deg = |x: f64| x.to_degrees();
+    let inc = inc
+        .with(Series::new(
+            &label("assimilated"),
+            line(&|r| deg(r.direction.inc_rad)),
+            Style::Line,
+            3,
+        ))
+        .with(Series::new(
+            &label("assimilated + 1 sd"),
+            line(&|r| deg(r.direction.inc_rad + r.inc_sd_rad)),
+            Style::Thin,
+            c,
+        ))
+        .with(Series::new(
+            &label("assimilated - 1 sd"),
+            line(&|r| deg(r.direction.inc_rad - r.inc_sd_rad)),
+            Style::Thin,
+            c,
+        ));
+    let a = |r: &ProjectedRow| azi_deg(r.direction.azi_rad, azi_ref);
+    let azi = azi
+        .with(Series::new(&label("assimilated"), line(&|r| a(r)), Style::Line, 3))
+        .with(Series::new(
+            &label("assimilated + 1 sd"),
+            line(&|r| a(r) + deg(r.azi_sd_rad)),
+            Style::Thin,
+            c,
+        ))
+        .with(Series::new(
+            &label("assimilated - 1 sd"),
+            line(&|r| a(r) - deg(r.azi_sd_rad)),
+            Style::Thin,
+            c,
+        ));
+    (inc, azi)
 }
 
 /// The bit's build and walk forces and its tilts at each solved step added to `forces` and
@@ -436,11 +494,50 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
     let mut page = Page::new(&format!("drillpath backanalyze: {}", case.name));
     backanalyze_key_results(&mut page, back, units);
     interval_figures(&mut page, case, results, units)?;
+    direction_error_figure(&mut page, back, units)?;
     interval_table(&mut page, results, units);
     echo_inputs(&mut page, case, f.interval.from_md_m, units)?;
     let html = page.finish();
     check_finite_text(&html)?;
     Ok(html)
+}
+
+/// The direction error per 100 m at each interval's end of the model and of every reference
+/// (and, assimilating, of the plain model and the frozen assimilation), on one chart.
+fn direction_error_figure(page: &mut Page, back: &Backanalysis, units: UnitSystem) -> Result<(), String> {
+    let depth_unit = units.depth();
+    let md = format!("MD [{}]", depth_unit.label);
+    let x = |k: usize| depth_unit.show(back.results[k].interval.to_md_m);
+    let per100 = |d: &Direction, e: &EndDirections| d.angle_to(&e.measured).to_degrees() * 100.0 / e.length_m;
+    let series = |name: &str, pick: &dyn Fn(&EndDirections) -> Option<Direction>, style: Style, colour: usize| {
+        let pts: Vec<(f64, f64)> = back
+            .ends
+            .iter()
+            .enumerate()
+            .filter_map(|(k, e)| pick(e).map(|d| (x(k), per100(&d, e))))
+            .collect();
+        (!pts.is_empty()).then(|| Series::new(name, pts, style, colour))
+    };
+    let mut chart = Chart::new(
+        "Direction error at each interval's end, per 100 m",
+        &md,
+        "error [deg/100 m]",
+    );
+    let mut all = vec![series("model", &|e| Some(e.model), Style::LinePoints, 0)];
+    for (k, r) in Reference::all().into_iter().enumerate() {
+        all.push(series(&r.name(), &move |e| Some(e.references[k]), Style::Thin, k + 1));
+    }
+    all.push(series("plain model", &|e| e.plain, Style::Points, 6));
+    all.push(series("frozen assimilation", &|e| e.frozen, Style::Points, 7));
+    for s in all.into_iter().flatten() {
+        chart = chart.with(s);
+    }
+    page.figure(
+        "direction-errors",
+        &render(&chart)?,
+        "angle between the predicted and the measured direction at each interval's end, divided by the interval length: the model against holding the direction, extrapolating the build and turn rates of the last 30, 60 and 90 m, and the statistic",
+    );
+    Ok(())
 }
 
 /// The key results of a backanalyze report: intervals, range, errors per 100 m, calibration.

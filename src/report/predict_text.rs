@@ -6,6 +6,9 @@ use super::predict_output::{fitted_shown, BackanalysisRun};
 use crate::case::{Case, Choice, Level};
 use crate::predict::forecast::Forecast;
 use crate::predict::march::{RIPPLE_WARN_DEG, RIPPLE_WINDOW_M};
+use crate::predict::tracking::project::Projection;
+use crate::predict::tracking::references::Reference;
+use crate::predict::tracking::skill::{ErrorSummary, Skill};
 use std::io::Write;
 
 /// Write the summary of the forecast `f` of `case` (model `choice`) to `out`.
@@ -20,7 +23,7 @@ pub fn write_forecast(
     let p = &f.prediction;
     let rt = &f.rates;
     let first = &p.steps[0];
-    let end = p.steps.last().expect("start record");
+    let end = f.rows.last().expect("start row");
     writeln!(out, "predict: {} ({})", case.name, case.path.display())?;
     writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
     writeln!(
@@ -59,6 +62,17 @@ pub fn write_forecast(
             error_unit.fmt(t.inc_err_per_100m_rad / 100.0, 3),
             error_unit.fmt(t.azi_err_per_100m_rad / 100.0, 3)
         )?;
+    }
+    if let Some(sk) = &f.skill {
+        write_skill(
+            out,
+            sk,
+            "at the stations drilled ahead (per length from the start)",
+            units,
+        )?;
+    }
+    if let Some(pr) = &f.projection {
+        write_projection(out, pr, units)?;
     }
     if let Some(e) = &f.step_error {
         writeln!(
@@ -200,5 +214,77 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
             )?;
         }
     }
+    if let Some(sk) = &b.skill {
+        write_skill(out, sk, "at the interval ends (per length of interval)", units)?;
+    }
+    if let Some(a) = &b.assimilation {
+        let [inc, azi, _] = a.coverage();
+        writeln!(
+            out,
+            "  assimilation: model trust {}% (the likelihood's share on the variants following the model's changing tendency); measured end stations within one standard deviation: {}% of inclinations, {}% of azimuths",
+            fixed(100.0 * a.filter.model_trust(), 0),
+            fixed(100.0 * inc, 0),
+            fixed(100.0 * azi, 0)
+        )?;
+    }
     writeln!(out, "  {:.2} s", b.seconds)
+}
+
+/// The model's mean direction error against the naive projections, the statistic and (when
+/// assimilating) the plain model and the frozen assimilation, `where` they are compared.
+fn write_skill(out: &mut impl Write, s: &Skill, place: &str, units: UnitSystem) -> std::io::Result<()> {
+    let e = units.per_100();
+    let d = |x: &ErrorSummary| e.fmt(x.dir_err_per_100m_rad / 100.0, 3);
+    let r = |q: Reference| s.reference(q).map(d).unwrap_or_default();
+    let bare = |q: Reference| {
+        s.reference(q)
+            .map(|x| e.num(x.dir_err_per_100m_rad / 100.0, 3))
+            .unwrap_or_default()
+    };
+    let rates = |w: f64| Reference::Rates { window_m: w };
+    writeln!(
+        out,
+        "  direction error {place}: model {}; hold {}, rates over the last {}/{}/{} {}/{}/{}, statistic {}; best naive {}: skill {}",
+        d(&s.model),
+        r(Reference::Hold),
+        units.depth().num(30.0, 0),
+        units.depth().num(60.0, 0),
+        units.depth().fmt(90.0, 0),
+        bare(rates(30.0)),
+        bare(rates(60.0)),
+        r(rates(90.0)),
+        r(Reference::Statistic),
+        s.best_naive.name(),
+        signed(s.skill, 3)
+    )?;
+    if let (Some(plain), Some(frozen), Some(share)) = (&s.plain, &s.frozen, s.physics_share) {
+        writeln!(
+            out,
+            "  assimilated model against the plain model {} and the frozen assimilation {}: physics share {}",
+            d(plain),
+            d(frozen),
+            signed(share, 3)
+        )?;
+    }
+    Ok(())
+}
+
+/// The projection's bounds at its end and the bank's trust in the model.
+fn write_projection(out: &mut impl Write, p: &Projection, units: UnitSystem) -> std::io::Result<()> {
+    let Some(end) = p.rows.last() else {
+        return Ok(());
+    };
+    let depth_unit = units.depth();
+    writeln!(
+        out,
+        "  assimilated at {}: I {} +/- {} deg, A {} +/- {} deg, position +/- {} sideways and {} up or down (one standard deviation); model trust {}%",
+        depth_unit.fmt(end.md_m, 2),
+        fixed(end.direction.inc_rad.to_degrees(), 3),
+        fixed(end.inc_sd_rad.to_degrees(), 3),
+        fixed(end.direction.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        fixed(end.azi_sd_rad.to_degrees(), 3),
+        depth_unit.fmt(end.lateral_sd_m, 2),
+        depth_unit.fmt(end.vertical_sd_m, 2),
+        fixed(100.0 * p.bank.model_trust(), 0)
+    )
 }

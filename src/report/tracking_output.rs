@@ -4,6 +4,7 @@
 
 use super::{num, Finite};
 use crate::predict::tracking::assimilate::Assimilation;
+use crate::predict::tracking::bank::{FilterBank, Trust};
 use crate::predict::tracking::references::{Reference, STATISTIC_DAMPING, STATISTIC_WINDOW_M};
 use crate::predict::tracking::skill::{EndDirections, ErrorSummary, Skill};
 use serde::Serialize;
@@ -131,7 +132,9 @@ pub struct VariantJson {
 pub struct AssimilationJson {
     /// The bank's filters and their weights at the end.
     variants: Vec<VariantJson>,
-    coverage: CoverageJson,
+    /// Survey stations within one standard deviation (back-analysis only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    coverage: Option<CoverageJson>,
     tendency_offset_deg_per_30m: TurnJson,
     tendency_offset_sd_deg_per_30m: TurnJson,
     fluctuation_sd_deg_per_30m: TurnJson,
@@ -146,9 +149,19 @@ impl AssimilationJson {
     /// the order of its parameters).
     pub fn new(a: &Assimilation, case_values: &[f64]) -> AssimilationJson {
         let [inc, azi, both] = a.coverage();
-        let (offset, offset_sd) = a.filter.offset();
-        let parameters = a
-            .filter
+        let mut j = AssimilationJson::of_bank(&a.filter, a.frozen_model_tendency, case_values);
+        j.coverage = Some(CoverageJson {
+            inclination: Finite(inc),
+            azimuth: Finite(azi),
+            both: Finite(both),
+        });
+        j
+    }
+
+    /// The summary of `bank` with the model's tendency held at `frozen_tendency` (rad/m).
+    pub fn of_bank(bank: &FilterBank, frozen_tendency: [f64; 2], case_values: &[f64]) -> AssimilationJson {
+        let (offset, offset_sd) = bank.offset();
+        let parameters = bank
             .parameters()
             .into_iter()
             .zip(case_values)
@@ -171,28 +184,45 @@ impl AssimilationJson {
             })
             .collect();
         AssimilationJson {
-            variants: a
-                .filter
+            variants: bank
                 .variants()
                 .into_iter()
                 .map(|(l, b, t, w)| VariantJson {
                     correlation_length_m: Finite(l),
                     behaviour: b.name(),
-                    model: t == crate::predict::tracking::bank::Trust::Model,
+                    model: t == Trust::Model,
                     weight: Finite(w),
                 })
                 .collect(),
-            coverage: CoverageJson {
-                inclination: Finite(inc),
-                azimuth: Finite(azi),
-                both: Finite(both),
-            },
+            coverage: None,
             tendency_offset_deg_per_30m: TurnJson::per_30m(offset),
             tendency_offset_sd_deg_per_30m: TurnJson::per_30m(offset_sd),
-            fluctuation_sd_deg_per_30m: TurnJson::per_30m(a.filter.fluctuation_sd()),
-            frozen_model_tendency_deg_per_30m: TurnJson::per_30m(a.frozen_model_tendency),
+            fluctuation_sd_deg_per_30m: TurnJson::per_30m(bank.fluctuation_sd()),
+            frozen_model_tendency_deg_per_30m: TurnJson::per_30m(frozen_tendency),
             parameters,
-            model_trust: Finite(a.filter.model_trust()),
+            model_trust: Finite(bank.model_trust()),
+        }
+    }
+}
+
+/// The model against the references at the stations drilled ahead of a prediction.
+#[derive(Serialize)]
+pub struct TrackingSkillJson {
+    /// The model's mean direction error per 100 m of hole from the start, deg.
+    dir_err_per_100m_deg: Finite,
+    baselines: BaselinesJson,
+    skill: Finite,
+    physics_share: Option<Finite>,
+}
+
+impl TrackingSkillJson {
+    /// The summary of `s`.
+    pub fn new(s: &Skill) -> TrackingSkillJson {
+        TrackingSkillJson {
+            dir_err_per_100m_deg: Finite(s.model.dir_err_per_100m_rad.to_degrees()),
+            baselines: BaselinesJson::new(s),
+            skill: Finite(s.skill),
+            physics_share: s.physics_share.map(Finite),
         }
     }
 }

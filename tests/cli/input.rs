@@ -785,3 +785,49 @@ max_iterations = 3
     );
     assert!(!dir.path().join("out").exists(), "no output on a failed solve");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Survey assimilation settings (`[tracking]`): a bad value names its key.
+
+/// The fixture with a `[tracking]` table holding `line`.
+fn with_tracking(line: &str) -> Fixture {
+    let fx = Fixture::new();
+    fx.edit_case("[solver]", &format!("[tracking]\n{line}\n\n[solver]"));
+    fx
+}
+
+#[test]
+fn tracking_negative_window() {
+    with_tracking("window = \"-10 m\"")
+        .expect_error(&["survey", "case.toml"], &["case.toml", "`tracking.window`", "-10"]);
+}
+
+#[test]
+fn tracking_window_longer_than_the_survey() {
+    with_tracking("window = \"5000 m\"").expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`tracking.window`", "longer than the survey"],
+    );
+}
+
+#[test]
+fn tracking_zero_or_negative_survey_noise() {
+    with_tracking("survey_noise_inc = \"0 deg\"").expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`tracking.survey_noise_inc`", "positive"],
+    );
+    with_tracking("survey_noise_azi = -0.3").expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`tracking.survey_noise_azi`", "positive"],
+    );
+}
+
+#[test]
+fn tracking_unknown_parameter_and_key() {
+    with_tracking("estimate = [\"walk_angle\", \"beta\"]")
+        .expect_error(&["survey", "case.toml"], &["case.toml", "`tracking.estimate`", "beta"]);
+    with_tracking("forgeting_length = \"300 m\"").expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "tracking", "forgeting_length", "forgetting_length"],
+    );
+}

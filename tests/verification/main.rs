@@ -18,3 +18,4 @@ mod paper;
 mod predict;
 mod softstring;
 mod solver;
+mod tracking;

@@ -361,6 +361,8 @@ pub fn assimilate(
             Err(e) => {
                 tracing::warn!(from = iv.from_md_m, to = iv.to_md_m, error = %e, "interval skipped");
                 skipped.push((*iv, e));
+                // the next interval starts cold, as a plain back-analysis's does
+                warm = None;
                 // the stations of the interval still come in, against the frozen tendency
                 let kappa = f.frozen_tendency.unwrap_or([0.0; 2]);
                 let (turn, sensitivity) = (held_turn(kappa), no_sensitivity(f.filter.parameter_count()));
@@ -380,6 +382,37 @@ pub fn assimilate(
         frozen_model_tendency: f.frozen_tendency.unwrap_or([0.0; 2]),
         filter: f.filter,
     }
+}
+
+/// The assimilated and the frozen banks after taking in the measured hole behind `start_md`
+/// (the tracking window), the model's tendency there held at `kappa` (rad/m), each scored on
+/// its predictions over `horizon_m` within that hole.
+pub fn banks_behind(
+    case: &Case,
+    start_md: f64,
+    kappa: [f64; 2],
+    horizon_m: f64,
+    tracking: &TrackingSettings,
+) -> (FilterBank, FilterBank) {
+    let from = warm_up_start_md(case, start_md, tracking);
+    let first = survey_covariance(tracking, case.well.path.point_at(from).inc_rad);
+    let mut f = Filters {
+        filter: FilterBank::new(tracking, &[], &first, true),
+        frozen: FilterBank::new(tracking, &[], &first, false),
+        frozen_tendency: Some(kappa),
+    };
+    let (turn, sensitivity) = (held_turn(kappa), no_sensitivity(0));
+    let model = ModelSide {
+        turn: &turn,
+        sensitivity: &sensitivity,
+        kappa,
+    };
+    let scoring = WarmUpScoring {
+        horizon_m,
+        limit_md: start_md,
+    };
+    take_in(case, (from, start_md), &model, tracking, &mut f, Some(scoring));
+    (f.filter, f.frozen)
 }
 
 /// Predict one interval with the filters' corrections (the first one after warming them up on
@@ -440,7 +473,7 @@ fn assimilate_interval(
     let ft = f.frozen.predicted_turn(len, dev, [0.0; 2]);
     let frozen = turned(&start, [kappa[0] * len + ft[0], kappa[1] * len + ft[1]]);
     let j_end = turn_sensitivity(&pred.path, &stepped, iv.from_md_m, iv.to_md_m);
-    let cov = f.filter.turn_covariance(len, &j_end, dev, excess) + survey_covariance(tracking, iv.measured.0);
+    let cov = f.filter.turn_covariance(len, &j_end, dev, excess) + survey_covariance(tracking, assimilated.inc_rad);
     let out = AssimilatedInterval {
         plain,
         assimilated,

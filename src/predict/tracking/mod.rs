@@ -8,11 +8,13 @@
 //! - [`bank`]: filters that differ in how the unexplained turn behaves, weighted by how well
 //!   each predicted the hole so far;
 //! - [`assimilate`]: the filter run over consecutive intervals, with the frozen assimilation;
+//! - [`project`]: the projection to the bit and ahead, with its bounds;
 //! - [`skill`]: mean errors per predictor over the same intervals, the best naive projection,
 //!   the skill and the physics' share.
 
 pub mod assimilate;
 pub mod bank;
 pub mod estimator;
+pub mod project;
 pub mod references;
 pub mod skill;
