@@ -79,7 +79,7 @@ fn back(well: &str, horizon: f64, assimilate: bool) -> (Backanalysis, f64) {
     };
     let p = plan(&case, &req).expect("plan");
     let t0 = Instant::now();
-    let b = run(&case, &p, &settings, &mut |_| {}).expect("back-analysis");
+    let b = run(std::slice::from_ref(&case), &p, &[settings], &mut |_| {}).expect("back-analysis");
     (b, t0.elapsed().as_secs_f64())
 }
 

@@ -108,8 +108,11 @@ pub struct PredictArgs {
 /// Arguments of `drillpath backanalyze`.
 #[derive(Debug, Args)]
 pub struct BackanalyzeArgs {
-    /// Case file (.toml) whose survey is the measured well.
-    pub case: PathBuf,
+    /// Case file (.toml) whose survey is the measured well; several for a well drilled in BHA
+    /// runs (the same survey, in the order of their bit depths: each predicts the hole from the
+    /// previous one's bit depth to its own).
+    #[arg(required = true, num_args = 1..)]
+    pub cases: Vec<PathBuf>,
     /// Fit the bit-rock law's parameters on the first part of the intervals (see --split) and
     /// score them on the rest.
     #[arg(long)]

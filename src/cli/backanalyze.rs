@@ -5,6 +5,7 @@ use super::args::BackanalyzeArgs;
 use super::predict::{load_for_prediction, prediction_choice, settings_for};
 use super::progress::Progress;
 use super::{length_opt, parse_length_option};
+use crate::case::Case;
 use crate::predict::backanalysis::Progress as Stage;
 use crate::predict::backanalysis::{plan, run as run_backanalysis, BackanalysisRequest, CalibrationRequest};
 use crate::predict::calibrate::FitParameter;
@@ -14,6 +15,7 @@ use crate::report::predict_text::write_backanalysis;
 use crate::report::{json_text, write_atomic};
 use anyhow::{anyhow, bail, Context};
 use std::io::Write;
+use std::path::Path;
 
 /// The back-analysis asked by the command line (options validated, SI).
 fn request(a: &BackanalyzeArgs) -> anyhow::Result<BackanalysisRequest> {
@@ -58,17 +60,26 @@ fn request(a: &BackanalyzeArgs) -> anyhow::Result<BackanalysisRequest> {
 
 /// Run the command (`quiet`: no progress bar).
 pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
-    let mut case = load_for_prediction(&a.case)?;
-    let choice = prediction_choice(&mut case, &a.model.fidelity, &a.model.accuracy)?;
-    let req = request(&a)?;
     let step = length_opt("--step", &a.step, MIN_STEP_M)?;
-    let name = a.case.display().to_string();
-    let plan = plan(&case, &req).map_err(|e| anyhow!("{name}: {e}"))?;
-    let settings = settings_for(&case, step, None, &choice)?;
+    let mut cases = Vec::with_capacity(a.cases.len());
+    let mut settings = Vec::with_capacity(a.cases.len());
+    let mut choices = Vec::with_capacity(a.cases.len());
+    for path in &a.cases {
+        let mut c = load_for_prediction(path)?;
+        let choice = prediction_choice(&mut c, &a.model.fidelity, &a.model.accuracy)?;
+        settings.push(settings_for(&c, step, None, &choice)?);
+        choices.push(choice);
+        cases.push(c);
+    }
+    let (case, choice) = (&cases[0], &choices[0]);
+    let case_file = &a.cases[0];
+    let req = request(&a)?;
+    let name = case_file.display().to_string();
+    let plan = plan(case, &req).map_err(|e| anyhow!("{name}: {e}"))?;
     let bar = Progress::new(plan.intervals.len() as u64, &format!("backanalyze {name}"), quiet);
     let mut spinner: Option<Progress> = None;
     let mut bar = Some(bar);
-    let result = run_backanalysis(&case, &plan, &settings, &mut |stage| match stage {
+    let result = run_backanalysis(&cases, &plan, &settings, &mut |stage| match stage {
         Stage::Interval { done, of } => {
             if let Some(b) = &bar {
                 b.set(done as u64, &format!("interval {done}/{of}"));
@@ -91,13 +102,19 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
         p.finish();
     }
     let b = result.map_err(|e| anyhow!("{name}: {e}"))?;
+    let later: Vec<(&Case, &Path)> = cases[1..]
+        .iter()
+        .zip(&a.cases[1..])
+        .map(|(c, f)| (c, f.as_path()))
+        .collect();
     let shown = BackanalysisRun {
-        case: &case,
-        case_file: &a.case,
+        case,
+        case_file,
         plan: &plan,
-        step_m: settings.step_m,
-        choice: &choice,
+        step_m: settings[0].step_m,
+        choice,
         result: &b,
+        later_runs: &later,
     };
     let internal = |e: String| anyhow!("internal error: {e}");
     let summary = json_text(&BackanalysisSummary::new(&shown)).map_err(internal)?;
@@ -115,7 +132,7 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
         write_atomic(&dir.join("summary.json"), summary.as_bytes()).with_context(ctx)?;
     }
     if let Some(file) = &a.view.report {
-        crate::report::predict_report::write_backanalyze(file, &case, &b, a.view.units)?;
+        crate::report::predict_report::write_backanalyze(file, case, &b, a.view.units)?;
     }
     let mut out = std::io::stdout().lock();
     if a.view.json {

@@ -9,7 +9,7 @@
 
 pub use super::intervals::{
     error_stats, intervals as cut_intervals, run_intervals, run_intervals_skipping, ErrorStats, Interval, IntervalPlan,
-    IntervalResult,
+    IntervalResult, RunModel, DEFAULT_MIN_INCLINATION_DEG,
 };
 
 use super::calibrate::{calibrate, Calibration, FitParameter};
@@ -20,10 +20,6 @@ use super::tracking::references::{project, Direction, Reference};
 use super::tracking::skill::{skill, EndDirections, Skill};
 use crate::case::Case;
 use std::time::Instant;
-
-/// By default back-analysis starts at the first station this inclined, deg: in a vertical
-/// hole the bit forces have no direction to predict (a kick-off is steered, not predicted).
-pub const DEFAULT_MIN_INCLINATION_DEG: f64 = 3.0;
 
 /// Hole above the first interval's start by default, m.
 pub const DEFAULT_START_DEPTH_M: f64 = 30.0;
@@ -115,6 +111,12 @@ pub enum BackanalysisError {
     /// The calibration or the scoring failed.
     #[error(transparent)]
     Predict(#[from] PredictError),
+    /// Calibration asked of a well drilled in several runs.
+    #[error("calibration runs on one case: give one BHA run, or leave out --calibrate")]
+    CalibrationWithRuns,
+    /// The runs do not share one survey or are not in the order of their bit depths.
+    #[error("{0}")]
+    Runs(String),
     /// Calibration and assimilation asked together.
     #[error("calibration and assimilation cannot run together: the assimilation estimates the law's parameters itself (`estimate` in [tracking])")]
     CalibrationAndAssimilation,
@@ -245,18 +247,31 @@ pub enum Progress<'a> {
     Calibration(&'a str),
 }
 
-/// Run the back-analysis `plan` of `case` with `settings`; `progress` hears how it goes.
+/// Run the back-analysis `plan` of the well drilled by the BHA runs `cases` (one case, or several
+/// sharing one survey in the order of their bit depths, each having drilled the hole from the
+/// previous one's bit depth to its own; the plan and the `[tracking]` settings are the first
+/// case's) with the march settings `settings` (one per case); `progress` hears how it goes.
 pub fn run(
-    case: &Case,
+    cases: &[Case],
     plan: &BackanalysisPlan,
-    settings: &MarchSettings,
+    settings: &[MarchSettings],
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Backanalysis, BackanalysisError> {
     let t0 = Instant::now();
+    check_runs(cases, plan)?;
+    if settings.len() != cases.len() {
+        return Err(BackanalysisError::Runs(format!(
+            "{} march settings for {} BHA runs",
+            settings.len(),
+            cases.len()
+        )));
+    }
+    let case = &cases[0];
+    let runs: Vec<RunModel> = cases.iter().zip(settings).map(|(c, s)| RunModel::of(c, s)).collect();
     let mut out = if plan.assimilate {
-        run_assimilated(case, plan, settings, progress)?
+        run_assimilated(&runs, plan, progress)?
     } else {
-        run_plain(case, plan, settings, progress)?
+        run_plain(&runs, plan, progress)?
     };
     out.ends = out
         .results
@@ -270,6 +285,38 @@ pub fn run(
     out.skill = skill(&out.ends);
     out.seconds = t0.elapsed().as_secs_f64();
     Ok(out)
+}
+
+/// The runs must share the first one's survey and come in the order of their bit depths; a
+/// calibration needs a single run.
+fn check_runs(cases: &[Case], plan: &BackanalysisPlan) -> Result<(), BackanalysisError> {
+    let first = cases
+        .first()
+        .ok_or_else(|| BackanalysisError::Runs("no case given".into()))?;
+    if cases.len() > 1 && plan.calibration.is_some() {
+        return Err(BackanalysisError::CalibrationWithRuns);
+    }
+    for w in cases.windows(2) {
+        if w[1].operation.bit_md_m <= w[0].operation.bit_md_m {
+            return Err(BackanalysisError::Runs(format!(
+                "the BHA runs must come in the order of their bit depths: {} (bit at {:.1} m) after {} (bit at {:.1} m)",
+                w[1].path.display(),
+                w[1].operation.bit_md_m,
+                w[0].path.display(),
+                w[0].operation.bit_md_m
+            )));
+        }
+    }
+    for c in &cases[1..] {
+        if c.well.path.stations() != first.well.path.stations() {
+            return Err(BackanalysisError::Runs(format!(
+                "the BHA runs must share one survey: {} and {} differ",
+                first.path.display(),
+                c.path.display()
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The predicted end of `r` with the references', and the plain and frozen predictions of an
@@ -298,19 +345,17 @@ fn end_directions(
     }
 }
 
-/// The back-analysis with the case's law (and a calibration when asked).
+/// The back-analysis with the runs' laws (and a calibration when asked, of a single run).
 fn run_plain(
-    case: &Case,
+    runs: &[RunModel],
     plan: &BackanalysisPlan,
-    settings: &MarchSettings,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Backanalysis, BackanalysisError> {
+    let case = runs[0].case;
     let mut warm = Vec::new();
     let (base, skipped) = run_intervals_skipping(
-        case,
-        &case.bit_rock,
+        runs,
         &plan.intervals,
-        settings,
         &mut warm,
         |done, of| progress(Progress::Interval { done, of }),
         false,
@@ -340,7 +385,7 @@ fn run_plain(
         seconds: 0.0,
     };
     if let Some(req) = &plan.calibration {
-        let (outcome, scored) = calibrate_and_score(case, req, &out.base, warm, settings, progress)?;
+        let (outcome, scored) = calibrate_and_score(&runs[0], req, &out.base, warm, progress)?;
         out.results = outcome.calibration.results.clone();
         out.results.extend(scored);
         out.results_stats = error_stats(&out.results);
@@ -349,14 +394,14 @@ fn run_plain(
     Ok(out)
 }
 
-/// The back-analysis with the survey assimilated.
+/// The back-analysis with the survey assimilated (over the runs `runs`).
 fn run_assimilated(
-    case: &Case,
+    runs: &[RunModel],
     plan: &BackanalysisPlan,
-    settings: &MarchSettings,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Backanalysis, BackanalysisError> {
-    let mut a = assimilate(case, &plan.intervals, settings, &case.tracking, &mut |done, of| {
+    let case = runs[0].case;
+    let mut a = assimilate(runs, &plan.intervals, &case.tracking, &mut |done, of| {
         progress(Progress::Interval { done, of })
     });
     let base: Vec<IntervalResult> = a.intervals.iter().map(|i| i.plain).collect();
@@ -398,13 +443,13 @@ fn check_predicted(
 /// starts `warm`) and score the fitted law on the rest; returns the outcome and the scored
 /// intervals' results.
 fn calibrate_and_score(
-    case: &Case,
+    run: &RunModel,
     req: &CalibrationRequest,
     base: &[IntervalResult],
     mut warm: Vec<WarmStart>,
-    settings: &MarchSettings,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<(CalibrationOutcome, Vec<IntervalResult>), BackanalysisError> {
+    let (case, settings) = (run.case, run.settings);
     let list: Vec<Interval> = base.iter().map(|r| r.interval).collect();
     if list.len() < MIN_CALIBRATION_INTERVALS {
         return Err(BackanalysisError::TooFewPredicted {
@@ -420,14 +465,11 @@ fn calibrate_and_score(
         progress(Progress::Calibration(m))
     })?;
     let mut warm_scored = warm.split_off(ncal.min(warm.len()));
-    let scored = run_intervals(
-        case,
-        &calibration.bit_rock,
-        score_list,
-        settings,
-        &mut warm_scored,
-        |_, _| {},
-    )?;
+    let fitted = RunModel {
+        bit_rock: &calibration.bit_rock,
+        ..*run
+    };
+    let scored = run_intervals(&[fitted], score_list, &mut warm_scored, |_, _| {})?;
     let outcome = CalibrationOutcome {
         split_md_m: list[ncal].from_md_m,
         in_sample_default: error_stats(&base[..ncal]),

@@ -3,7 +3,7 @@
 //! re-prediction of all intervals per parameter), bounds by reparametrization, a weak prior
 //! toward the starting values, covariance `s^2 (J^T J)^-1` with `s^2 = SSR / (m - n)`.
 
-use super::intervals::{run_intervals, Interval, IntervalResult};
+use super::intervals::{run_intervals, Interval, IntervalResult, RunModel};
 use super::march::{MarchSettings, PredictError, WarmStart};
 use crate::case::{BitRock, Case};
 use crate::numerics::least_squares::{
@@ -150,7 +150,12 @@ impl<F: FnMut(&str)> LeastSquares for LawFit<'_, F> {
     type Outcome = Vec<IntervalResult>;
     fn evaluate(&mut self, u: &[f64]) -> Result<(DVector<f64>, Vec<IntervalResult>), PredictError> {
         let law = self.law(u);
-        let res = run_intervals(self.case, &law, self.list, self.settings, &mut self.warm, |_, _| {})?;
+        let run = RunModel {
+            case: self.case,
+            bit_rock: &law,
+            settings: self.settings,
+        };
+        let res = run_intervals(&[run], self.list, &mut self.warm, |_, _| {})?;
         let mut r = residuals(&res);
         for (k, p) in self.params.iter().enumerate() {
             r.push((p.natural(u[k]) - self.start_values[k]) / p.prior_sigma());

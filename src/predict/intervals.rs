@@ -9,6 +9,10 @@ use crate::geometry::{Vec3, WellPath};
 use crate::models::fem::results::BitResult;
 use crate::predict::march::{hole_to, predict_from, MarchSettings, PredictError, Prediction, WarmStart};
 
+/// By default back-analysis starts at the first station this inclined, deg: in a vertical
+/// hole the bit forces have no direction to predict (a kick-off is steered, not predicted).
+pub const DEFAULT_MIN_INCLINATION_DEG: f64 = 3.0;
+
 /// How the survey is cut into intervals.
 #[derive(Debug, Clone, Copy)]
 pub struct IntervalPlan {
@@ -98,19 +102,77 @@ pub fn intervals(path: &WellPath, plan: &IntervalPlan) -> Vec<Interval> {
     out
 }
 
-/// Predict each interval with the law parameters `bit_rock`; `warm` holds one warm start per
-/// interval: the solved state at its start, kept between calls with other parameters (as
-/// calibration makes); on the first call each interval starts from the previous one's end.
-/// The first interval that cannot be predicted stops the run with its error.
+/// One BHA run as the predictor sees it: its case (the assembly, the operation, the bit depth
+/// where the run ended), the bit-rock law to predict with and the march settings.
+#[derive(Clone, Copy)]
+pub struct RunModel<'a> {
+    /// The run's case.
+    pub case: &'a Case,
+    /// The bit-rock law to predict with.
+    pub bit_rock: &'a BitRock,
+    /// The march settings.
+    pub settings: &'a MarchSettings,
+}
+
+impl<'a> RunModel<'a> {
+    /// The run `case` with its own law and `settings`.
+    pub fn of(case: &'a Case, settings: &'a MarchSettings) -> RunModel<'a> {
+        RunModel {
+            case,
+            bit_rock: &case.bit_rock,
+            settings,
+        }
+    }
+}
+
+/// Which of the BHA runs with the bit depths `bit_mds` (m, increasing; each run drilled the hole
+/// from the previous one's bit depth to its own) drilled the hole just below `md_m`: the first
+/// whose bit depth is below it, else the last.
+pub fn run_at(bit_mds: &[f64], md_m: f64) -> usize {
+    bit_mds
+        .iter()
+        .position(|&b| b > md_m + 1e-6)
+        .unwrap_or(bit_mds.len().saturating_sub(1))
+}
+
+/// The bit depths of `runs`, m.
+pub fn bit_mds(runs: &[RunModel]) -> Vec<f64> {
+    runs.iter().map(|r| r.case.operation.bit_md_m).collect()
+}
+
+/// The parts of the hole from `from_md` to `to_md` drilled by each of the runs with the bit
+/// depths `bit_mds`: (run, from, to), in order.
+pub fn run_parts(bit_mds: &[f64], from_md: f64, to_md: f64) -> Vec<(usize, f64, f64)> {
+    let mut out = Vec::new();
+    let mut a = from_md;
+    loop {
+        let j = run_at(bit_mds, a);
+        let b = if j + 1 < bit_mds.len() {
+            bit_mds[j].min(to_md)
+        } else {
+            to_md
+        };
+        out.push((j, a, b));
+        if b >= to_md - 1e-6 {
+            return out;
+        }
+        a = b;
+    }
+}
+
+/// Predict each interval with the runs `runs` (one, or the BHA runs that drilled the well in
+/// the order of their bit depths: each part of an interval with the run that drilled it);
+/// `warm` holds one warm start per interval: the solved state at its start, kept between calls
+/// with other parameters (as calibration makes); on the first call each interval starts from
+/// the previous one's end when the same run drills on. The first interval that cannot be
+/// predicted stops the run with its error.
 pub fn run_intervals(
-    case: &Case,
-    bit_rock: &BitRock,
+    runs: &[RunModel],
     list: &[Interval],
-    settings: &MarchSettings,
     warm: &mut Vec<WarmStart>,
     progress: impl FnMut(usize, usize),
 ) -> Result<Vec<IntervalResult>, PredictError> {
-    let (done, mut failed) = run_intervals_skipping(case, bit_rock, list, settings, warm, progress, true);
+    let (done, mut failed) = run_intervals_skipping(runs, list, warm, progress, true);
     match failed.pop() {
         Some((_, e)) => Err(e),
         None => Ok(done),
@@ -122,10 +184,8 @@ pub fn run_intervals(
 /// goes on (unless `stop_at_first`). Returns the predicted intervals and the failed ones.
 #[allow(clippy::type_complexity)]
 pub fn run_intervals_skipping(
-    case: &Case,
-    bit_rock: &BitRock,
+    runs: &[RunModel],
     list: &[Interval],
-    settings: &MarchSettings,
     warm: &mut Vec<WarmStart>,
     mut progress: impl FnMut(usize, usize),
     stop_at_first: bool,
@@ -133,16 +193,16 @@ pub fn run_intervals_skipping(
     warm.resize_with(list.len(), || None);
     let mut out = Vec::with_capacity(list.len());
     let mut failed = Vec::new();
-    let mut last_end: WarmStart = None;
+    let mut last_end = LastEnd::default();
     for (k, iv) in list.iter().enumerate() {
         let mut w = match &warm[k] {
             Some(_) => warm[k].clone(),
-            None => last_end.take(),
+            None => last_end.take_for(runs, iv),
         };
-        match predict_interval(case, bit_rock, iv, settings, &mut w) {
+        match predict_interval(runs, iv, &mut w) {
             Ok((result, start_warm)) => {
                 warm[k] = start_warm;
-                last_end = w;
+                last_end = LastEnd::of(runs, iv, w);
                 out.push(result);
             }
             Err(e) => {
@@ -158,30 +218,84 @@ pub fn run_intervals_skipping(
     (out, failed)
 }
 
-/// Predict interval `iv` from the measured hole behind it with the law parameters `bit_rock`,
+/// The solved state at the end of the last interval predicted, with the run that drilled there.
+#[derive(Default)]
+pub struct LastEnd {
+    run: usize,
+    warm: WarmStart,
+}
+
+impl LastEnd {
+    /// The end state `warm` of interval `iv` predicted with `runs`.
+    pub fn of(runs: &[RunModel], iv: &Interval, warm: WarmStart) -> LastEnd {
+        let parts = run_parts(&bit_mds(runs), iv.from_md_m, iv.to_md_m);
+        LastEnd {
+            run: parts.last().map_or(0, |p| p.0),
+            warm,
+        }
+    }
+
+    /// The warm start of interval `iv`: the state kept when the same run drills on, else none
+    /// (another assembly: a cold start).
+    pub fn take_for(&mut self, runs: &[RunModel], iv: &Interval) -> WarmStart {
+        let w = self.warm.take();
+        w.filter(|_| run_at(&bit_mds(runs), iv.from_md_m) == self.run)
+    }
+}
+
+/// Predict interval `iv` from the measured hole behind it with `runs` (see [`run_intervals`]),
 /// warm-started from `warm` (which then holds the solved state at the end); returns the result
 /// and the solved state at the interval's start.
 pub fn predict_interval(
-    case: &Case,
-    bit_rock: &BitRock,
+    runs: &[RunModel],
     iv: &Interval,
-    settings: &MarchSettings,
     warm: &mut WarmStart,
 ) -> Result<(IntervalResult, WarmStart), PredictError> {
-    let pred = predict_interval_path(case, bit_rock, iv, settings, warm)?;
+    let pred = predict_interval_path(runs, iv, warm)?;
     Ok((result_of(iv, &pred), pred.start_warm))
 }
 
-/// The prediction of interval `iv` (as [`predict_interval`], with the whole predicted hole).
+/// The prediction of interval `iv` (as [`predict_interval`], with the whole predicted hole):
+/// where a run ended within the interval, the next run drills on from the predicted hole
+/// (started cold).
 pub fn predict_interval_path(
-    case: &Case,
-    bit_rock: &BitRock,
+    runs: &[RunModel],
     iv: &Interval,
-    settings: &MarchSettings,
     warm: &mut WarmStart,
 ) -> Result<Prediction, PredictError> {
-    let start = hole_to(&case.well.path, iv.from_md_m)?;
-    predict_from(case, bit_rock, &start, iv.to_md_m, settings, warm, &mut |_| {})
+    let mut start = hole_to(&runs[0].case.well.path, iv.from_md_m)?;
+    let mut whole: Option<Prediction> = None;
+    for (j, _, to) in run_parts(&bit_mds(runs), iv.from_md_m, iv.to_md_m) {
+        let r = &runs[j];
+        if whole.is_some() {
+            *warm = None;
+        }
+        let p = predict_from(r.case, r.bit_rock, &start, to, r.settings, warm, &mut |_| {})?;
+        start = p.path.clone();
+        whole = Some(match whole {
+            None => p,
+            Some(first) => joined(first, p),
+        });
+    }
+    Ok(whole.expect("an interval has a part"))
+}
+
+/// The prediction `first` continued by `next` (which started from its hole).
+fn joined(first: Prediction, next: Prediction) -> Prediction {
+    let mut steps = first.steps;
+    steps.extend(next.steps.into_iter().skip(1));
+    Prediction {
+        path: next.path,
+        steps,
+        from_md_m: first.from_md_m,
+        to_md_m: next.to_md_m,
+        cut_m: next.cut_m,
+        dofs: next.dofs,
+        iterations: first.iterations + next.iterations,
+        seconds: first.seconds + next.seconds,
+        start_warm: first.start_warm,
+        ripple_deg: next.ripple_deg,
+    }
 }
 
 /// The interval result of prediction `pred` of `iv`.

@@ -511,11 +511,22 @@ struct BackCalibrationJson {
     out_of_sample_fitted: ErrorStatsJson,
 }
 
+/// One BHA run of a back-analysis.
+#[derive(Serialize)]
+struct RunJson {
+    case: String,
+    case_file: String,
+    /// Where the run ended (the case's bit depth), m.
+    bit_md_m: Finite,
+}
+
 /// `summary.json` of `drillpath backanalyze`.
 #[derive(Serialize)]
 pub struct BackanalysisSummary {
     case: String,
     case_file: String,
+    /// The BHA runs (each case's name, file and bit depth), the first case's first.
+    runs: Vec<RunJson>,
     intervals: usize,
     from_md_m: Finite,
     to_md_m: Finite,
@@ -558,6 +569,8 @@ pub struct BackanalysisRun<'a> {
     pub choice: &'a Choice,
     /// The result.
     pub result: &'a Backanalysis,
+    /// The BHA runs after the first, with their case files (empty for one case).
+    pub later_runs: &'a [(&'a Case, &'a Path)],
 }
 
 impl BackanalysisSummary {
@@ -570,6 +583,7 @@ impl BackanalysisSummary {
             step_m,
             choice,
             result: b,
+            later_runs,
         } = *run;
         let (first, last) = b.range_md_m();
         let skill = b
@@ -579,6 +593,14 @@ impl BackanalysisSummary {
         BackanalysisSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
+            runs: std::iter::once((case, case_file))
+                .chain(later_runs.iter().copied())
+                .map(|(c, f)| RunJson {
+                    case: c.name.clone(),
+                    case_file: f.display().to_string(),
+                    bit_md_m: Finite(c.operation.bit_md_m),
+                })
+                .collect(),
             intervals: b.base.len(),
             from_md_m: Finite(first),
             to_md_m: Finite(last),

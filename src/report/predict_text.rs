@@ -144,9 +144,23 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
         step_m,
         choice,
         result: b,
+        later_runs,
     } = *run;
     let (depth_unit, error_unit) = (units.depth(), units.per_100());
     writeln!(out, "backanalyze: {} ({})", case.name, case_file.display())?;
+    if !later_runs.is_empty() {
+        writeln!(out, "  BHA run 1 to {}", depth_unit.fmt(case.operation.bit_md_m, 1))?;
+        for (k, (c, f)) in later_runs.iter().enumerate() {
+            writeln!(
+                out,
+                "  BHA run {} to {}: {} ({})",
+                k + 2,
+                depth_unit.fmt(c.operation.bit_md_m, 1),
+                c.name,
+                f.display()
+            )?;
+        }
+    }
     writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
     if let Some(shoe) = plan.below_previous_hole_md_m {
         writeln!(

@@ -120,6 +120,43 @@ fn backanalyze_bad_options_are_named() {
     assert_error(dir.path(), &o, &["interval"]);
 }
 
+/// Several BHA runs: out of the order of their bit depths, on different surveys, or with a
+/// calibration, they are refused with the reason and the files named.
+#[test]
+fn backanalyze_bad_runs_are_named() {
+    let dir = setup(&CASE);
+    let deeper = CASE.replace("bit_md = \"200 m\"", "bit_md = \"230 m\"");
+    std::fs::write(dir.path().join("run2.toml"), &deeper).unwrap();
+    let o = run_in(dir.path(), &["backanalyze", "run2.toml", "case.toml", "--out", "out"]);
+    assert_error(dir.path(), &o, &["order of their bit depths", "case.toml", "run2.toml"]);
+    let o = run_in(
+        dir.path(),
+        &["backanalyze", "case.toml", "run2.toml", "--calibrate", "--out", "out"],
+    );
+    assert_error(dir.path(), &o, &["calibration", "one BHA run"]);
+    let other = survey().replace("230,20.3", "230,20.9");
+    std::fs::write(dir.path().join("other.csv"), other).unwrap();
+    std::fs::write(
+        dir.path().join("run3.toml"),
+        deeper.replace("survey = \"survey.csv\"", "survey = \"other.csv\""),
+    )
+    .unwrap();
+    let o = run_in(dir.path(), &["backanalyze", "case.toml", "run3.toml", "--out", "out"]);
+    assert_error(dir.path(), &o, &["share one survey", "run3.toml"]);
+    // in order on one survey: both runs listed in the summary
+    let o = run_in(
+        dir.path(),
+        &["backanalyze", "case.toml", "run2.toml", "--from", "200", "--out", "out"],
+    );
+    assert!(o.success(), "{}", o.describe());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    let runs = summary["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    assert_eq!(runs[1]["case_file"], "run2.toml");
+    assert_eq!(runs[1]["bit_md_m"], 230.0);
+}
+
 /// The interface columns of `trajectory.csv`.
 const TRAJECTORY_COLUMNS: &str = "md_m,inc_deg,azi_deg,tvd_m,north_m,east_m,inc_meas_deg,azi_meas_deg,inc_err_deg,azi_err_deg,build_force_kN,walk_force_kN,tilt_inc_deg,tilt_azi_deg,wob_kN";
 

@@ -3,7 +3,7 @@
 //! back-analysis calibration round trip. References and tolerances are stated per test.
 
 use drillpath::case::Case;
-use drillpath::predict::backanalysis::{cut_intervals, error_stats, run_intervals, IntervalPlan};
+use drillpath::predict::backanalysis::{cut_intervals, error_stats, run_intervals, IntervalPlan, RunModel};
 use drillpath::predict::calibrate::{calibrate, FitParameter};
 use drillpath::predict::march::{predict, MarchSettings, Prediction, StepScheme};
 use drillpath::predict::track::interval_rates;
@@ -221,7 +221,7 @@ fn calibration_round_trip_recovers_the_law() {
     assert_eq!(list.len(), 10);
     let mut settings = MarchSettings::from_case(&case);
     settings.step_m = 2.0;
-    let before = run_intervals(&case, &case.bit_rock, &list, &settings, &mut Vec::new(), |_, _| {}).unwrap();
+    let before = run_intervals(&[RunModel::of(&case, &settings)], &list, &mut Vec::new(), |_, _| {}).unwrap();
     let cal = calibrate(
         &case,
         &[FitParameter::LateralDrillability, FitParameter::WalkAngle],

@@ -10,9 +10,11 @@ use crate::case::bit_rock::LawParameter;
 use crate::case::{BitRock, Case, TrackingSettings};
 use crate::geometry::frame::{inc_azi, tangent};
 use crate::geometry::{Frame, Vec3, WellPath};
-use crate::predict::intervals::{predict_interval_path, result_of, Interval, IntervalResult};
+use crate::predict::intervals::{
+    predict_interval_path, result_of, Interval, IntervalResult, LastEnd, RunModel, DEFAULT_MIN_INCLINATION_DEG,
+};
 use crate::predict::law::deviation;
-use crate::predict::march::{MarchSettings, PredictError, WarmStart};
+use crate::predict::march::{PredictError, WarmStart};
 use nalgebra::{DMatrix, Matrix2};
 
 /// Step of the unbounded law parameters in the sensitivity marches.
@@ -113,13 +115,27 @@ pub fn survey_covariance(settings: &TrackingSettings, inc_rad: f64) -> Matrix2<f
     Matrix2::new(si * si, 0.0, 0.0, si * si + sr * sr)
 }
 
-/// The case's law with the filter's parameter estimates.
-fn law_of(case: &Case, filter: &FilterBank) -> BitRock {
+/// The case's law with the law parameters `parameters` at the unbounded values `u`.
+fn law_of(case: &Case, parameters: &[LawParameter], u: &[f64]) -> BitRock {
+    law_stepped(case, parameters, u, None)
+}
+
+/// As [`law_of`], with parameter `k` stepped by [`PARAMETER_STEP`] when `step` is `Some(k)`.
+fn law_stepped(case: &Case, parameters: &[LawParameter], u: &[f64], step: Option<usize>) -> BitRock {
     let mut br = case.bit_rock.clone();
-    for (p, u, _, _) in filter.parameters() {
-        p.set(&mut br, p.natural(u));
+    for (k, (p, u)) in parameters.iter().zip(u).enumerate() {
+        let du = if step == Some(k) { PARAMETER_STEP } else { 0.0 };
+        p.set(&mut br, p.natural(u + du));
     }
     br
+}
+
+/// The runs `runs` predicting with the laws `laws` (one per run).
+fn with_laws<'a>(runs: &[RunModel<'a>], laws: &'a [BitRock]) -> Vec<RunModel<'a>> {
+    runs.iter()
+        .zip(laws)
+        .map(|(r, law)| RunModel { bit_rock: law, ..*r })
+        .collect()
 }
 
 /// The direction of `path` at `md_m`.
@@ -131,23 +147,22 @@ fn direction_at(path: &WellPath, md_m: f64) -> Direction {
     }
 }
 
-/// The marches of `iv` with each law parameter of `filter` stepped by [`PARAMETER_STEP`] (in
-/// the unbounded variable), started from `warm`.
+/// The marches of `iv` by `runs` with the law `parameters` at `u` (unbounded), each stepped in
+/// turn by [`PARAMETER_STEP`], started from `warm`.
 fn stepped_marches(
-    case: &Case,
-    filter: &FilterBank,
+    runs: &[RunModel],
+    (parameters, u): (&[LawParameter], &[f64]),
     iv: &Interval,
-    settings: &MarchSettings,
     warm: &WarmStart,
 ) -> Result<Vec<WellPath>, PredictError> {
-    filter
-        .parameters()
-        .iter()
-        .map(|&(p, u, _, _)| {
-            let mut law = law_of(case, filter);
-            p.set(&mut law, p.natural(u + PARAMETER_STEP));
+    (0..parameters.len())
+        .map(|k| {
+            let laws: Vec<BitRock> = runs
+                .iter()
+                .map(|r| law_stepped(r.case, parameters, u, Some(k)))
+                .collect();
             let mut w = warm.clone();
-            Ok(predict_interval_path(case, &law, iv, settings, &mut w)?.path)
+            Ok(predict_interval_path(&with_laws(runs, &laws), iv, &mut w)?.path)
         })
         .collect()
 }
@@ -166,10 +181,12 @@ fn turn_sensitivity(path: &WellPath, stepped: &[WellPath], from_md: f64, to_md: 
     j
 }
 
-/// The model's side of the steps taken in: its turn and its sensitivity to the law parameters
-/// between two MDs, and its tendency held (rad/m) for the frozen bank.
+/// The model's side of the steps taken in: its turn (none where the model could not predict the
+/// hole: the assimilated bank then takes the stations in without observing a turn) and its
+/// sensitivity to the law parameters between two MDs, and its tendency held (rad/m) for the
+/// frozen bank.
 struct ModelSide<'a> {
-    turn: &'a dyn Fn(f64, f64) -> [f64; 2],
+    turn: Option<&'a dyn Fn(f64, f64) -> [f64; 2]>,
     sensitivity: &'a dyn Fn(f64, f64) -> DMatrix<f64>,
     kappa: [f64; 2],
 }
@@ -188,6 +205,9 @@ fn no_sensitivity(np: usize) -> impl Fn(f64, f64) -> DMatrix<f64> {
 struct Filters {
     filter: FilterBank,
     frozen: FilterBank,
+    /// The model's tendency held by the frozen assimilation (rad/m): the model's on the first
+    /// interval (of the first BHA run: pure statistics from there on, which know nothing of a
+    /// change of assembly).
     frozen_tendency: Option<[f64; 2]>,
 }
 
@@ -263,18 +283,23 @@ fn take_in(
         let (a, b) = (direction_at(path, st.from_md_m), direction_at(path, st.to_md_m));
         let measured = turn_between(&a, &b);
         let r = survey_covariance(tracking, b.inc_rad);
-        let m = model_turn(st.from_md_m, st.to_md_m);
         let dev = deviation_from_recent(case, st.from_md_m);
-        let excess = [m[0] - kappa[0] * d, m[1] - kappa[1] * d];
         f.filter.advance(d);
-        f.filter.observe(
-            [measured[0] - m[0], measured[1] - m[1]],
-            d,
-            &sensitivity(st.from_md_m, st.to_md_m),
-            &r,
-            dev,
-            excess,
-        );
+        match model_turn {
+            Some(turn) => {
+                let m = turn(st.from_md_m, st.to_md_m);
+                let excess = [m[0] - kappa[0] * d, m[1] - kappa[1] * d];
+                f.filter.observe(
+                    [measured[0] - m[0], measured[1] - m[1]],
+                    d,
+                    &sensitivity(st.from_md_m, st.to_md_m),
+                    &r,
+                    dev,
+                    excess,
+                );
+            }
+            None => f.filter.pass_station(&r),
+        }
         f.frozen.advance(d);
         f.frozen.observe(
             [measured[0] - kappa[0] * d, measured[1] - kappa[1] * d],
@@ -304,9 +329,19 @@ pub fn deviation_from_recent(case: &Case, md: f64) -> [f64; 2] {
 }
 
 /// Where the hole taken in behind the first interval (starting at `start_md`) begins: the
-/// tracking window above it, but not above the survey's first station.
+/// tracking window above it, but not above the survey's first station inclined
+/// [`DEFAULT_MIN_INCLINATION_DEG`] or more (in near-vertical hole build and turn have no
+/// direction to follow; the kick-off is steered) unless the interval starts above that.
 pub fn warm_up_start_md(case: &Case, start_md: f64, tracking: &TrackingSettings) -> f64 {
-    (start_md - tracking.window_m).max(case.well.path.md_start())
+    let path = &case.well.path;
+    let inclined = path
+        .stations()
+        .iter()
+        .find(|s| s.inc_rad >= DEFAULT_MIN_INCLINATION_DEG.to_radians())
+        .map_or(path.md_start(), |s| s.md_m);
+    (start_md - tracking.window_m)
+        .max(inclined.min(start_md))
+        .max(path.md_start())
 }
 
 /// Score both banks at `md` on the measured hole behind the first interval (see
@@ -328,15 +363,17 @@ fn score_behind(case: &Case, md: f64, kappa: [f64; 2], w: WarmUpScoring, trackin
     f.frozen.score(z, w.horizon_m, &DMatrix::zeros(2, 0), &r, dev, [0.0; 2]);
 }
 
-/// Assimilate the survey of `case` over the consecutive intervals `list`, predicting each with
-/// `settings`; `progress` hears (intervals done, intervals).
+/// Assimilate the survey of the well drilled by the BHA runs `runs` (see
+/// [`crate::predict::intervals::run_intervals`]; one run, or several sharing one survey) over
+/// the consecutive intervals `list`, each part of an interval predicted by the run that drilled
+/// it with the law the filter estimates; `progress` hears (intervals done, intervals).
 pub fn assimilate(
-    case: &Case,
+    runs: &[RunModel],
     list: &[Interval],
-    settings: &MarchSettings,
     tracking: &TrackingSettings,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Assimilation {
+    let case = runs[0].case;
     let priors: Vec<(LawParameter, f64, f64)> = tracking
         .parameters
         .iter()
@@ -354,24 +391,29 @@ pub fn assimilate(
     };
     let mut out = Vec::with_capacity(list.len());
     let mut skipped = Vec::new();
-    let mut warm: WarmStart = None;
+    let mut last_end = LastEnd::default();
     for (k, iv) in list.iter().enumerate() {
-        match assimilate_interval(case, iv, settings, tracking, &mut f, &mut warm) {
-            Ok(a) => out.push(a),
+        let mut warm = last_end.take_for(runs, iv);
+        match assimilate_interval(runs, iv, tracking, &mut f, &mut warm) {
+            Ok(a) => {
+                out.push(a);
+                last_end = LastEnd::of(runs, iv, warm);
+            }
             Err(e) => {
                 tracing::warn!(from = iv.from_md_m, to = iv.to_md_m, error = %e, "interval skipped");
                 skipped.push((*iv, e));
-                // the next interval starts cold, as a plain back-analysis's does
-                warm = None;
-                // the stations of the interval still come in, against the frozen tendency
-                let kappa = f.frozen_tendency.unwrap_or([0.0; 2]);
-                let (turn, sensitivity) = (held_turn(kappa), no_sensitivity(f.filter.parameter_count()));
-                let model = ModelSide {
-                    turn: &turn,
-                    sensitivity: &sensitivity,
-                    kappa,
-                };
-                take_in(case, (iv.from_md_m, iv.to_md_m), &model, tracking, &mut f, None);
+                // the interval's stations still come in: into the frozen bank against its held
+                // tendency; the assimilated bank, with no model turn to compare, only passes
+                // them (before the first prediction, the next interval's warm-up takes them in)
+                if let Some(kappa) = f.frozen_tendency {
+                    let sensitivity = no_sensitivity(f.filter.parameter_count());
+                    let model = ModelSide {
+                        turn: None,
+                        sensitivity: &sensitivity,
+                        kappa,
+                    };
+                    take_in(case, (iv.from_md_m, iv.to_md_m), &model, tracking, &mut f, None);
+                }
             }
         }
         progress(k + 1, list.len());
@@ -403,7 +445,7 @@ pub fn banks_behind(
     };
     let (turn, sensitivity) = (held_turn(kappa), no_sensitivity(0));
     let model = ModelSide {
-        turn: &turn,
+        turn: Some(&turn),
         sensitivity: &sensitivity,
         kappa,
     };
@@ -418,18 +460,21 @@ pub fn banks_behind(
 /// Predict one interval with the filters' corrections (the first one after warming them up on
 /// the hole behind it), then take in its measured stations.
 fn assimilate_interval(
-    case: &Case,
+    runs: &[RunModel],
     iv: &Interval,
-    settings: &MarchSettings,
     tracking: &TrackingSettings,
     f: &mut Filters,
     warm: &mut WarmStart,
 ) -> Result<AssimilatedInterval, PredictError> {
+    let case = runs[0].case;
     let len = iv.to_md_m - iv.from_md_m;
     let start_warm = warm.clone();
-    let pred = predict_interval_path(case, &law_of(case, &f.filter), iv, settings, warm)?;
+    let parameters: Vec<LawParameter> = f.filter.parameters().iter().map(|p| p.0).collect();
+    let u = f.filter.linearize();
+    let laws: Vec<BitRock> = runs.iter().map(|r| law_of(r.case, &parameters, &u)).collect();
+    let pred = predict_interval_path(&with_laws(runs, &laws), iv, warm)?;
     let plain = result_of(iv, &pred);
-    let stepped = stepped_marches(case, &f.filter, iv, settings, &start_warm)?;
+    let stepped = stepped_marches(runs, (&parameters, &u), iv, &start_warm)?;
     let start = direction_at(&case.well.path, iv.from_md_m);
     let march_end = direction_at(&pred.path, iv.to_md_m);
     let kappa = match f.frozen_tendency {
@@ -445,7 +490,7 @@ fn assimilate_interval(
             };
             let (turn, sensitivity) = (held_turn(k), no_sensitivity(f.filter.parameter_count()));
             let model = ModelSide {
-                turn: &turn,
+                turn: Some(&turn),
                 sensitivity: &sensitivity,
                 kappa: k,
             };
@@ -462,7 +507,10 @@ fn assimilate_interval(
         correction_deg = ?correction.map(f64::to_degrees),
         offset = ?f.filter.offset().0.map(|x| (x * 30.0).to_degrees()),
         fluctuation = ?f.filter.fluctuation().map(|x| (x * 30.0).to_degrees()),
+        fluctuation_sd = ?f.filter.fluctuation_sd().map(|x| (x * 30.0).to_degrees()),
+        offset_sd = ?f.filter.offset().1.map(|x| (x * 30.0).to_degrees()),
         weights = ?f.filter.weights().iter().map(|w| (w * 100.0).round() / 100.0).collect::<Vec<_>>(),
+        parameters = ?f.filter.parameters().iter().map(|&(p, u, sd, _)| (p.natural(u), sd * p.slope(u).abs())).collect::<Vec<_>>(),
         "assimilated interval"
     );
     let assimilated = turned(&march_end, correction);
@@ -504,7 +552,7 @@ fn assimilate_interval(
     let turn = |a: f64, b: f64| turn_between(&direction_at(model_path, a), &direction_at(model_path, b));
     let sensitivity = |a: f64, b: f64| turn_sensitivity(model_path, &stepped, a, b);
     let model = ModelSide {
-        turn: &turn,
+        turn: Some(&turn),
         sensitivity: &sensitivity,
         kappa,
     };

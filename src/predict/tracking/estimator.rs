@@ -5,7 +5,7 @@
 //! and toward the right, rad) is the model's turn plus
 //!
 //! ```text
-//! (b + a) d + J dp + e_new - e_old
+//! (b + a) d + J (p - p_lin) + e_new - e_old
 //! ```
 //!
 //! per component, with the state `x = [b_h, b_r, a_h, a_r, e_h, e_r, p_1 .. p_n]`:
@@ -19,7 +19,9 @@
 //!   difference of its two stations' errors, so consecutive steps share one, which the state
 //!   keeps exact;
 //! - `p`: bit-rock law parameters in the calibration's unbounded variables, with `J` the
-//!   sensitivity of the model's turn to them (by differences of marches).
+//!   sensitivity of the model's turn to them (by differences of marches) and `p_lin` the values
+//!   the model's turn was computed with (the bank's estimate when the interval was predicted;
+//!   the caller hands in `z + J p_lin`, see [`super::bank::FilterBank::observe`]).
 //!
 //! A prediction over `L` from the last station is the model's (started on the measured, noisy
 //! direction) corrected by `b L + a G(L) - e`, with `G(L) = d phi (1 - phi^n) / (1 - phi)` over
@@ -31,7 +33,7 @@ use crate::case::tracking::TrackingSettings;
 use nalgebra::{DMatrix, DVector, Matrix2};
 
 /// Prior weight of the fluctuation variance in its adaptation, in observations.
-pub const FLUCTUATION_PRIOR_WEIGHT: f64 = 3.0;
+pub const FLUCTUATION_PRIOR_WEIGHT: f64 = 1.0;
 
 /// Smallest fluctuation standard deviation the adaptation may reach, as a fraction of the prior.
 pub const MIN_FLUCTUATION_FRACTION: f64 = 0.05;
@@ -213,6 +215,25 @@ impl TendencyFilter {
         }
         self.x = xa.rows(0, n).into_owned();
         self.p = pa.view((0, 0), (n, n)).into_owned();
+    }
+
+    /// A new station of survey covariance `new_station` ends the step just advanced to, with no
+    /// turn observed over it (the model could not predict it): the state learns nothing, and
+    /// the last station's error becomes the new station's, unknown but for its covariance.
+    pub fn pass_station(&mut self, new_station: &Matrix2<f64>) {
+        let n = self.x.len();
+        for c in 0..2 {
+            self.x[E + c] = 0.0;
+            for j in 0..n {
+                self.p[(E + c, j)] = 0.0;
+                self.p[(j, E + c)] = 0.0;
+            }
+        }
+        for c in 0..2 {
+            for d in 0..2 {
+                self.p[(E + c, E + d)] = new_station[(c, d)];
+            }
+        }
     }
 
     /// Covariance matching: each observation indicates the fluctuation variance that would
