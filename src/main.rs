@@ -21,6 +21,7 @@ fn main() -> ExitCode {
         .with_env_filter(filter)
         .with_writer(|| LogWriter)
         .without_time()
+        .with_ansi(std::io::IsTerminal::is_terminal(&std::io::stderr()))
         .init();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,

@@ -49,6 +49,8 @@ pub enum Dimension {
     RotarySpeed,
     /// Dynamic viscosity, Pa.s.
     Viscosity,
+    /// Time, s.
+    Time,
     /// No unit.
     Dimensionless,
 }
@@ -67,6 +69,7 @@ impl fmt::Display for Dimension {
             Dimension::Pressure => "pressure or modulus",
             Dimension::RotarySpeed => "rotary speed",
             Dimension::Viscosity => "viscosity",
+            Dimension::Time => "time",
             Dimension::Dimensionless => "dimensionless number",
         };
         f.write_str(s)
@@ -138,6 +141,9 @@ const TABLE: &[(&[&str], Dimension, f64)] = &[
     (&["rad/s"], Dimension::RotarySpeed, 1.0),
     (&["Pa.s", "Pas", "Pa*s"], Dimension::Viscosity, 1.0),
     (&["mPa.s", "mPas", "cP", "cp"], Dimension::Viscosity, 1e-3),
+    (&["s", "sec", "second", "seconds"], Dimension::Time, 1.0),
+    (&["min", "minute", "minutes"], Dimension::Time, 60.0),
+    (&["h", "hr", "hour", "hours"], Dimension::Time, 3600.0),
     (&["-", "1"], Dimension::Dimensionless, 1.0),
 ];
 

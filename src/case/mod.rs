@@ -53,6 +53,13 @@ pub struct Case {
 pub const ABOVE_SURVEY_NOTE_M: f64 = 1.0;
 
 impl Case {
+    /// Every file the case was read from: the case file, its survey and its caliper.
+    pub fn input_files(&self) -> Vec<PathBuf> {
+        let mut files = vec![self.path.clone(), self.well.survey_path.clone()];
+        files.extend(self.well.caliper_path.clone());
+        files
+    }
+
     /// The assumption made when the string reaches above the first survey station (a survey
     /// that starts at a tie-in): the hole there is the straight line along the first
     /// station's direction ([`crate::geometry::WellPath::point_at`]), which the hook load,

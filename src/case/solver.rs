@@ -12,6 +12,13 @@ pub enum Method {
     Paper,
 }
 
+/// Default wall-clock limit of one solve, s (`[solver] time_limit`).
+pub const DEFAULT_TIME_LIMIT_S: f64 = 120.0;
+
+/// Most elements a string model may have (`element_length` and `bha_element_length` over the
+/// string's length); a finer mesh is refused by the case reader with the remedy.
+pub const MAX_ELEMENTS: f64 = 50_000.0;
+
 /// Solver settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SolverSettings {
@@ -29,6 +36,8 @@ pub struct SolverSettings {
     pub max_iterations: usize,
     /// Paper scheme's gradient-update factor alpha in (0, 1).
     pub alpha: f64,
+    /// Wall-clock limit of one solve, s (`time_limit`).
+    pub time_limit_s: f64,
     /// The accuracy preset that set the defaults above (`[solver] accuracy` or `--accuracy`),
     /// None when the documented defaults and explicit keys apply.
     pub accuracy: Option<Accuracy>,
@@ -44,6 +53,7 @@ impl Default for SolverSettings {
             method: Method::Newton,
             max_iterations: 300,
             alpha: 0.7,
+            time_limit_s: DEFAULT_TIME_LIMIT_S,
             accuracy: None,
         }
     }

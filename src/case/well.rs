@@ -10,6 +10,8 @@ pub struct Well {
     pub survey: SurveyFile,
     /// Survey file path.
     pub survey_path: PathBuf,
+    /// Caliper file path, when the case names one.
+    pub caliper_path: Option<PathBuf>,
     /// Hole axis.
     pub path: WellPath,
     /// Hole diameter by MD.

@@ -69,19 +69,25 @@ pub struct PredictArgs {
     #[arg(required = true, num_args = 1..)]
     pub cases: Vec<PathBuf>,
     /// Start MD: the hole is the survey up to here [default: the last survey station].
-    #[arg(long, value_name = "MD")]
+    #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub from: Option<String>,
     /// End MD of the prediction (e.g. "413 m", 1500ft) [default: none; give --to or --ahead].
-    #[arg(long, value_name = "MD", conflicts_with = "ahead", required_unless_present = "ahead")]
+    #[arg(
+        long,
+        value_name = "MD",
+        conflicts_with = "ahead",
+        required_unless_present = "ahead",
+        allow_hyphen_values = true
+    )]
     pub to: Option<String>,
     /// Length to drill ahead of --from instead of --to (e.g. "60 m") [default: none].
-    #[arg(long, value_name = "LENGTH")]
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub ahead: Option<String>,
     /// Step length [default: the case's `[bit_rock]` step, 1 m].
-    #[arg(long, value_name = "LENGTH")]
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub step: Option<String>,
     /// Distance from the bit where the stiff model is cut [default: automatic, see docs/guide.md, "The stiff BHA model"].
-    #[arg(long, value_name = "LENGTH")]
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub cut: Option<String>,
     /// Richardson extrapolation in the step: march at --step and at half of it, combine the two
     /// (error ~ step^2 cancels; about 3x the time of one march) and report the step-error
@@ -126,22 +132,22 @@ pub struct BackanalyzeArgs {
     #[arg(long, value_name = "LIST", default_value = "lateral_drillability,walk_angle")]
     pub fit: String,
     /// Fraction of the intervals (from the top) used for calibration.
-    #[arg(long, value_name = "FRACTION", default_value_t = 0.5)]
+    #[arg(long, value_name = "FRACTION", default_value_t = 0.5, allow_hyphen_values = true)]
     pub split: f64,
     /// Shortest interval: each interval ends at the first station at least this far below its
     /// start [default: the next station].
-    #[arg(long, value_name = "LENGTH")]
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub horizon: Option<String>,
     /// First interval starts at the first station at or below this MD [default: the first
     /// station inclined 3 deg or more, with at least 30 m of hole above it, below the hole
     /// sections wider than the bit (drilled by another BHA)].
-    #[arg(long, value_name = "MD")]
+    #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub from: Option<String>,
     /// No interval ends below this MD [default: the last station].
-    #[arg(long, value_name = "MD")]
+    #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub to: Option<String>,
     /// Step length [default: the case's `[bit_rock]` step, 1 m].
-    #[arg(long, value_name = "LENGTH")]
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub step: Option<String>,
     /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate) [default: no files].
     #[arg(long, value_name = "DIR")]
@@ -160,7 +166,7 @@ pub struct SolveArgs {
     /// Case file (.toml).
     pub case: PathBuf,
     /// Bit measured depth (e.g. "2500 m", 8200ft; bare number = m) [default: the case's bit_md].
-    #[arg(long, value_name = "MD")]
+    #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub bit_md: Option<String>,
     /// Write summary.json and string.csv into this directory [default: no files].
     #[arg(long, value_name = "DIR")]
@@ -203,13 +209,13 @@ pub struct LoadsArgs {
     pub case: PathBuf,
     /// Shallowest bit depth (e.g. "500 m", 1500ft; bare number = m) [default: 0; depths at the
     /// top of the survey are skipped].
-    #[arg(long, value_name = "MD")]
+    #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub from: Option<String>,
     /// Deepest bit depth [default: the case's bit_md].
-    #[arg(long, value_name = "MD")]
+    #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub to: Option<String>,
     /// Bit depth step [default: 30 m].
-    #[arg(long, value_name = "LENGTH")]
+    #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub every: Option<String>,
     /// Write loads.csv (and calibration.csv, calibration.json with --measured) into this directory
     /// [default: no files].
@@ -231,7 +237,7 @@ pub struct LoadsArgs {
     #[arg(long, value_name = "FILE")]
     pub measured: Option<PathBuf>,
     /// Weight on bit of the drilling and sliding rows (e.g. "100 kN", "20 klbf") [default: the case's wob].
-    #[arg(long, value_name = "FORCE")]
+    #[arg(long, value_name = "FORCE", allow_hyphen_values = true)]
     pub wob: Option<String>,
     /// Units shown on stdout: si or oilfield (loads.csv and the calibration files stay SI).
     #[arg(long, value_enum, default_value = "si")]

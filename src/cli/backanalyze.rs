@@ -2,30 +2,35 @@
 //! calibration of the bit-rock law (calibrated on the first part, scored on the rest).
 
 use super::args::BackanalyzeArgs;
+use super::outputs::{names, Outputs};
 use super::predict::{load_for_prediction, prediction_choice, settings_for};
 use super::progress::Progress;
-use super::{length_opt, parse_length_option};
+use super::{bare_unit, length_opt, parse_length_option};
 use crate::case::Case;
 use crate::predict::backanalysis::Progress as Stage;
 use crate::predict::backanalysis::{plan, run as run_backanalysis, BackanalysisRequest, CalibrationRequest};
 use crate::predict::calibrate::FitParameter;
 use crate::predict::march::MIN_STEP_M;
+use crate::report::json_text;
 use crate::report::predict_output::{backanalysis_csv, fitted_toml, BackanalysisRun, BackanalysisSummary};
+use crate::report::predict_report::backanalyze_html;
 use crate::report::predict_text::write_backanalysis;
-use crate::report::{json_text, write_atomic};
-use anyhow::{anyhow, bail, Context};
+use anyhow::{anyhow, bail};
 use std::io::Write;
 use std::path::Path;
 
-/// The back-analysis asked by the command line (options validated, SI).
-fn request(a: &BackanalyzeArgs) -> anyhow::Result<BackanalysisRequest> {
+/// The back-analysis asked by the command line (options validated, SI; bare numbers in `unit`).
+fn request(a: &BackanalyzeArgs, unit: &str) -> anyhow::Result<BackanalysisRequest> {
     let from_md_m = a
         .from
         .as_deref()
-        .map(|t| parse_length_option("--from", t))
+        .map(|t| parse_length_option("--from", t, unit))
         .transpose()?;
-    let to_md_m = a.to.as_deref().map(|t| parse_length_option("--to", t)).transpose()?;
-    let horizon_m = length_opt("--horizon", &a.horizon, 0.0)?.unwrap_or(0.0);
+    let to_md_m =
+        a.to.as_deref()
+            .map(|t| parse_length_option("--to", t, unit))
+            .transpose()?;
+    let horizon_m = length_opt("--horizon", &a.horizon, 0.0, unit)?.unwrap_or(0.0);
     if !(a.split > 0.0 && a.split < 1.0) {
         bail!("option `--split`: {} must lie strictly between 0 and 1", a.split);
     }
@@ -58,14 +63,33 @@ fn request(a: &BackanalyzeArgs) -> anyhow::Result<BackanalysisRequest> {
     })
 }
 
+/// The run's outputs, checked against its inputs before any work.
+fn declared_outputs(a: &BackanalyzeArgs, cases: &[Case]) -> anyhow::Result<Outputs> {
+    let mut outputs = Outputs::new();
+    for c in cases {
+        outputs.case_inputs(c);
+    }
+    if let Some(dir) = &a.out {
+        let mut files = vec!["trajectory.csv", "summary.json"];
+        if a.calibrate {
+            files.push("bit_rock_fitted.toml");
+        }
+        outputs.dir("--out", dir, &names(&files))?;
+    }
+    if let Some(file) = &a.view.report {
+        outputs.file("--report", file)?;
+    }
+    Ok(outputs)
+}
+
 /// Run the command (`quiet`: no progress bar).
 pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
-    let step = length_opt("--step", &a.step, MIN_STEP_M)?;
     let mut cases = Vec::with_capacity(a.cases.len());
     let mut settings = Vec::with_capacity(a.cases.len());
     let mut choices = Vec::with_capacity(a.cases.len());
     for path in &a.cases {
         let mut c = load_for_prediction(path)?;
+        let step = length_opt("--step", &a.step, MIN_STEP_M, bare_unit(&c))?;
         let choice = prediction_choice(&mut c, &a.model.fidelity, &a.model.accuracy)?;
         settings.push(settings_for(&c, step, None, &choice)?);
         choices.push(choice);
@@ -73,7 +97,8 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     }
     let (case, choice) = (&cases[0], &choices[0]);
     let case_file = &a.cases[0];
-    let req = request(&a)?;
+    let req = request(&a, bare_unit(case))?;
+    let mut outputs = declared_outputs(&a, &cases)?;
     let name = case_file.display().to_string();
     let plan = plan(case, &req).map_err(|e| anyhow!("{name}: {e}"))?;
     let bar = Progress::new(plan.intervals.len() as u64, &format!("backanalyze {name}"), quiet);
@@ -119,21 +144,16 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let internal = |e: String| anyhow!("internal error: {e}");
     let summary = json_text(&BackanalysisSummary::new(&shown)).map_err(internal)?;
     if let Some(dir) = &a.out {
-        let ctx = || format!("cannot write into {}", dir.display());
-        let csv = backanalysis_csv(&b).map_err(internal)?;
-        write_atomic(&dir.join("trajectory.csv"), csv.as_bytes()).with_context(ctx)?;
+        outputs.stage(dir.join("trajectory.csv"), backanalysis_csv(&b).map_err(internal)?);
         if let Some(c) = &b.calibration {
-            write_atomic(
-                &dir.join("bit_rock_fitted.toml"),
-                fitted_toml(&c.calibration).as_bytes(),
-            )
-            .with_context(ctx)?;
+            outputs.stage(dir.join("bit_rock_fitted.toml"), fitted_toml(&c.calibration));
         }
-        write_atomic(&dir.join("summary.json"), summary.as_bytes()).with_context(ctx)?;
+        outputs.stage(dir.join("summary.json"), summary.as_bytes());
     }
     if let Some(file) = &a.view.report {
-        crate::report::predict_report::write_backanalyze(file, case, &b, a.view.units)?;
+        outputs.stage(file.clone(), backanalyze_html(case, &b, a.view.units)?);
     }
+    outputs.commit()?;
     let mut out = std::io::stdout().lock();
     if a.view.json {
         writeln!(out, "{summary}")?;
@@ -142,6 +162,9 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     write_backanalysis(&mut out, &shown, a.view.units)?;
     if let Some(dir) = &a.out {
         writeln!(out, "  wrote {}", dir.display())?;
+    }
+    if let Some(file) = &a.view.report {
+        writeln!(out, "  wrote {}", file.display())?;
     }
     Ok(())
 }

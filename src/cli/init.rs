@@ -1,7 +1,7 @@
 //! `drillpath init`: write a commented starter case and its survey CSV for a user to edit.
 
-use crate::report::write_atomic;
-use anyhow::{bail, Context};
+use super::outputs::Outputs;
+use anyhow::bail;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -148,13 +148,16 @@ pub fn run(case: PathBuf, force: bool) -> anyhow::Result<()> {
         .unwrap_or(Path::new("."))
         .to_path_buf();
     let survey = dir.join(SURVEY_FILE);
+    let mut outputs = Outputs::new();
     for p in [&case, &survey] {
         if p.exists() && !force {
             bail!("{} exists; not overwritten (use --force)", p.display());
         }
+        outputs.file("FILE", p)?;
     }
-    write_atomic(&survey, starter_survey().as_bytes()).with_context(|| format!("cannot write {}", survey.display()))?;
-    write_atomic(&case, STARTER_CASE.as_bytes()).with_context(|| format!("cannot write {}", case.display()))?;
+    outputs.stage(survey.clone(), starter_survey());
+    outputs.stage(case.clone(), STARTER_CASE);
+    outputs.commit()?;
     let mut out = std::io::stdout().lock();
     writeln!(out, "wrote {} and {}", case.display(), survey.display())?;
     writeln!(out, "next: drillpath solve {}", case.display())?;

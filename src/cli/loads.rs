@@ -2,6 +2,7 @@
 //! calibration (computed by [`crate::loads::run`], printed by [`crate::report::loads_text`]).
 
 use super::args::LoadsArgs;
+use super::outputs::{names, Outputs};
 use super::progress::Progress;
 use super::{apply_accuracy_option, fidelity_option, length_opt};
 use crate::case::fidelity::{choose, Choice, Level, Purpose};
@@ -10,11 +11,10 @@ use crate::error::InputError;
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::io::measured_csv::read_measured_csv;
 use crate::loads::run::{bit_depth_range, plan, run as run_chart, ChartError, ChartRequest};
+use crate::report::json_text;
 use crate::report::loads_output::{loads_csv, overlay_csv, CalibrationSummary};
 use crate::report::loads_text::write_loads;
-use crate::report::{json_text, write_atomic};
 use crate::units::{parse_quantity, Dimension};
-use anyhow::Context;
 use std::io::Write;
 use std::path::Path;
 
@@ -24,11 +24,11 @@ pub const DEFAULT_EVERY_M: f64 = 30.0;
 /// The bit-depth options of the command line, validated, SI: from, to, every (m) and WOB (N).
 type DepthOptions = (f64, Option<f64>, f64, Option<f64>);
 
-/// Parse and check `--from`, `--to`, `--every` and `--wob`.
-fn depth_options(a: &LoadsArgs) -> anyhow::Result<DepthOptions> {
-    let from_md_m = length_opt("--from", &a.from, 0.0)?.unwrap_or(0.0);
-    let to_md_m = length_opt("--to", &a.to, f64::NEG_INFINITY)?;
-    let every_m = length_opt("--every", &a.every, f64::NEG_INFINITY)?.unwrap_or(DEFAULT_EVERY_M);
+/// Parse and check `--from`, `--to`, `--every` (bare numbers in `unit`) and `--wob`.
+fn depth_options(a: &LoadsArgs, unit: &str) -> anyhow::Result<DepthOptions> {
+    let from_md_m = length_opt("--from", &a.from, 0.0, unit)?.unwrap_or(0.0);
+    let to_md_m = length_opt("--to", &a.to, f64::NEG_INFINITY, unit)?;
+    let every_m = length_opt("--every", &a.every, f64::NEG_INFINITY, unit)?.unwrap_or(DEFAULT_EVERY_M);
     let wob_n = a
         .wob
         .as_deref()
@@ -77,14 +77,33 @@ fn chart_error(e: ChartError, a: &LoadsArgs) -> anyhow::Error {
     }
 }
 
+/// The run's outputs, checked against its inputs (the case and the measured file) before any
+/// work.
+fn declared_outputs(a: &LoadsArgs, case: &Case) -> anyhow::Result<Outputs> {
+    let mut outputs = Outputs::new();
+    outputs.case_inputs(case);
+    if let Some(m) = &a.measured {
+        outputs.input(m);
+    }
+    if let Some(dir) = &a.out {
+        let mut files = vec!["loads.csv"];
+        if a.measured.is_some() {
+            files.extend(["calibration.csv", "calibration.json"]);
+        }
+        outputs.dir("--out", dir, &names(&files))?;
+    }
+    Ok(outputs)
+}
+
 /// Run the command (`quiet`: no progress bar).
 pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
-    let options = depth_options(&a)?;
     let mut case = load_case(&a.case, &CaseOverrides::default())?;
+    let options = depth_options(&a, super::bare_unit(&case))?;
     if case.string.components.is_empty() {
         return Err(chart_error(ChartError::NoString, &a));
     }
     apply_accuracy_option(a.accuracy.as_deref(), &mut case.solver)?;
+    let mut outputs = declared_outputs(&a, &case)?;
     let req = request(&a, &case, options)?;
     let plan = plan(&case, &req).map_err(|e| chart_error(e, &a))?;
     let depth_unit = a.units.depth();
@@ -106,22 +125,14 @@ pub fn run(a: LoadsArgs, quiet: bool) -> anyhow::Result<()> {
     let chart = chart.map_err(|e| chart_error(e, &a))?;
     let internal = |e: String| anyhow::anyhow!("internal error: {e}");
     if let Some(dir) = &a.out {
-        let ctx = || format!("cannot write {}", dir.display());
         if let Some(cal) = &chart.calibration {
-            write_atomic(
-                &dir.join("calibration.csv"),
-                overlay_csv(cal).map_err(internal)?.as_bytes(),
-            )
-            .with_context(ctx)?;
+            outputs.stage(dir.join("calibration.csv"), overlay_csv(cal).map_err(internal)?);
             let json = json_text(&CalibrationSummary::new(cal)).map_err(internal)?;
-            write_atomic(&dir.join("calibration.json"), json.as_bytes()).with_context(ctx)?;
+            outputs.stage(dir.join("calibration.json"), json);
         }
-        write_atomic(
-            &dir.join("loads.csv"),
-            loads_csv(&chart.rows).map_err(internal)?.as_bytes(),
-        )
-        .with_context(ctx)?;
+        outputs.stage(dir.join("loads.csv"), loads_csv(&chart.rows).map_err(internal)?);
     }
+    outputs.commit()?;
     let mut out = std::io::stdout().lock();
     write_loads(&mut out, &case, &a.case, &plan, &chart, a.units)?;
     match &a.out {

@@ -4,6 +4,7 @@ pub mod args;
 pub mod backanalyze;
 pub mod init;
 pub mod loads;
+pub mod outputs;
 pub mod predict;
 pub mod progress;
 pub mod solve;
@@ -25,15 +26,32 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     }
 }
 
-/// Parse a command-line length (`"30 m"`, `9000ft`; bare number = m) for option `name`.
-pub fn parse_length_option(name: &str, text: &str) -> Result<f64, InputError> {
-    parse_quantity(text, Dimension::Length, "m").map_err(|m| InputError::option(name, m))
+/// Parse a command-line length (`"30 m"`, `9000ft`) for option `name`; a bare number is in
+/// `bare_unit` (the survey's measured-depth unit, see [`bare_unit`]), and a note says so when
+/// that is not m.
+pub fn parse_length_option(name: &str, text: &str, bare_unit: &str) -> Result<f64, InputError> {
+    let value = parse_quantity(text, Dimension::Length, bare_unit).map_err(|m| InputError::option(name, m))?;
+    if bare_unit != "m" && text.trim().parse::<f64>().is_ok() {
+        tracing::warn!(
+            "option `{name}`: the bare number {} is read in {bare_unit}, the unit of the survey's measured depths (give the unit, e.g. \"{} m\", for another)",
+            text.trim(),
+            text.trim()
+        );
+    }
+    Ok(value)
 }
 
-/// Parse an optional length option (`None` when not given), refusing values below `min` (m).
-pub fn length_opt(name: &str, v: &Option<String>, min: f64) -> anyhow::Result<Option<f64>> {
+/// The unit of bare numbers in the command line's depth and length options for `case`: the
+/// unit its survey's measured depths were read in.
+pub fn bare_unit(case: &crate::case::Case) -> &str {
+    &case.well.survey.md_unit
+}
+
+/// Parse an optional length option (`None` when not given; bare numbers in `bare_unit`),
+/// refusing values below `min` (m).
+pub fn length_opt(name: &str, v: &Option<String>, min: f64, bare_unit: &str) -> anyhow::Result<Option<f64>> {
     let Some(t) = v else { return Ok(None) };
-    let x = parse_length_option(name, t)?;
+    let x = parse_length_option(name, t, bare_unit)?;
     if x.is_nan() || x < min {
         anyhow::bail!("option `{name}`: {x} m is below the smallest accepted value {min} m");
     }

@@ -2,18 +2,20 @@
 //! comparison of several BHAs.
 
 use super::args::PredictArgs;
+use super::outputs::{names, Outputs};
 use super::progress::Progress;
-use super::{length_opt, parse_length_option};
+use super::{bare_unit, length_opt, parse_length_option};
 use crate::case::fidelity::{Choice, Level, Purpose};
 use crate::case::Case;
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::forecast::{forecast, settings_at_level, Forecast, ForecastRequest};
 use crate::predict::march::{MarchSettings, MIN_STEP_M};
 use crate::report::display_units::UnitSystem;
+use crate::report::json_text;
 use crate::report::predict_output::{comparison_csv, forecast_csv, ComparisonSummary, PredictSummary};
+use crate::report::predict_report::predict_html;
 use crate::report::predict_text::{comparison_table, write_forecast};
-use crate::report::{json_text, write_atomic};
-use anyhow::{bail, Context};
+use anyhow::bail;
 use std::io::Write;
 use std::path::Path;
 
@@ -87,13 +89,25 @@ struct CaseRun {
     forecast: Forecast,
 }
 
-fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::Result<CaseRun> {
+/// A case loaded with its model choice, before the march.
+struct Loaded {
+    case: Case,
+    choice: Choice,
+}
+
+fn load(path: &Path, a: &PredictArgs) -> anyhow::Result<Loaded> {
     let mut case = load_for_prediction(path)?;
     let choice = prediction_choice(&mut case, &a.model.fidelity, &a.model.accuracy)?;
+    Ok(Loaded { case, choice })
+}
+
+fn run_case(loaded: Loaded, path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::Result<CaseRun> {
+    let Loaded { case, choice } = loaded;
     let survey = &case.well.path;
+    let unit = bare_unit(&case);
     let from = match &a.from {
-        Some(t) => parse_length_option("--from", t)?,
-        None => survey.md_end(),
+        Some(t) => parse_length_option("--from", t, unit)?,
+        None => case.operation.bit_md_m,
     };
     if from < survey.md_start() - 1e-9 || from > survey.md_end() + 1e-9 {
         bail!(
@@ -104,15 +118,28 @@ fn run_case(path: &Path, a: &PredictArgs, label: &str, quiet: bool) -> anyhow::R
         );
     }
     let to = match (&a.to, &a.ahead) {
-        (Some(t), _) => parse_length_option("--to", t)?,
-        (None, Some(t)) => from + parse_length_option("--ahead", t)?,
+        (Some(t), _) => parse_length_option("--to", t, unit)?,
+        (None, Some(t)) => {
+            let ahead = parse_length_option("--ahead", t, unit)?;
+            if ahead.is_nan() || ahead <= 0.0 {
+                bail!("option `--ahead`: the length to drill ahead must be positive, not {ahead} m");
+            }
+            from + ahead
+        }
         (None, None) => bail!("give --to or --ahead"),
     };
-    if to < from {
-        bail!("option `--to`: {to:.2} m is above the start {from:.2} m");
+    if to <= from {
+        bail!("option `--to`: {to:.2} m is not below the start {from:.2} m");
     }
-    let step = length_opt("--step", &a.step, MIN_STEP_M)?;
-    let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M)?;
+    let deepest = case.well.hole.deepest_md();
+    if to > deepest + 1e-6 {
+        tracing::warn!(
+            "{}: the bit runs below the deepest hole section ({deepest:.2} m MD) to {to:.2} m: the hole there is taken as the bit's diameter",
+            path.display()
+        );
+    }
+    let step = length_opt("--step", &a.step, MIN_STEP_M, unit)?;
+    let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M, unit)?;
     let settings = settings_for(&case, step, cut, &choice)?;
     let step_m = settings.step_m;
     if a.extrapolate && step_m < 2.0 * MIN_STEP_M - 1e-9 {
@@ -189,16 +216,45 @@ impl StepProgress {
     }
 }
 
+/// The run's outputs, checked against its inputs before any work.
+fn declared_outputs(a: &PredictArgs, loaded: &[Loaded]) -> anyhow::Result<Outputs> {
+    let mut outputs = Outputs::new();
+    for l in loaded {
+        outputs.case_inputs(&l.case);
+    }
+    if let Some(dir) = &a.out {
+        let mut files = names(&["trajectory.csv", "summary.json"]);
+        if loaded.len() > 1 {
+            files = vec!["summary.json".into(), "comparison.csv".into()];
+            for k in 1..=loaded.len() {
+                files.push(format!("case{k}/trajectory.csv"));
+                files.push(format!("case{k}/summary.json"));
+            }
+        }
+        outputs.dir("--out", dir, &files)?;
+    }
+    if let Some(file) = &a.view.report {
+        outputs.file("--report", file)?;
+    }
+    Ok(outputs)
+}
+
 /// Run the command (`quiet`: no progress bar).
 pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
+    let loaded = a
+        .cases
+        .iter()
+        .map(|p| load(p, &a))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let mut outputs = declared_outputs(&a, &loaded)?;
     let mut runs = Vec::new();
-    for (k, path) in a.cases.iter().enumerate() {
+    for ((k, path), l) in a.cases.iter().enumerate().zip(loaded) {
         let label = if a.cases.len() > 1 {
             format!("predict {}/{} {}", k + 1, a.cases.len(), path.display())
         } else {
             format!("predict {}", path.display())
         };
-        runs.push(run_case(path, &a, &label, quiet)?);
+        runs.push(run_case(l, path, &a, &label, quiet)?);
     }
     let internal = |e: String| anyhow::anyhow!("internal error: {e}");
     let single = runs.len() == 1;
@@ -215,26 +271,23 @@ pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
     .map_err(internal)?;
     let pairs: Vec<(&Case, &Forecast)> = runs.iter().map(|r| (&r.case, &r.forecast)).collect();
     if let Some(dir) = &a.out {
-        let ctx = || format!("cannot write into {}", dir.display());
         let csv = |f: &Forecast| forecast_csv(f).map_err(internal);
         if single {
-            write_atomic(&dir.join("trajectory.csv"), csv(&runs[0].forecast)?.as_bytes()).with_context(ctx)?;
+            outputs.stage(dir.join("trajectory.csv"), csv(&runs[0].forecast)?);
         } else {
             for (k, (r, s)) in runs.iter().zip(&summaries).enumerate() {
                 let sub = dir.join(format!("case{}", k + 1));
-                write_atomic(&sub.join("trajectory.csv"), csv(&r.forecast)?.as_bytes()).with_context(ctx)?;
-                write_atomic(&sub.join("summary.json"), json_text(s).map_err(internal)?.as_bytes())
-                    .with_context(ctx)?;
+                outputs.stage(sub.join("trajectory.csv"), csv(&r.forecast)?);
+                outputs.stage(sub.join("summary.json"), json_text(s).map_err(internal)?);
             }
-            let comparison = comparison_csv(&pairs).map_err(internal)?;
-            write_atomic(&dir.join("comparison.csv"), comparison.as_bytes()).with_context(ctx)?;
+            outputs.stage(dir.join("comparison.csv"), comparison_csv(&pairs).map_err(internal)?);
         }
-        write_atomic(&dir.join("summary.json"), summary.as_bytes()).with_context(ctx)?;
+        outputs.stage(dir.join("summary.json"), summary.as_bytes());
     }
     if let Some(file) = &a.view.report {
-        let list: Vec<_> = runs.iter().map(|r| (&r.case, &r.forecast)).collect();
-        crate::report::predict_report::write_predict(file, &list, a.view.units)?;
+        outputs.stage(file.clone(), predict_html(&pairs, a.view.units)?);
     }
+    outputs.commit()?;
     let mut out = std::io::stdout().lock();
     if a.view.json {
         writeln!(out, "{summary}")?;
@@ -254,6 +307,9 @@ pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
     }
     if let Some(dir) = &a.out {
         writeln!(out, "wrote {}", dir.display())?;
+    }
+    if let Some(file) = &a.view.report {
+        writeln!(out, "wrote {}", file.display())?;
     }
     Ok(())
 }

@@ -1,17 +1,19 @@
 //! `drillpath solve`: a static solve of the string at the bit depth, at a fidelity level.
 
 use super::args::SolveArgs;
+use super::outputs::{names, Outputs};
 use super::parse_length_option;
 use super::progress::Progress;
 use crate::case::{Case, Level, Purpose};
 use crate::error::InputError;
 use crate::io::case_toml::{load_case, CaseOverrides};
-use crate::models::diagnose::{nonconvergence_hints, solve_state_summary};
+use crate::models::diagnose::{known_limit_hints, nonconvergence_hints, solve_state_summary, stop_phrase};
 use crate::models::fem::solve::SolveControls;
 use crate::models::levels::{solve_string, stages, StringSolve};
+use crate::report::json_text;
 use crate::report::solve_output::{string_csv, SolveSummary};
+use crate::report::solve_report::solve_html;
 use crate::report::solve_text::{write_summary, SolveView};
-use crate::report::{json_text, write_atomic};
 use anyhow::{anyhow, bail, Context};
 use std::io::Write;
 
@@ -19,6 +21,14 @@ use std::io::Write;
 pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     let mut case = load(&a)?;
     let choice = super::model_choice(a.fidelity.as_deref(), a.accuracy.as_deref(), &mut case, Purpose::Solve)?;
+    let mut outputs = Outputs::new();
+    outputs.case_inputs(&case);
+    if let Some(dir) = &a.out {
+        outputs.dir("--out", dir, &names(&["summary.json", "string.csv"]))?;
+    }
+    if let Some(file) = &a.view.report {
+        outputs.file("--report", file)?;
+    }
     if a.view.report.is_some() && choice.level == Level::Soft {
         return Err(InputError::option(
             "--report",
@@ -46,13 +56,13 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     let summary = json_text(&SolveSummary::new(&case, &s)).map_err(|e| anyhow!("internal error: {e}"))?;
     if let Some(dir) = &a.out {
         let csv = string_csv(&case, &s).map_err(|e| anyhow!("internal error: {e}"))?;
-        let ctx = || format!("cannot write {}", dir.display());
-        write_atomic(&dir.join("summary.json"), summary.as_bytes()).with_context(ctx)?;
-        write_atomic(&dir.join("string.csv"), csv.as_bytes()).with_context(ctx)?;
+        outputs.stage(dir.join("summary.json"), summary.as_bytes());
+        outputs.stage(dir.join("string.csv"), csv);
     }
     if let Some(file) = &a.view.report {
-        crate::report::solve_report::write_solve(file, &case, &s, a.view.units)?;
+        outputs.stage(file.clone(), solve_html(&case, &s, a.view.units)?);
     }
+    outputs.commit()?;
     let mut out = std::io::stdout().lock();
     if a.view.json {
         writeln!(out, "{summary}")?;
@@ -62,25 +72,26 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         case_file: &a.case,
         units: a.view.units,
         out_dir: a.out.as_deref(),
+        report: a.view.report.as_deref(),
     };
     write_summary(&mut out, &case, &s, &view)?;
     Ok(())
 }
 
-/// The case with `--bit-md` applied; it must have a string.
+/// The case with `--bit-md` applied (a bare number in the survey's depth unit: the case is
+/// read once to know it); it must have a string.
 fn load(a: &SolveArgs) -> anyhow::Result<Case> {
-    let bit_md = a
-        .bit_md
-        .as_deref()
-        .map(|t| parse_length_option("--bit-md", t))
-        .transpose()?;
-    let case = load_case(
-        &a.case,
-        &CaseOverrides {
-            survey_md_unit: None,
-            bit_md_m: bit_md,
-        },
-    )?;
+    let mut case = load_case(&a.case, &CaseOverrides::default())?;
+    if let Some(t) = a.bit_md.as_deref() {
+        let bit_md = parse_length_option("--bit-md", t, super::bare_unit(&case))?;
+        case = load_case(
+            &a.case,
+            &CaseOverrides {
+                survey_md_unit: None,
+                bit_md_m: Some(bit_md),
+            },
+        )?;
+    }
     if case.string.components.is_empty() {
         bail!("{}: the case has no [[string]] components to solve", a.case.display());
     }
@@ -90,17 +101,22 @@ fn load(a: &SolveArgs) -> anyhow::Result<Case> {
 /// The error of a solve that did not converge: where it stopped, what the soft string says
 /// about the case, and what the user can do.
 fn not_converged_message(a: &SolveArgs, case: &Case, s: &StringSolve) -> String {
-    let hints: String = nonconvergence_hints(case).iter().map(|h| format!("; {h}")).collect();
+    let hints: String = known_limit_hints(case)
+        .into_iter()
+        .chain(nonconvergence_hints(case))
+        .map(|h| format!("; {h}"))
+        .collect();
     let lr = &s.level;
-    let iterations = lr.fem.as_ref().map(|f| f.stats.iterations).unwrap_or(0);
+    let ctl = SolveControls::from_settings(&case.solver);
+    let stop = lr.fem.as_ref().map(|f| stop_phrase(&f.stats, &ctl)).unwrap_or_default();
     match (&lr.fem, lr.choice.level) {
         (Some(part), Level::Whole) => format!(
-            "{}: the solve did not converge in {iterations} iterations ({}); no results written (use --allow-unconverged to write flagged results, or --fidelity hybrid for the bit forces from the stiff bottom-hole assembly with the soft string above){hints}",
+            "{}: the solve did not converge {stop} ({}); no results written (use --allow-unconverged to write flagged results, or --fidelity hybrid for the bit forces from the stiff bottom-hole assembly with the soft string above){hints}",
             a.case.display(),
             solve_state_summary(part),
         ),
         _ => format!(
-            "{}: the stiff bottom-hole-assembly solve did not converge in {iterations} iterations; no results written (use --allow-unconverged to write flagged results, or --fidelity soft){hints}",
+            "{}: the stiff bottom-hole-assembly solve did not converge {stop}; no results written (use --allow-unconverged to write flagged results, or --fidelity soft){hints}",
             a.case.display(),
         ),
     }

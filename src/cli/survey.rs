@@ -1,12 +1,12 @@
 //! `drillpath survey`: minimum-curvature positions and a short summary.
 
 use super::args::SurveyArgs;
+use super::outputs::Outputs;
 use super::parse_length_unit;
 use crate::geometry::{Vec3, WellPath};
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::io::survey_csv::{read_survey_csv, SurveyUnits};
-use crate::report::{survey_table::survey_csv, write_atomic};
-use anyhow::Context;
+use crate::report::survey_table::survey_csv;
 use std::io::Write;
 
 /// Run the command.
@@ -17,6 +17,7 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
         .map(|u| parse_length_unit("--md-unit", u))
         .transpose()?;
     let is_toml = a.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let mut outputs = Outputs::new();
     let (path, notes, label) = if is_toml {
         let case = load_case(
             &a.input,
@@ -26,6 +27,10 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
             },
         )?;
         let label = format!("{} ({})", case.name, case.well.survey_path.display());
+        outputs.case_inputs(&case);
+        if let Some(w) = crate::models::checks::dogleg_warning(&case) {
+            tracing::warn!("{}: {w}", a.input.display());
+        }
         (case.well.path, case.well.survey.notes, label)
     } else {
         let sf = read_survey_csv(
@@ -39,12 +44,17 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
             let line = sf.station_lines.get(p.index).copied().unwrap_or(0);
             crate::InputError::line(&a.input, line, Some("inc/azi"), p.message)
         })?;
+        outputs.input(&a.input);
         (wp, sf.notes, a.input.display().to_string())
     };
+    if let Some(out) = &a.out {
+        outputs.file("--out", out)?;
+    }
     let table = survey_csv(&path).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     if let Some(out) = &a.out {
-        write_atomic(out, table.as_bytes()).with_context(|| format!("cannot write {}", out.display()))?;
+        outputs.stage(out.clone(), table.as_bytes());
     }
+    outputs.commit()?;
     let mut out = std::io::stdout().lock();
     if a.csv {
         out.write_all(table.as_bytes())?;

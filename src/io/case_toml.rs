@@ -9,6 +9,7 @@ use super::survey_csv::{read_survey_csv, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
 use crate::case::fit::first_misfit;
+use crate::case::solver::MAX_ELEMENTS;
 use crate::case::SurveyFile;
 use crate::case::*;
 use crate::error::{InputError, InputResult};
@@ -62,6 +63,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         .table("well")?
         .ok_or_else(|| top.error("well", "missing the [well] table (survey and hole sizes)"))?;
     let (survey_file, survey_path, origin, hole) = read_well(&well_sec, &dir, overrides)?;
+    let caliper_path = well_sec.string("caliper")?.map(|rel| dir.join(rel));
     let wellpath = WellPath::new(&survey_file.survey, origin).map_err(|p| {
         let line = survey_file.station_lines.get(p.index).copied().unwrap_or(0);
         InputError::line(&survey_path, line, Some("inc/azi"), p.message)
@@ -103,6 +105,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         .table("solver")?
         .unwrap_or_else(|| Section::new(path, "solver", &empty));
     let solver = read_solver(&sol_sec)?;
+    check_mesh_size(&sol_sec, &solver, &string)?;
     let br_sec = top
         .table("bit_rock")?
         .unwrap_or_else(|| Section::new(path, "bit_rock", &empty));
@@ -120,6 +123,7 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
         well: Well {
             survey: survey_file,
             survey_path,
+            caliper_path,
             path: wellpath,
             hole,
         },
@@ -361,10 +365,49 @@ const BIT_ROCK_KEYS: &[&str] = &[
     "formations",
 ];
 /// Keys accepted in the solver table (checked before any is read, so a typo is named).
+/// Smallest contact `tolerance` accepted (relative to the clearance).
+pub const MIN_TOLERANCE: f64 = 1e-8;
+
+/// Refuse element lengths that would give the string model more than [`MAX_ELEMENTS`]
+/// elements, naming the key and the remedy (before any mesh is built).
+fn check_mesh_size(s: &Section, solver: &SolverSettings, string: &DrillString) -> InputResult<()> {
+    let bha = string.bha_length_m().min(string.length_m());
+    let pipe = string.length_m() - bha;
+    let in_bha = bha / solver.bha_element_length_m.min(solver.element_length_m);
+    let in_pipe = pipe / solver.element_length_m;
+    if in_bha + in_pipe <= MAX_ELEMENTS {
+        return Ok(());
+    }
+    let (key, length, count) = if in_pipe >= in_bha {
+        ("element_length", solver.element_length_m, in_pipe)
+    } else {
+        ("bha_element_length", solver.bha_element_length_m, in_bha)
+    };
+    Err(s.error(
+        key,
+        format!(
+            "{} m elements give the string model about {:.0} elements ({count:.0} from this key), more than the {MAX_ELEMENTS} a model may have: take longer elements (the accuracy presets in docs/guide.md give the measured trade)",
+            short_number(length),
+            in_bha + in_pipe
+        ),
+    ))
+}
+
+/// `x` as written by a user: plain when short, else in scientific notation.
+fn short_number(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 8 {
+        plain
+    } else {
+        format!("{x:e}")
+    }
+}
+
 const SOLVER_KEYS: &[&str] = &[
     "accuracy",
     "element_length",
     "bha_element_length",
+    "time_limit",
     "tolerance",
     "fidelity",
     "method",
@@ -700,8 +743,11 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         .positive("bha_element_length", D::Length, "m", false)?
         .unwrap_or(d.bha_element_length_m.min(el));
     let tol = s.number("tolerance")?.unwrap_or(d.tolerance);
-    if !(tol > 0.0 && tol <= 0.1) {
-        return Err(s.error("tolerance", format!("{tol} outside (0, 0.1]")));
+    if !(MIN_TOLERANCE..=0.1).contains(&tol) {
+        return Err(s.error(
+            "tolerance",
+            format!("{} outside [{MIN_TOLERANCE:e}, 0.1]: below {MIN_TOLERANCE:e} of the clearance a penetration is as small as the rounding of the positions in double precision, which no solve can reach", short_number(tol)),
+        ));
     }
     let fidelity = match s.string("fidelity")? {
         None => Fidelity::Auto,
@@ -725,6 +771,7 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     if !(alpha > 0.0 && alpha < 1.0) {
         return Err(s.error("alpha", format!("{alpha} outside (0, 1)")));
     }
+    let time_limit = s.positive("time_limit", D::Time, "s", false)?.unwrap_or(d.time_limit_s);
     Ok(SolverSettings {
         element_length_m: el,
         bha_element_length_m: bha,
@@ -733,6 +780,7 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         method,
         max_iterations: max_it as usize,
         alpha,
+        time_limit_s: time_limit,
         accuracy,
     })
 }

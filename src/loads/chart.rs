@@ -1,7 +1,7 @@
 //! The soft-string torque-and-drag chart: for each bit depth and each load case, hook load,
 //! surface torque, largest contact force, buckling and yield (one [`LoadRow`] each).
 //!
-//! Each depth refits the string once ([`super::string_at_depth`]) and runs the five load cases
+//! Each depth refits the string once ([`crate::string::DrillString::at_depth`]) and runs the five load cases
 //! on it (Johancsik soft string, [`crate::models::softstring::from_case`]). A soft-string pass is a
 //! single explicit sweep from the bit up, so there is nothing to iterate and no state to warm
 //! start; the only reuse is the refitted string and case per depth.
@@ -13,7 +13,7 @@
 
 use super::limits::{buckling_along, combined_torque_limit, max_stress_ratio, yield_limits};
 use super::row::{LoadRow, RowLoads, RowYield};
-use super::{set_row_operation, string_at_depth, ChartOperation, MODES};
+use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::Case;
 use crate::models::softstring::{from_case, SoftStringResult};
 use crate::string::DrillString;
@@ -92,7 +92,7 @@ pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
 /// The case with its string refitted to `bit_md_m` (operation not yet set for a row).
 pub fn case_at_depth(base: &Case, bit_md_m: f64) -> Case {
     let mut c = base.clone();
-    c.string = string_at_depth(&base.string, bit_md_m);
+    c.string = base.string.at_depth(bit_md_m);
     c.operation.bit_md_m = bit_md_m;
     c
 }

@@ -12,7 +12,7 @@
 //!
 //! The case gives the string at its own bit depth. At another bit depth the string is the same
 //! from the bit upward and its topmost component is lengthened or shortened so that it reaches
-//! the surface ([`string_at_depth`]); when the bit is shallower than the components below the
+//! the surface ([`DrillString::at_depth`]); when the bit is shallower than the components below the
 //! top one, the string is cut at the surface.
 
 pub mod calibrate;
@@ -92,35 +92,8 @@ pub fn depth_list(from_m: f64, to_m: f64, every_m: f64, md_start: f64) -> Vec<f6
     out
 }
 
-/// The string with its bit at `bit_md_m` (distance to surface `bit_md_m`, m): components from
-/// the bit upward as in `string`; the topmost one is resized so that the string reaches the
-/// surface, or the string is cut at the surface when the lower components are already longer.
-///
-/// # Panics
-/// If `string` has no components or `bit_md_m` is not positive.
-pub fn string_at_depth(string: &DrillString, bit_md_m: f64) -> DrillString {
-    assert!(!string.components.is_empty() && bit_md_m > 0.0);
-    let mut comps = Vec::with_capacity(string.components.len());
-    let last = string.components.len() - 1;
-    for (k, c) in string.components.iter().enumerate() {
-        if c.bottom_m >= bit_md_m - 1e-9 {
-            break;
-        }
-        let mut c = c.clone();
-        if k == last || c.top_m() > bit_md_m {
-            c.length_m = bit_md_m - c.bottom_m;
-        }
-        let done = c.top_m() >= bit_md_m - 1e-9;
-        comps.push(c);
-        if done {
-            break;
-        }
-    }
-    DrillString { components: comps }
-}
-
 /// The case for one row of the chart: bit at `bit_md_m`, string refitted by
-/// [`string_at_depth`], operation set for `mode` with the chart's WOB and RPM (on-bottom rows
+/// [`DrillString::at_depth`], operation set for `mode` with the chart's WOB and RPM (on-bottom rows
 /// take `op.wob_n`; off bottom WOB 0; sliding without ROP moves at
 /// [`SLIDING_NOMINAL_SPEED_M_S`]); a hook load given in the case is not used.
 pub fn case_for_row(base: &Case, string: &DrillString, bit_md_m: f64, mode: Mode, op: &ChartOperation) -> Case {
@@ -195,14 +168,14 @@ mod tests {
                 comp(ComponentKind::Pipe, 150.0, 850.0),
             ],
         };
-        let deep = string_at_depth(&s, 2000.0);
+        let deep = s.at_depth(2000.0);
         assert_eq!(deep.components.len(), 3);
         assert!((deep.length_m() - 2000.0).abs() < 1e-9);
-        let shallow = string_at_depth(&s, 120.0);
+        let shallow = s.at_depth(120.0);
         assert_eq!(shallow.components.len(), 2);
         assert!((shallow.length_m() - 120.0).abs() < 1e-9);
         assert_eq!(shallow.components[1].kind, ComponentKind::Hwdp);
-        let tiny = string_at_depth(&s, 30.0);
+        let tiny = s.at_depth(30.0);
         assert_eq!(tiny.components.len(), 1);
         assert!((tiny.length_m() - 30.0).abs() < 1e-9);
     }

@@ -6,7 +6,7 @@ use super::calibrate::{calibrate, calibrated_case, Calibration, CalibrationError
 use super::chart::{case_at_depth, soft_chart, ChartSettings};
 use super::row::LoadRow;
 use super::stiff::{hybrid_depth, stiff_depth, Solved};
-use super::{check_fits, depth_list, string_at_depth, ChartOperation, MODES};
+use super::{check_fits, depth_list, ChartOperation, MODES};
 use crate::case::fidelity::Choice;
 use crate::case::{Case, Level};
 use crate::models::softstring::segment_length_m;
@@ -59,7 +59,7 @@ pub enum ChartError {
     #[error("no bit depth below the top of the survey in the range")]
     NoDepth,
     /// Too many bit depths.
-    #[error("{0} bit depths: use a longer step")]
+    #[error("{0} bit depths, more than the {MAX_DEPTHS} a chart may have: use a longer step")]
     TooManyDepths(usize),
     /// The string does not fit the hole at a bit depth.
     #[error("{0}")]
@@ -131,6 +131,11 @@ pub fn plan(case: &Case, req: &ChartRequest) -> Result<ChartPlan, ChartError> {
             to_md_m: to,
         });
     }
+    // counted before the list is built: a tiny step must not exhaust the memory
+    let count = (to - req.from_md_m.max(md_start)) / req.every_m + 1.0;
+    if count > MAX_DEPTHS as f64 {
+        return Err(ChartError::TooManyDepths(count.ceil() as usize));
+    }
     let depths = depth_list(req.from_md_m, to, req.every_m, md_start);
     if depths.is_empty() {
         return Err(ChartError::NoDepth);
@@ -139,10 +144,10 @@ pub fn plan(case: &Case, req: &ChartRequest) -> Result<ChartPlan, ChartError> {
         return Err(ChartError::TooManyDepths(depths.len()));
     }
     for &d in &depths {
-        check_fits(&string_at_depth(&case.string, d), &case.well.hole, d).map_err(ChartError::DoesNotFit)?;
+        check_fits(&case.string.at_depth(d), &case.well.hole, d).map_err(ChartError::DoesNotFit)?;
     }
     for p in &req.measured {
-        check_fits(&string_at_depth(&case.string, p.bit_md_m), &case.well.hole, p.bit_md_m)
+        check_fits(&case.string.at_depth(p.bit_md_m), &case.well.hole, p.bit_md_m)
             .map_err(|message| ChartError::MeasuredDoesNotFit { line: p.line, message })?;
     }
     let mut op = ChartOperation::from_case(case);

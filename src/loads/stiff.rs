@@ -6,7 +6,7 @@
 //! ([`solve_interior_point_from`], at most [`WARM_MAX_ITERATIONS`] iterations) from the same
 //! load case's converged state at the previous bit depth, carried onto the new mesh by
 //! [`transport_to_depth`] (the string is longer there: its top component is lengthened,
-//! [`super::string_at_depth`]); at the first depth, or when that case has no converged state,
+//! [`crate::string::DrillString::at_depth`]); at the first depth, or when that case has no converged state,
 //! from the previous load case's state at the same depth (same mesh, other loads). Whenever a
 //! warm start does not converge, [`solve`] runs from its own cold start;
 //! the outcome says which start converged. Measured (docs/performance.md): the same load case

@@ -54,6 +54,55 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
     hints
 }
 
+/// Where a stiff solve that did not converge stopped, in one phrase: "in N iterations (the
+/// limit, `[solver] max_iterations`)" or "at the time limit of T s ...".
+pub fn stop_phrase(
+    stats: &crate::models::fem::solve::SolveStats,
+    ctl: &crate::models::fem::solve::SolveControls,
+) -> String {
+    let n = stats.iterations;
+    let its = if n == 1 { "iteration" } else { "iterations" };
+    if stats.timed_out {
+        format!(
+            "in {n} {its}: it stopped at the time limit of one solve, {} s (`[solver] time_limit`)",
+            ctl.time_limit_s
+        )
+    } else {
+        format!(
+            "in {n} {its} (the limit, `[solver] max_iterations` = {})",
+            ctl.max_iterations
+        )
+    }
+}
+
+/// The case's geometry where the whole-string solve has known limits (docs/guide.md, Limits):
+/// a hole beyond 90 deg over the string, a dogleg over 30 deg/30 m while rotating.
+pub fn known_limit_hints(case: &Case) -> Vec<String> {
+    let path = &case.well.path;
+    let bit = case.operation.bit_md_m;
+    let mut hints = Vec::new();
+    let steepest = path
+        .stations()
+        .iter()
+        .filter(|s| s.md_m <= bit + 1e-6)
+        .max_by(|a, b| a.inc_rad.total_cmp(&b.inc_rad));
+    if let Some(s) = steepest.filter(|s| s.inc_rad > 91f64.to_radians()) {
+        hints.push(format!(
+            "the hole reaches {:.1} deg inclination at {:.0} m MD: a hole beyond 90 deg is a known limit of the stiff solve (docs/guide.md, Limits)",
+            s.inc_rad.to_degrees(),
+            s.md_m
+        ));
+    }
+    let (dls, at) = path.max_dls();
+    if case.operation.rpm > 0.0 && dls * 30.0 > 30f64.to_radians() {
+        hints.push(format!(
+            "a dogleg of {:.1} deg/30 m at {at:.0} m MD while rotating: above 30 deg/30 m is a known limit of the stiff solve (docs/guide.md, Limits)",
+            dls.to_degrees() * 30.0
+        ));
+    }
+    hints
+}
+
 /// The last state of a stiff solve that did not converge, in one phrase: its last relative
 /// residuals, the largest penetration relative to the clearance, and the MDs of the contacts
 /// that kept switching (where the scheme tracks them: the paper's).

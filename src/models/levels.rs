@@ -19,6 +19,7 @@
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
 use crate::models::buckling::{soft_marks, stiff_marks, Mark};
+use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::bha::{bha_model, default_cut_m};
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::results::{extract, BitResult, NodeResult, SolveResults};
@@ -277,6 +278,22 @@ pub struct StringSolve {
     pub marks: Vec<Mark>,
     /// Assumptions stated in the outputs (e.g. the hole above the first survey station).
     pub notes: Vec<String>,
+    /// The highest stress against the yield strength (None without a stiff part).
+    pub yield_check: Option<YieldCheck>,
+    /// A hook load below zero on bottom (None otherwise).
+    pub lock_up: Option<LockUp>,
+}
+
+impl StringSolve {
+    /// Warnings about results a real string cannot give: stress beyond yield, lock-up.
+    pub fn warnings(&self, case: &Case) -> Vec<String> {
+        let mut w: Vec<String> = dogleg_warning(case).into_iter().collect();
+        w.extend(self.yield_check.and_then(|y| y.warning()));
+        if let Some(l) = &self.lock_up {
+            w.push(l.warning(case.operation.mode.name()));
+        }
+        w
+    }
 }
 
 impl StringSolve {
@@ -324,11 +341,19 @@ pub fn solve_string(
     if let Some(soft) = &level.soft {
         marks.extend(soft_marks(case, soft, usize::from(level.fem.is_some())));
     }
+    let yield_check = level
+        .fem
+        .as_ref()
+        .zip(last_reported_node)
+        .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
+    let lock_up = lock_up(case, level.hook_load_n, level.wob_n);
     Ok(StringSolve {
         level,
         last_reported_node,
         coupling_m,
         marks,
         notes: case.string_above_survey_note().into_iter().collect(),
+        yield_check,
+        lock_up,
     })
 }

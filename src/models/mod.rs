@@ -9,6 +9,7 @@
 
 pub mod bit;
 pub mod buckling;
+pub mod checks;
 pub mod diagnose;
 pub mod fem;
 pub mod levels;

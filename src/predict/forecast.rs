@@ -11,6 +11,8 @@ use super::tracking::project::{project, Projection};
 use super::tracking::references::{project as project_reference, Direction, Reference};
 use super::tracking::skill::{skill, EndDirections, Skill};
 use crate::case::{Case, Level};
+use crate::models::checks::lock_up;
+use crate::models::softstring;
 
 /// What to predict.
 #[derive(Debug, Clone, Copy)]
@@ -49,6 +51,9 @@ pub struct Forecast {
     pub law: LawParams,
     /// The settings the march ran with.
     pub settings: MarchSettings,
+    /// What the user must know about the prediction's inputs (e.g. a WOB the string cannot
+    /// deliver).
+    pub warnings: Vec<String>,
 }
 
 impl Forecast {
@@ -114,10 +119,25 @@ fn tracking_skill(
     skill(&ends)
 }
 
+/// The warning of a prediction whose WOB the string cannot put on the bit at `from_md_m` (the
+/// soft string's hook load below zero with the string refitted to that depth: lock-up).
+pub fn wob_warning(case: &Case, from_md_m: f64) -> Option<String> {
+    let mut c = case.clone();
+    c.string = case.string.at_depth(from_md_m);
+    c.operation.bit_md_m = from_md_m;
+    let soft = softstring::from_case(&c, softstring::segment_length_m(&c.solver));
+    let l = lock_up(&c, Some(soft.hook_load_n), c.operation.wob_n)?;
+    Some(format!(
+        "with the bit at {from_md_m:.2} m MD, {}; the march used the WOB asked for",
+        l.warning(c.operation.mode.name())
+    ))
+}
+
 /// Predict `case` as `req` asks; `on_step` hears the bit MD after each step (of both marches
 /// when extrapolating, the coarse one first).
 pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)) -> Result<Forecast, PredictError> {
     let (from, to, settings) = (req.from_md_m, req.to_md_m, &req.settings);
+    let warnings: Vec<String> = wob_warning(case, from).into_iter().collect();
     let (prediction, step_error) = if req.extrapolate {
         predict_extrapolated(case, from, to, settings, on_step).map(|(p, e)| (p, Some(e)))?
     } else {
@@ -148,6 +168,7 @@ pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)
         tracking,
         law: LawParams::at(&case.bit_rock, from),
         settings: *settings,
+        warnings,
         prediction,
     })
 }

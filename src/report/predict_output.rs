@@ -401,6 +401,7 @@ pub struct PredictSummary {
     model: ModelJson,
     #[serde(skip_serializing_if = "Option::is_none")]
     assimilation: Option<AssimilationJson>,
+    warnings: Vec<String>,
 }
 
 impl PredictSummary {
@@ -424,6 +425,7 @@ impl PredictSummary {
                 east_m: Finite(end.position.y),
             },
             rates: RatesJson::from(&f.rates),
+            warnings: f.warnings.clone(),
             tracking: f.tracking.as_ref().map(|t| TrackingJson::new(t, f.skill.as_ref())),
             assimilation: f
                 .projection

@@ -765,20 +765,12 @@ fn interval_table(page: &mut Page, results: &[IntervalResult], units: UnitSystem
     );
 }
 
-/// Build the predict report and write it atomically to `file`.
-pub fn write_predict(file: &std::path::Path, runs: &[(&Case, &Forecast)], units: UnitSystem) -> anyhow::Result<()> {
-    let html = predict_report(runs, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
-    super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+/// The HTML report of a prediction (one or several cases), in `units`.
+pub fn predict_html(runs: &[(&Case, &Forecast)], units: UnitSystem) -> anyhow::Result<String> {
+    predict_report(runs, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))
 }
 
-/// Build the backanalyze report and write it atomically to `file`.
-pub fn write_backanalyze(
-    file: &std::path::Path,
-    case: &Case,
-    back: &Backanalysis,
-    units: UnitSystem,
-) -> anyhow::Result<()> {
-    let html =
-        backanalyze_report(case, back, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
-    super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+/// The HTML report of a back-analysis, in `units`.
+pub fn backanalyze_html(case: &Case, back: &Backanalysis, units: UnitSystem) -> anyhow::Result<String> {
+    backanalyze_report(case, back, units).map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))
 }

@@ -26,6 +26,9 @@ pub fn write_forecast(
     let end = f.rows.last().expect("start row");
     writeln!(out, "predict: {} ({})", case.name, case.path.display())?;
     writeln!(out, "  fidelity {}: {}", choice.level.name(), choice.reason)?;
+    for w in &f.warnings {
+        writeln!(out, "  WARNING: {w}")?;
+    }
     writeln!(
         out,
         "  from {} (I {} deg, A {} deg) to {}: I {} deg, A {} deg, TVD {}, N {}, E {}",

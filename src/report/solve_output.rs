@@ -112,6 +112,27 @@ struct BucklingJson {
     zones: Vec<ZoneJson>,
 }
 
+/// The `yield` key: the highest von Mises stress of the stiff part against the yield strength.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct YieldJson {
+    max_von_mises_MPa: Finite,
+    at_md_m: Finite,
+    yield_strength_MPa: Finite,
+    yield_strength_assumed: bool,
+    ratio: Finite,
+    exceeded: bool,
+}
+
+/// The `lock_up` key: a hook load below zero on bottom.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct LockUpJson {
+    hook_load_kN: Finite,
+    wob_kN: Finite,
+    max_wob_kN: Finite,
+}
+
 /// `summary.json` of `drillpath solve`.
 #[derive(Serialize)]
 pub struct SolveSummary {
@@ -123,6 +144,10 @@ pub struct SolveSummary {
     fidelity: FidelityJson,
     buckling: BucklingJson,
     notes: Vec<String>,
+    #[serde(rename = "yield")]
+    yield_check: Option<YieldJson>,
+    lock_up: Option<LockUpJson>,
+    warnings: Vec<String>,
 }
 
 /// The `buckling` key of `marks`, whose axial force comes from `model`.
@@ -262,6 +287,20 @@ impl SolveSummary {
             fidelity: fidelity_json(s),
             buckling: buckling_json(&s.marks, axial_force_model(lr.choice.level)),
             notes: s.notes.clone(),
+            yield_check: s.yield_check.map(|y| YieldJson {
+                max_von_mises_MPa: Finite(y.von_mises_pa / 1e6),
+                at_md_m: Finite(y.md_m),
+                yield_strength_MPa: Finite(y.yield_strength_pa / 1e6),
+                yield_strength_assumed: y.assumed,
+                ratio: Finite(y.ratio()),
+                exceeded: y.exceeded(),
+            }),
+            lock_up: s.lock_up.map(|l| LockUpJson {
+                hook_load_kN: Finite(l.hook_load_n / 1e3),
+                wob_kN: Finite(l.wob_n / 1e3),
+                max_wob_kN: Finite(l.max_wob_n / 1e3),
+            }),
+            warnings: s.warnings(case),
         }
     }
 }

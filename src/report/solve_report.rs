@@ -398,26 +398,24 @@ fn string_figures(
     Ok(())
 }
 
-/// Build the report and write it atomically to `file`.
-pub fn write(
-    file: &std::path::Path,
+/// Build the report's HTML text.
+fn html(
     case: &Case,
     res: &SolveResults,
     marks: &[Mark],
     stats: &SolveStats,
     converged: bool,
     scope: &ReportOptions,
-) -> anyhow::Result<()> {
-    let html = solve_report(case, res, marks, stats, converged, scope)
-        .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))?;
-    super::write_atomic(file, html.as_bytes()).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", file.display()))
+) -> anyhow::Result<String> {
+    solve_report(case, res, marks, stats, converged, scope)
+        .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))
 }
 
-/// Write the HTML report of the solve `s` of `case` to `file` (atomically), in `units`: the
+/// The HTML report of the solve `s` of `case`, in `units`: the
 /// whole string, or the stiff part of a `bha` or `hybrid` result from the bit to the coupling
 /// point with the level's hook load and surface torque (hybrid) or none (bha). A `soft`
 /// result has nothing stiff to draw: an error.
-pub fn write_solve(file: &std::path::Path, case: &Case, s: &StringSolve, units: UnitSystem) -> anyhow::Result<()> {
+pub fn solve_html(case: &Case, s: &StringSolve, units: UnitSystem) -> anyhow::Result<String> {
     let lr = &s.level;
     let Some(part) = &lr.fem else {
         anyhow::bail!(
@@ -425,20 +423,14 @@ pub fn write_solve(file: &std::path::Path, case: &Case, s: &StringSolve, units: 
             lr.choice.level.name()
         );
     };
+    let warnings: String = s.warnings(case).iter().map(|w| format!(" WARNING: {w}.")).collect();
     if lr.choice.level == Level::Whole {
         let options = ReportOptions {
             units,
+            note: (!warnings.is_empty()).then(|| warnings.trim_start().to_string()),
             ..Default::default()
         };
-        return write(
-            file,
-            case,
-            &part.results,
-            &s.marks,
-            &part.stats,
-            part.converged,
-            &options,
-        );
+        return html(case, &part.results, &s.marks, &part.stats, part.converged, &options);
     }
     let mut res = SolveResults {
         nodes: s.reported_nodes().to_vec(),
@@ -470,8 +462,8 @@ pub fn write_solve(file: &std::path::Path, case: &Case, s: &StringSolve, units: 
     );
     let options = ReportOptions {
         units,
-        note: Some(note),
+        note: Some(note + &warnings),
         no_surface_values: !surface,
     };
-    write(file, case, &res, s.stiff_marks(), &part.stats, lr.converged, &options)
+    html(case, &res, s.stiff_marks(), &part.stats, lr.converged, &options)
 }

@@ -17,6 +17,8 @@ pub struct SolveView<'a> {
     pub units: UnitSystem,
     /// The `--out` directory, when files were written.
     pub out_dir: Option<&'a Path>,
+    /// The HTML report written, if any.
+    pub report: Option<&'a Path>,
 }
 
 /// The lines every level prints about the operation and the bit: mode, bit MD, WOB, rpm; bit
@@ -78,6 +80,9 @@ pub fn write_summary(out: &mut impl Write, case: &Case, s: &StringSolve, view: &
     let lr = &s.level;
     writeln!(out, "solve: {} ({})", case.name, view.case_file.display())?;
     writeln!(out, "  fidelity {}: {}", lr.choice.level.name(), lr.choice.reason)?;
+    for w in s.warnings(case) {
+        writeln!(out, "  WARNING: {w}")?;
+    }
     if lr.choice.level == Level::Whole {
         write_whole(out, case, s, view)
     } else {
@@ -95,6 +100,9 @@ fn not_converged_line(out: &mut impl Write) -> std::io::Result<()> {
 fn wrote_line(out: &mut impl Write, view: &SolveView) -> std::io::Result<()> {
     if let Some(dir) = view.out_dir {
         writeln!(out, "  wrote {}/summary.json and string.csv", dir.display())?;
+    }
+    if let Some(file) = view.report {
+        writeln!(out, "  wrote {}", file.display())?;
     }
     Ok(())
 }

@@ -14,6 +14,33 @@ pub struct DrillString {
 }
 
 impl DrillString {
+    /// The string with its bit at `bit_md_m` (distance to surface `bit_md_m`, m): components from
+    /// the bit upward as in this string; the topmost one is resized so that the string reaches the
+    /// surface, or the string is cut at the surface when the lower components are already longer.
+    ///
+    /// # Panics
+    /// If this string has no components or `bit_md_m` is not positive.
+    pub fn at_depth(&self, bit_md_m: f64) -> DrillString {
+        assert!(!self.components.is_empty() && bit_md_m > 0.0);
+        let mut comps = Vec::with_capacity(self.components.len());
+        let last = self.components.len() - 1;
+        for (k, c) in self.components.iter().enumerate() {
+            if c.bottom_m >= bit_md_m - 1e-9 {
+                break;
+            }
+            let mut c = c.clone();
+            if k == last || c.top_m() > bit_md_m {
+                c.length_m = bit_md_m - c.bottom_m;
+            }
+            let done = c.top_m() >= bit_md_m - 1e-9;
+            comps.push(c);
+            if done {
+                break;
+            }
+        }
+        DrillString { components: comps }
+    }
+
     /// Total length from the bit face to the top, m.
     pub fn length_m(&self) -> f64 {
         self.components.last().map(|c| c.top_m()).unwrap_or(0.0)

@@ -34,6 +34,13 @@ pub use crate::case::bit_rock::MIN_STEP_M;
 /// Shortest string model (bit to cut or to the top of the hole), m.
 pub const MIN_MODEL_LENGTH_M: f64 = 10.0;
 
+/// Most steps one march may take (the interval over the step); a longer march is refused
+/// before any solve, with the remedy.
+pub const MAX_MARCH_STEPS: f64 = 20_000.0;
+
+/// Inclination at which a predicted hole points up the well and the march stops, rad (179 deg).
+pub const MAX_PREDICTED_INCLINATION_RAD: f64 = 179.0 * std::f64::consts::PI / 180.0;
+
 /// Settings of a prediction.
 #[derive(Debug, Clone, Copy)]
 pub struct MarchSettings {
@@ -225,6 +232,64 @@ pub enum PredictError {
     /// The hole could not be built (bad stations).
     #[error("{0}")]
     Geometry(String),
+    /// The march would take more than [`MAX_MARCH_STEPS`] steps.
+    #[error("the prediction from {from_md_m:.2} m to {to_md_m:.2} m MD is {steps:.0} steps of {step_m} m, more than the {MAX_MARCH_STEPS} a march may take; predict a shorter interval or take a longer step")]
+    TooManySteps {
+        /// Start MD, m.
+        from_md_m: f64,
+        /// End MD, m.
+        to_md_m: f64,
+        /// Step, m.
+        step_m: f64,
+        /// Steps it would take.
+        steps: f64,
+    },
+    /// The predicted hole left the earth: it rose above the surface (the survey's TVD datum) or
+    /// turned to point up the well.
+    #[error("the predicted hole {what} at {md_m:.2} m MD (inclination {inc_deg:.1} deg, TVD {tvd_m:.1} m); the march stopped there: a bottom-hole assembly whose tendency turns the hole this far is outside what the model predicts; predict a shorter interval")]
+    LeftTheEarth {
+        /// Bit MD where it happened, m.
+        md_m: f64,
+        /// What happened.
+        what: &'static str,
+        /// Inclination there, deg.
+        inc_deg: f64,
+        /// TVD there, m.
+        tvd_m: f64,
+    },
+}
+
+/// Refuse a predicted hole at `md_m` that rose above the surface (TVD below zero) or points up
+/// the well (inclination beyond [`MAX_PREDICTED_INCLINATION_RAD`]).
+fn check_on_earth(path: &WellPath, md_m: f64) -> Result<(), PredictError> {
+    let p = path.point_at(md_m);
+    let what = if p.position.z < 0.0 {
+        "rose above the surface"
+    } else if p.inc_rad > MAX_PREDICTED_INCLINATION_RAD {
+        "turned to point up the well (inclination beyond 179 deg)"
+    } else {
+        return Ok(());
+    };
+    Err(PredictError::LeftTheEarth {
+        md_m,
+        what,
+        inc_deg: p.inc_rad.to_degrees(),
+        tvd_m: p.position.z,
+    })
+}
+
+/// Refuse a march from `from_md_m` to `to_md_m` at `step_m` longer than [`MAX_MARCH_STEPS`].
+pub fn check_step_count(from_md_m: f64, to_md_m: f64, step_m: f64) -> Result<(), PredictError> {
+    let steps = ((to_md_m - from_md_m) / step_m).ceil();
+    if steps > MAX_MARCH_STEPS {
+        return Err(PredictError::TooManySteps {
+            from_md_m,
+            to_md_m,
+            step_m,
+            steps,
+        });
+    }
+    Ok(())
 }
 
 /// Warm-start memory between calls: the last model and its solved state.
@@ -269,6 +334,7 @@ pub fn predict_from(
         });
     }
     let step = settings.step_m;
+    check_step_count(from, to_md_m, step)?;
     let ctl = &settings.controls;
     let tendency = settings.tendency;
     let cut = model_cut_m(case, start, &hole, settings)?;
@@ -369,6 +435,7 @@ pub fn predict_from(
             hole_pred.path_with(None)?
         };
         ripple.after_step(s1, &hole_pred.chords)?;
+        check_on_earth(&p1, s1)?;
         path = p1;
         s = s1;
         records.push((s, sol1.bit, dir, step_iterations));

@@ -34,18 +34,27 @@ fn solve_step(
     if sol.converged {
         return Ok(sol);
     }
-    let detail = if sol.stats.chattering_nodes.is_empty() {
-        String::new()
+    let limit = if sol.stats.timed_out {
+        format!(
+            "; stopped at the time limit of one solve, {} s (`[solver] time_limit`)",
+            ctl.time_limit_s
+        )
     } else {
-        let near: Vec<String> = sol
-            .stats
-            .chattering_nodes
-            .iter()
-            .take(8)
-            .map(|&i| format!("{:.2} m", model.md_ref[i]))
-            .collect();
-        format!("; contacts changing state at {}", near.join(", "))
+        String::new()
     };
+    let detail = limit
+        + &if sol.stats.chattering_nodes.is_empty() {
+            String::new()
+        } else {
+            let near: Vec<String> = sol
+                .stats
+                .chattering_nodes
+                .iter()
+                .take(8)
+                .map(|&i| format!("{:.2} m", model.md_ref[i]))
+                .collect();
+            format!("; contacts changing state at {}", near.join(", "))
+        };
     Err(PredictError::NotConverged {
         md_m: md,
         iterations: sol.stats.iterations,

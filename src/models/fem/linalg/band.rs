@@ -271,7 +271,8 @@ pub enum FactorError {
     /// contact, exactly critical buckling load).
     #[error(
         "zero pivot at DOF column {column} (node {node}, local DOF {local} for 6 DOF/node): \
-         d = {pivot:e}, |d| <= 1e-14 * |a_jj|; the stiffness matrix is singular there \
+         d = {pivot:e} against the diagonal entry |a_jj| = {diagonal:e} it was reduced from \
+         (zero means |d| <= 1e-14 |a_jj|); the stiffness matrix is singular there \
          (missing constraint or support?)",
         node = column / 6,
         local = column % 6
@@ -281,6 +282,9 @@ pub enum FactorError {
         column: usize,
         /// Value of the pivot.
         pivot: f64,
+        /// The magnitude the pivot is compared with (the column's diagonal entry, or the
+        /// largest diagonal entry for the sparse factor).
+        diagonal: f64,
     },
 }
 
@@ -434,7 +438,11 @@ impl BandLdlt {
             // make the diagonal span many decades, so a global scale would flag sound pivots
             let tol = PIVOT_TOL * adata[j * ld].abs().max(f64::MIN_POSITIVE);
             if is_zero_pivot(d, tol) {
-                return Err(FactorError::ZeroPivot { column: j, pivot: d });
+                return Err(FactorError::ZeroPivot {
+                    column: j,
+                    pivot: d,
+                    diagonal: adata[j * ld].abs(),
+                });
             }
             for c in col[1..].iter_mut() {
                 *c /= d;
@@ -934,7 +942,10 @@ mod tests {
         a.set(4, 3, 1.0);
         let mut f = BandLdlt::new(8, 2);
         let err = f.factor(&a).unwrap_err();
-        assert_eq!(err, FactorError::ZeroPivot { column: 4, pivot: 0.0 });
+        assert!(
+            matches!(err, FactorError::ZeroPivot { column: 4, pivot, .. } if pivot == 0.0),
+            "{err:?}"
+        );
         assert!(err.to_string().contains("DOF column 4"));
         assert_eq!(f.negative_pivots(), 0);
 

@@ -372,7 +372,11 @@ impl BandLu {
             }
             let pivot = data[k * w + b];
             if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
-                return Err(FactorError::ZeroPivot { column: k, pivot });
+                return Err(FactorError::ZeroPivot {
+                    column: k,
+                    pivot,
+                    diagonal: diag[k].abs(),
+                });
             }
             if k < fixed_end {
                 const B: usize = CHAIN_HALF_BANDWIDTH;

@@ -139,6 +139,7 @@ impl FaerLdlt {
             return Err(FactorError::ZeroPivot {
                 column: index.saturating_sub(1),
                 pivot: 0.0,
+                diagonal: a.diag_abs_max(),
             });
         }
         let tol = PIVOT_TOL * a.diag_abs_max();
@@ -147,7 +148,11 @@ impl FaerLdlt {
         for (j, &p) in self.diag_pos.iter().enumerate() {
             let d = self.l_values[p];
             if is_zero_pivot(d, tol) {
-                return Err(FactorError::ZeroPivot { column: j, pivot: d });
+                return Err(FactorError::ZeroPivot {
+                    column: j,
+                    pivot: d,
+                    diagonal: a.diag_abs_max(),
+                });
             }
             negative += (d < 0.0) as usize;
             min_abs = min_abs.min(d.abs());

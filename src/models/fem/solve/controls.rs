@@ -15,6 +15,9 @@ pub struct SolveControls {
     pub method: Method,
     /// Relaxation `alpha` of the modified Newton's gap-force update (`method = "paper"`, eq. 15).
     pub alpha: f64,
+    /// Wall-clock limit of one solve, s: a solve still iterating then stops unconverged
+    /// ([`super::SolveStats::timed_out`]).
+    pub time_limit_s: f64,
 }
 
 impl SolveControls {
@@ -25,6 +28,7 @@ impl SolveControls {
             gap_tolerance: s.tolerance,
             method: s.method,
             alpha: s.alpha,
+            time_limit_s: s.time_limit_s,
             ..SolveControls::default()
         }
     }
@@ -38,6 +42,7 @@ impl Default for SolveControls {
             residual_tolerance: 1e-7,
             method: Method::Newton,
             alpha: 0.7,
+            time_limit_s: crate::case::solver::DEFAULT_TIME_LIMIT_S,
         }
     }
 }

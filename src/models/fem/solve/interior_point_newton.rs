@@ -83,6 +83,10 @@ pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveCon
         if stats.iterations >= ctl.max_iterations {
             break;
         }
+        if t0.elapsed().as_secs_f64() > ctl.time_limit_s {
+            stats.timed_out = true;
+            break;
+        }
         if equilibrium && !newton.gaps.exact_pins {
             // in equilibrium about penalty pins (a step went straight from above
             // `PIN_EXACT_RESIDUAL` to the tolerance): the next evaluation holds them exactly

@@ -135,6 +135,11 @@ pub fn solve_modified_newton(model: &Model, ctl: &SolveControls) -> Result<Solut
             stats.residual_history.push(rn);
             break;
         }
+        if t0.elapsed().as_secs_f64() > ctl.time_limit_s {
+            stats.timed_out = true;
+            stats.residual_history.push(rn);
+            break;
+        }
         // gaps under the unilateral law (open and frozen): K1 is refreshed when one switches
         if mn.unilateral_switched(&ev) {
             mn.need_refresh = true;

@@ -18,6 +18,8 @@ pub struct SolveStats {
     pub seconds: f64,
     /// Nodes whose contact state changed in the last iterations (modified Newton).
     pub chattering_nodes: Vec<usize>,
+    /// The solve stopped at its time limit ([`super::SolveControls::time_limit_s`]).
+    pub timed_out: bool,
 }
 
 /// A converged (or flagged unconverged) solution.
@@ -50,10 +52,16 @@ pub enum SolveError {
 /// A failed factorization of `model`'s system as a [`SolveError::Singular`] naming the node.
 pub(crate) fn singular(model: &Model, e: FactorError) -> SolveError {
     match e {
-        FactorError::ZeroPivot { column: dof, pivot } => SolveError::Singular {
+        FactorError::ZeroPivot {
+            column: dof,
+            pivot,
+            diagonal,
+        } => SolveError::Singular {
             dof,
             node: model.nodes() - 1 - dof / 6,
-            detail: format!("zero pivot {pivot:e}"),
+            detail: format!(
+                "pivot {pivot:.3e} against the diagonal entry {diagonal:.3e} it was reduced from (zero below 1e-14 of it, or not finite): nothing holds the string there in that direction"
+            ),
         },
     }
 }

@@ -1,0 +1,161 @@
+//! Checks of a solved string against what a real string can do: the stress against the yield
+//! strength, and a hook load below zero (lock-up: the surface would have to push the string
+//! down to put the WOB on the bit).
+
+use crate::case::Case;
+use crate::models::fem::model::Model;
+use crate::models::fem::results::NodeResult;
+use crate::models::softstring;
+use crate::string::material::grade_yield_strength_pa;
+
+/// Yield strength assumed for a steel component without a grade or yield strength: the
+/// lowest API drill-pipe grade, E-75 (75 ksi), Pa.
+pub fn assumed_steel_yield_pa() -> f64 {
+    grade_yield_strength_pa("E-75").unwrap_or(517.1e6)
+}
+
+/// The highest von Mises stress of a stiff solve against the component's yield strength.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct YieldCheck {
+    /// MD of the node with the highest stress over yield, m.
+    pub md_m: f64,
+    /// Von Mises stress there, Pa.
+    pub von_mises_pa: f64,
+    /// Yield strength of the component there, Pa.
+    pub yield_strength_pa: f64,
+    /// The yield strength is assumed ([`assumed_steel_yield_pa`]), not given by the case.
+    pub assumed: bool,
+}
+
+impl YieldCheck {
+    /// Stress over yield strength.
+    pub fn ratio(&self) -> f64 {
+        self.von_mises_pa / self.yield_strength_pa
+    }
+    /// Whether the stress exceeds the yield strength.
+    pub fn exceeded(&self) -> bool {
+        self.ratio() > 1.0
+    }
+    /// The warning to print when the stress exceeds the yield strength.
+    pub fn warning(&self) -> Option<String> {
+        self.exceeded().then(|| {
+            format!(
+                "von Mises stress {:.0} MPa at {:.1} m MD is {:.1} times the yield strength {:.0} MPa{}: the string would yield there (a dogleg sharper than it can pass, or loads beyond its strength); the elastic results are not valid there",
+                self.von_mises_pa / 1e6,
+                self.md_m,
+                self.ratio(),
+                self.yield_strength_pa / 1e6,
+                if self.assumed {
+                    " (assumed: the lowest API grade E-75, as the case gives no grade or yield_strength)"
+                } else {
+                    ""
+                }
+            )
+        })
+    }
+}
+
+/// The yield check of the stiff `nodes` (from the bit up, as meshed in `model`): the node with
+/// the highest stress over its component's yield strength; None when no node has a yield
+/// strength (non-steel components without one given).
+pub fn yield_check(case: &Case, model: &Model, nodes: &[NodeResult]) -> Option<YieldCheck> {
+    let components = &case.string.components;
+    nodes
+        .iter()
+        .zip(&model.mesh.nodes)
+        .filter_map(|(n, m)| {
+            let material = &components.get(m.component)?.material;
+            let (yield_pa, assumed) = match material.yield_strength_pa {
+                Some(y) => (y, false),
+                None if material.name == "steel" => (assumed_steel_yield_pa(), true),
+                None => return None,
+            };
+            Some(YieldCheck {
+                md_m: n.md_m,
+                von_mises_pa: n.von_mises_pa,
+                yield_strength_pa: yield_pa,
+                assumed,
+            })
+        })
+        .max_by(|a, b| a.ratio().total_cmp(&b.ratio()))
+}
+
+/// A hook load below zero on bottom: the WOB asked for cannot be put on the bit by the
+/// string's weight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LockUp {
+    /// The hook load computed, N (negative).
+    pub hook_load_n: f64,
+    /// The WOB asked for, N.
+    pub wob_n: f64,
+    /// The largest WOB the string can deliver (soft string, hook load zero), N.
+    pub max_wob_n: f64,
+}
+
+impl LockUp {
+    /// The warning to print.
+    pub fn warning(&self, mode: &str) -> String {
+        format!(
+            "lock-up: hook load {:.0} kN below zero, the surface would have to push the string down to put {:.0} kN on the bit while {mode}; the string can deliver at most about {:.0} kN WOB (soft string, hook load zero): less WOB or friction, rotation, or heavier pipe above the compressed part",
+            self.hook_load_n / 1e3,
+            self.wob_n / 1e3,
+            self.max_wob_n / 1e3
+        )
+    }
+}
+
+/// The lock-up of `case` on bottom when `hook_load_n` is below zero (a WOB input; with a hook
+/// load input the WOB follows from it): the largest WOB from the soft string at hook load zero.
+pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<LockUp> {
+    let h = hook_load_n?;
+    if h >= 0.0 || !case.operation.mode.on_bottom() || case.operation.hook_load_n.is_some() {
+        return None;
+    }
+    let mut c = case.clone();
+    c.operation.hook_load_n = Some(0.0);
+    let soft = softstring::from_case(&c, softstring::segment_length_m(&c.solver));
+    let max_wob_n = (-soft.points.first()?.tension_n).max(0.0);
+    Some(LockUp {
+        hook_load_n: h,
+        wob_n,
+        max_wob_n,
+    })
+}
+
+/// The sharpest curvature a component can be bent to without its outer fibre yielding,
+/// `yield / (E OD/2)`, rad/m (None without a yield strength: non-steel, none given).
+pub fn yield_curvature_rad_m(c: &crate::string::component::Component) -> Option<f64> {
+    let m = &c.material;
+    let yield_pa = match m.yield_strength_pa {
+        Some(y) => y,
+        None if m.name == "steel" => assumed_steel_yield_pa(),
+        None => return None,
+    };
+    Some(yield_pa / (m.youngs_modulus_pa * c.body_od_m / 2.0))
+}
+
+/// A warning when a survey interval the string lies in (MD up to the bit) is sharper than
+/// some component can be bent to without yielding ([`yield_curvature_rad_m`]): the string
+/// cannot pass that dogleg elastically, whatever the solve says.
+pub fn dogleg_warning(case: &Case) -> Option<String> {
+    let path = &case.well.path;
+    let (limit, name) = case
+        .string
+        .components
+        .iter()
+        .filter_map(|c| Some((yield_curvature_rad_m(c)?, c.name.as_str())))
+        .min_by(|a, b| a.0.total_cmp(&b.0))?;
+    let bit = case.operation.bit_md_m;
+    let (dls, md) = (1..path.stations().len())
+        .filter(|&k| path.stations()[k - 1].md_m < bit)
+        .map(|k| (path.dls_before(k), path.stations()[k].md_m))
+        .max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let per30 = |x: f64| x.to_degrees() * 30.0;
+    (dls > limit).then(|| {
+        format!(
+            "the survey's dogleg of {:.1} deg/30 m in the interval ending at {md:.1} m MD is sharper than the string can pass: bent to it, `{name}` reaches its yield strength at {:.1} deg/30 m",
+            per30(dls),
+            per30(limit)
+        )
+    })
+}
