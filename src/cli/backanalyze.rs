@@ -11,6 +11,7 @@ use crate::predict::backanalysis::Progress as Stage;
 use crate::predict::backanalysis::{plan, run as run_backanalysis, BackanalysisRequest, CalibrationRequest};
 use crate::predict::calibrate::FitParameter;
 use crate::predict::march::MIN_STEP_M;
+use crate::report::fitted_case::fitted_case_toml;
 use crate::report::json_text;
 use crate::report::predict_output::{backanalysis_csv, fitted_toml, BackanalysisRun, BackanalysisSummary};
 use crate::report::predict_report::backanalyze_html;
@@ -72,7 +73,7 @@ fn declared_outputs(a: &BackanalyzeArgs, cases: &[Case]) -> anyhow::Result<Outpu
     if let Some(dir) = &a.out {
         let mut files = vec!["trajectory.csv", "summary.json"];
         if a.calibrate {
-            files.push("bit_rock_fitted.toml");
+            files.extend(["bit_rock_fitted.toml", "case_fitted.toml"]);
         }
         outputs.dir("--out", dir, &names(&files))?;
     }
@@ -147,6 +148,12 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
         outputs.stage(dir.join("trajectory.csv"), backanalysis_csv(&b).map_err(internal)?);
         if let Some(c) = &b.calibration {
             outputs.stage(dir.join("bit_rock_fitted.toml"), fitted_toml(&c.calibration));
+            let text = std::fs::read_to_string(case_file)
+                .map_err(|e| anyhow!("{}: cannot read it again: {e}", case_file.display()))?;
+            let case_dir = case_file.parent().unwrap_or(Path::new(""));
+            let fitted = fitted_case_toml(&text, case_dir, dir, &c.calibration)
+                .map_err(|e| anyhow!("{}: {e}", case_file.display()))?;
+            outputs.stage(dir.join("case_fitted.toml"), fitted);
         }
         outputs.stage(dir.join("summary.json"), summary.as_bytes());
     }
@@ -162,6 +169,13 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     write_backanalysis(&mut out, &shown, a.view.units)?;
     if let Some(dir) = &a.out {
         writeln!(out, "  wrote {}", dir.display())?;
+        if b.calibration.is_some() {
+            writeln!(
+                out,
+                "  {}: the case with the fitted law, to run as it is (bit_rock_fitted.toml: the fitted keys alone, to set in a case's [bit_rock] table)",
+                dir.join("case_fitted.toml").display()
+            )?;
+        }
     }
     if let Some(file) = &a.view.report {
         writeln!(out, "  wrote {}", file.display())?;

@@ -1,6 +1,7 @@
 //! The files a run writes: every output path checked against the run's inputs before any work
 //! (through links and relative paths), then all outputs written together at the end, or none.
 
+use crate::io::paths::resolve;
 use anyhow::bail;
 use std::path::{Path, PathBuf};
 
@@ -31,30 +32,6 @@ impl FileId {
             return FileId::Inode(m.dev(), m.ino());
         }
         FileId::Path(resolve(path))
-    }
-}
-
-/// `path` made absolute with its longest existing ancestor canonicalized (links followed), so
-/// that `a/../b/f.csv` and a link to `b` name the same place even when `f.csv` does not exist.
-pub fn resolve(path: &Path) -> PathBuf {
-    let absolute = if path.is_absolute() {
-        path.to_path_buf()
-    } else {
-        std::env::current_dir().unwrap_or_default().join(path)
-    };
-    let mut rest = Vec::new();
-    let mut head = absolute.as_path();
-    loop {
-        if let Ok(c) = head.canonicalize() {
-            return rest.iter().rev().fold(c, |p, part| p.join(part));
-        }
-        match (head.parent(), head.file_name()) {
-            (Some(parent), Some(name)) => {
-                rest.push(name.to_os_string());
-                head = parent;
-            }
-            _ => return absolute,
-        }
     }
 }
 

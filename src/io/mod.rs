@@ -2,6 +2,7 @@
 
 pub mod case_toml;
 pub mod measured_csv;
+pub mod paths;
 pub mod survey_csv;
 pub mod toml_reader;
 pub mod tracking_toml;

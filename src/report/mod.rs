@@ -1,6 +1,7 @@
 //! Outputs: CSV and JSON files with the interface's names, written atomically.
 
 pub mod display_units;
+pub mod fitted_case;
 pub mod html;
 pub mod inputs;
 pub mod loads_output;

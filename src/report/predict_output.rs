@@ -319,7 +319,9 @@ impl From<&Calibration> for CalibrationJson {
 
 /// The fitted `[bit_rock]` keys as TOML lines to paste into a case file.
 pub fn fitted_toml(c: &Calibration) -> String {
-    let mut s = String::from("# fitted by drillpath backanalyze --calibrate\n[bit_rock]\n");
+    let mut s = String::from(
+        "# fitted by drillpath backanalyze --calibrate: set these keys in a case's [bit_rock] table\n# (replacing the same keys there), or run case_fitted.toml next to this file\n[bit_rock]\n",
+    );
     for &(p, v, sd) in &c.fitted {
         match p {
             FitParameter::WalkAngle => s.push_str(&format!(

@@ -502,13 +502,22 @@ pub fn backanalyze_report(case: &Case, back: &Backanalysis, units: UnitSystem) -
     Ok(html)
 }
 
+/// "100 m" or "100 ft": the length the errors are given per in `units`.
+fn hundred(units: UnitSystem) -> &'static str {
+    match units {
+        UnitSystem::Si => "100 m",
+        UnitSystem::Oilfield => "100 ft",
+    }
+}
+
 /// The direction error per 100 m at each interval's end of the model and of every reference
 /// (and, assimilating, of the plain model and the frozen assimilation), on one chart.
 fn direction_error_figure(page: &mut Page, back: &Backanalysis, units: UnitSystem) -> Result<(), String> {
     let depth_unit = units.depth();
     let md = format!("MD [{}]", depth_unit.label);
     let x = |k: usize| depth_unit.show(back.results[k].interval.to_md_m);
-    let per100 = |d: &Direction, e: &EndDirections| d.angle_to(&e.measured).to_degrees() * 100.0 / e.length_m;
+    let error_unit = units.per_100();
+    let per100 = |d: &Direction, e: &EndDirections| error_unit.show(d.angle_to(&e.measured) / e.length_m);
     let series = |name: &str, pick: &dyn Fn(&EndDirections) -> Option<Direction>, style: Style, colour: usize| {
         let pts: Vec<(f64, f64)> = back
             .ends
@@ -519,9 +528,9 @@ fn direction_error_figure(page: &mut Page, back: &Backanalysis, units: UnitSyste
         (!pts.is_empty()).then(|| Series::new(name, pts, style, colour))
     };
     let mut chart = Chart::new(
-        "Direction error at each interval's end, per 100 m",
+        &format!("Direction error at each interval's end, per {}", hundred(units)),
         &md,
-        "error [deg/100 m]",
+        &format!("error [{}]", error_unit.label),
     );
     let mut all = vec![series("model", &|e| Some(e.model), Style::LinePoints, 0)];
     for (k, r) in Reference::all().into_iter().enumerate() {
@@ -544,7 +553,8 @@ fn direction_error_figure(page: &mut Page, back: &Backanalysis, units: UnitSyste
 fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSystem) {
     let (results, stats) = (&back.results, &back.results_stats);
     let split_md_m = back.calibration.as_ref().map(|c| c.split_md_m);
-    let depth_unit = units.depth();
+    let (depth_unit, e) = (units.depth(), units.per_100());
+    let per = hundred(units);
     let (f, l) = (&results[0], &results[results.len() - 1]);
     page.heading("Key results");
     let mut kv = vec![
@@ -558,19 +568,19 @@ fn backanalyze_key_results(page: &mut Page, back: &Backanalysis, units: UnitSyst
             ),
         ),
         (
-            "mean |inclination error| per 100 m".into(),
-            format!("{:.3} deg", stats.inc_mean_abs_per_100m_rad.to_degrees()),
+            format!("mean |inclination error| per {per}"),
+            e.fmt(stats.inc_mean_abs_per_100m_rad / 100.0, 3),
         ),
         (
-            "mean |azimuth error| per 100 m".into(),
-            format!("{:.3} deg", stats.azi_mean_abs_per_100m_rad.to_degrees()),
+            format!("mean |azimuth error| per {per}"),
+            e.fmt(stats.azi_mean_abs_per_100m_rad / 100.0, 3),
         ),
         (
-            "RMS error per 100 m, inclination / azimuth".into(),
+            format!("RMS error per {per}, inclination / azimuth"),
             format!(
-                "{:.3} / {:.3} deg",
-                stats.inc_rms_per_100m_rad.to_degrees(),
-                stats.azi_rms_per_100m_rad.to_degrees()
+                "{} / {}",
+                e.fmt(stats.inc_rms_per_100m_rad / 100.0, 3),
+                e.fmt(stats.azi_rms_per_100m_rad / 100.0, 3)
             ),
         ),
     ];
@@ -674,16 +684,17 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
             1,
         ));
     tilt.zero_line = true;
+    let e = units.per_100();
     let mut errors = Chart::new(
-        "Per-interval errors (predicted - measured) per 100 m",
+        &format!("Per-interval errors (predicted - measured) per {}", hundred(units)),
         &md,
-        "error [deg/100 m]",
+        &format!("error [{}]", e.label),
     )
     .with(Series::new(
         "inclination error",
         results
             .iter()
-            .map(|r| (end(r), r.inc_err_per_100m_rad().to_degrees()))
+            .map(|r| (end(r), e.show(r.inc_err_per_100m_rad() / 100.0)))
             .collect(),
         Style::LinePoints,
         0,
@@ -692,7 +703,7 @@ fn interval_figures(page: &mut Page, case: &Case, results: &[IntervalResult], un
         "azimuth error",
         results
             .iter()
-            .map(|r| (end(r), r.azi_err_per_100m_rad().to_degrees()))
+            .map(|r| (end(r), e.show(r.azi_err_per_100m_rad() / 100.0)))
             .collect(),
         Style::LinePoints,
         1,
