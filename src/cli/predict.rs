@@ -9,7 +9,7 @@ use crate::case::fidelity::{Choice, Level, Purpose};
 use crate::case::Case;
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::predict::forecast::{forecast, settings_at_level, Forecast, ForecastRequest};
-use crate::predict::march::{MarchSettings, MIN_STEP_M};
+use crate::predict::march::{check_step_count, MarchSettings, MIN_STEP_M};
 use crate::report::display_units::UnitSystem;
 use crate::report::json_text;
 use crate::report::predict_output::{comparison_csv, forecast_csv, ComparisonSummary, PredictSummary};
@@ -131,6 +131,11 @@ fn run_case(loaded: Loaded, path: &Path, a: &PredictArgs, label: &str, quiet: bo
     if to <= from {
         bail!("option `--to`: {to:.2} m is not below the start {from:.2} m");
     }
+    let step = length_opt("--step", &a.step, MIN_STEP_M, unit)?;
+    let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M, unit)?;
+    let settings = settings_for(&case, step, cut, &choice)?;
+    let step_m = settings.step_m;
+    check_step_count(from, to, step_m).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let deepest = case.well.hole.deepest_md();
     if to > deepest + 1e-6 {
         tracing::warn!(
@@ -138,10 +143,7 @@ fn run_case(loaded: Loaded, path: &Path, a: &PredictArgs, label: &str, quiet: bo
             path.display()
         );
     }
-    let step = length_opt("--step", &a.step, MIN_STEP_M, unit)?;
-    let cut = length_opt("--cut", &a.cut, crate::predict::march::MIN_MODEL_LENGTH_M, unit)?;
-    let settings = settings_for(&case, step, cut, &choice)?;
-    let step_m = settings.step_m;
+
     if a.extrapolate && step_m < 2.0 * MIN_STEP_M - 1e-9 {
         bail!(
             "option `--extrapolate`: it also marches at half the step, {} m, shorter than the shortest step accepted, {MIN_STEP_M} m; give --step {} m or longer",

@@ -135,7 +135,7 @@ pub fn yield_curvature_rad_m(c: &crate::string::component::Component) -> Option<
 }
 
 /// A warning when a survey interval the string lies in (MD up to the bit) is sharper than
-/// some component can be bent to without yielding ([`yield_curvature_rad_m`]): the string
+/// some component above the bit (which is too short to bend) can be bent to without yielding ([`yield_curvature_rad_m`]): the string
 /// cannot pass that dogleg elastically, whatever the solve says.
 pub fn dogleg_warning(case: &Case) -> Option<String> {
     let path = &case.well.path;
@@ -143,6 +143,7 @@ pub fn dogleg_warning(case: &Case) -> Option<String> {
         .string
         .components
         .iter()
+        .filter(|c| c.kind != crate::string::ComponentKind::Bit)
         .filter_map(|c| Some((yield_curvature_rad_m(c)?, c.name.as_str())))
         .min_by(|a, b| a.0.total_cmp(&b.0))?;
     let bit = case.operation.bit_md_m;

@@ -10,5 +10,6 @@ mod input;
 mod loads;
 mod output;
 mod predict;
+mod refusals;
 mod report;
 mod solve;

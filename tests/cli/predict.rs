@@ -410,3 +410,61 @@ fn predict_extrapolate_reports_the_step_error() {
     assert!(o.success());
     assert!(summary(dir.path())["step_extrapolation"].is_null());
 }
+
+/// `backanalyze --calibrate` writes `case_fitted.toml`, a case that runs as it is from the
+/// output folder with the fitted law (its `[bit_rock]` keys equal to `bit_rock_fitted.toml`'s),
+/// and its report shows the errors in the units asked for.
+#[test]
+fn backanalyze_writes_a_fitted_case_that_runs_and_a_report_in_the_units_asked() {
+    let dir = setup(&CASE);
+    let o = run(
+        dir.path(),
+        "backanalyze",
+        &[
+            "--from",
+            "200",
+            "--calibrate",
+            "--out",
+            "out",
+            "--report",
+            "b.html",
+            "--units",
+            "oilfield",
+        ],
+    );
+    assert!(o.success(), "{}", o.stderr);
+    assert!(
+        o.stdout.contains("case_fitted.toml") && o.stdout.contains("wrote b.html"),
+        "{}",
+        o.stdout
+    );
+    let fitted = std::fs::read_to_string(dir.path().join("out/case_fitted.toml")).unwrap();
+    let keys = std::fs::read_to_string(dir.path().join("out/bit_rock_fitted.toml")).unwrap();
+    let value = |text: &str, key: &str| -> String {
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(key))
+            .unwrap_or_else(|| panic!("no {key}"));
+        line.split('=')
+            .nth(1)
+            .unwrap()
+            .split('#')
+            .next()
+            .unwrap()
+            .trim()
+            .to_string()
+    };
+    let (a, b): (f64, f64) = (
+        value(&fitted, "lateral_drillability").parse().unwrap(),
+        value(&keys, "lateral_drillability").parse().unwrap(),
+    );
+    assert!((a - b).abs() < 1e-6, "{a} against {b}");
+    let out = dir.path().join("out");
+    let s = crate::common::run_ok(&out, &["solve", "case_fitted.toml", "--fidelity", "bha", "--json"]);
+    assert!(s.stdout.contains("\"converged\": true"), "{}", s.stdout);
+    let html = std::fs::read_to_string(dir.path().join("b.html")).unwrap();
+    assert!(
+        html.contains("deg/100 ft") && !html.contains("deg/100 m"),
+        "report not in oilfield units"
+    );
+}
