@@ -947,6 +947,8 @@ mod tests {
             "{err:?}"
         );
         assert!(err.to_string().contains("DOF column 4"));
+        // the message says what the pivot is zero against
+        assert!(err.to_string().contains("against the diagonal entry"), "{err}");
         assert_eq!(f.negative_pivots(), 0);
 
         // Unconstrained free-free chain without springs: rigid-body modes.
