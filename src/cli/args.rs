@@ -68,7 +68,7 @@ pub struct PredictArgs {
     /// Case file(s) (.toml); several cases are compared over the same interval.
     #[arg(required = true, num_args = 1..)]
     pub cases: Vec<PathBuf>,
-    /// Start MD: the hole is the survey up to here [default: the last survey station].
+    /// Start MD: the hole is the survey up to here [default: the case's bit_md, where solve puts the bit].
     #[arg(long, value_name = "MD", allow_hyphen_values = true)]
     pub from: Option<String>,
     /// End MD of the prediction (e.g. "413 m", 1500ft) [default: none; give --to or --ahead].
@@ -149,7 +149,7 @@ pub struct BackanalyzeArgs {
     /// Step length [default: the case's `[bit_rock]` step, 1 m].
     #[arg(long, value_name = "LENGTH", allow_hyphen_values = true)]
     pub step: Option<String>,
-    /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml with --calibrate) [default: no files].
+    /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml, case_fitted.toml with --calibrate) [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// --json, --report, --units.
