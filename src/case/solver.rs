@@ -13,7 +13,7 @@ pub enum Method {
 }
 
 /// Default wall-clock limit of one solve, s (`[solver] time_limit`).
-pub const DEFAULT_TIME_LIMIT_S: f64 = 120.0;
+pub const DEFAULT_TIME_LIMIT_S: f64 = 60.0;
 
 /// Most elements a string model may have (`element_length` and `bha_element_length` over the
 /// string's length); a finer mesh is refused by the case reader with the remedy.
