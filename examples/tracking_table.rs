@@ -109,7 +109,7 @@ fn row(well: &'static str, horizon: f64) -> Row {
             r(Reference::Rates { window_m: 90.0 }),
         ],
         best: s.best_naive.name(),
-        skill: s.skill,
+        skill: s.skill.unwrap_or(f64::NAN),
         physics: s.physics_share.unwrap_or(f64::NAN),
         coverage: a.coverage(),
         cost: t_assim / t_plain,

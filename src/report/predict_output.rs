@@ -548,7 +548,7 @@ pub struct BackanalysisSummary {
     dir_err_per_100m_deg: Finite,
     baselines: BaselinesJson,
     /// `1 - model / best naive` on the mean direction error.
-    skill: Finite,
+    skill: Option<Finite>,
     /// `1 - model / frozen assimilation` on the mean direction error (null without
     /// assimilation).
     physics_share: Option<Finite>,
@@ -641,7 +641,7 @@ impl BackanalysisSummary {
             }),
             dir_err_per_100m_deg: Finite(skill.model.dir_err_per_100m_rad.to_degrees()),
             baselines: BaselinesJson::new(skill),
-            skill: Finite(skill.skill),
+            skill: skill.skill.map(Finite),
             physics_share: skill.physics_share.map(Finite),
             assimilation: b.assimilation.as_ref().map(|a| {
                 let start: Vec<f64> = case

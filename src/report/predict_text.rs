@@ -272,7 +272,9 @@ fn write_skill(out: &mut impl Write, s: &Skill, place: &str, units: UnitSystem) 
         r(rates(90.0)),
         r(Reference::Statistic),
         s.best_naive.name(),
-        signed(s.skill, 3)
+        s.skill
+            .map(|k| signed(k, 3))
+            .unwrap_or_else(|| "not defined (the naive projection is exact)".into())
     )?;
     if let (Some(plain), Some(frozen), Some(share)) = (&s.plain, &s.frozen, s.physics_share) {
         writeln!(

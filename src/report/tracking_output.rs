@@ -211,7 +211,7 @@ pub struct TrackingSkillJson {
     /// The model's mean direction error per 100 m of hole from the start, deg.
     dir_err_per_100m_deg: Finite,
     baselines: BaselinesJson,
-    skill: Finite,
+    skill: Option<Finite>,
     physics_share: Option<Finite>,
 }
 
@@ -221,7 +221,7 @@ impl TrackingSkillJson {
         TrackingSkillJson {
             dir_err_per_100m_deg: Finite(s.model.dir_err_per_100m_rad.to_degrees()),
             baselines: BaselinesJson::new(s),
-            skill: Finite(s.skill),
+            skill: s.skill.map(Finite),
             physics_share: s.physics_share.map(Finite),
         }
     }

@@ -67,15 +67,23 @@ pub struct Skill {
     pub references: Vec<(Reference, ErrorSummary)>,
     /// The naive projection (hold or rates) with the smallest mean direction error.
     pub best_naive: Reference,
-    /// `1 - model / best naive` on the mean direction error.
-    pub skill: f64,
+    /// `1 - model / best naive` on the mean direction error; None when the best naive error is
+    /// below [`SKILL_FLOOR_RAD_PER_M`] (the naive projection is exact: no ratio to it means
+    /// anything).
+    pub skill: Option<f64>,
     /// The plain model, when the model is the assimilated one.
     pub plain: Option<ErrorSummary>,
     /// The frozen assimilation, when assimilating.
     pub frozen: Option<ErrorSummary>,
-    /// `1 - model / frozen` on the mean direction error, when assimilating.
+    /// `1 - model / frozen` on the mean direction error, when assimilating (None also when the
+    /// frozen error is below [`SKILL_FLOOR_RAD_PER_M`]).
     pub physics_share: Option<f64>,
 }
+
+/// Mean direction error of a reference below which a skill against it is not defined, rad/m
+/// (0.001 deg/100 m, far below a survey's resolution: the reference is then exact, as on a
+/// synthetic survey of constant rates).
+pub const SKILL_FLOOR_RAD_PER_M: f64 = 0.001 * std::f64::consts::PI / 180.0 / 100.0;
 
 impl Skill {
     /// The summary of reference `r`.
@@ -108,10 +116,11 @@ pub fn skill(ends: &[EndDirections]) -> Option<Skill> {
         .min_by(|a, b| a.1.dir_err_per_100m_rad.total_cmp(&b.1.dir_err_per_100m_rad))
         .map(|(r, s)| (*r, *s))?;
     let frozen = of(&|e| e.frozen);
-    let ratio = |a: f64, b: f64| if b > 0.0 { 1.0 - a / b } else { 0.0 };
+    // the errors are per 100 m, the floor per m
+    let ratio = |a: f64, b: f64| (b > SKILL_FLOOR_RAD_PER_M * 100.0).then(|| 1.0 - a / b);
     Some(Skill {
         skill: ratio(model.dir_err_per_100m_rad, best.dir_err_per_100m_rad),
-        physics_share: frozen.map(|f| ratio(model.dir_err_per_100m_rad, f.dir_err_per_100m_rad)),
+        physics_share: frozen.and_then(|f| ratio(model.dir_err_per_100m_rad, f.dir_err_per_100m_rad)),
         plain: of(&|e| e.plain),
         frozen,
         model,
@@ -155,7 +164,7 @@ mod tests {
         assert!((s.model.dir_err_per_100m_rad.to_degrees() - 1.0).abs() < 1e-9);
         assert!((s.model.inc_err_per_100m_rad.to_degrees() - 1.0).abs() < 1e-9);
         assert_eq!(s.best_naive, Reference::Hold);
-        assert!((s.skill - 0.5).abs() < 1e-9);
+        assert!((s.skill.unwrap() - 0.5).abs() < 1e-9);
         assert!(s.physics_share.is_none());
         let st = s.reference(Reference::Statistic).unwrap();
         assert!((st.dir_err_per_100m_rad.to_degrees() - 3.0).abs() < 1e-9);
