@@ -4,7 +4,7 @@ use super::args::SurveyArgs;
 use super::parse_length_unit;
 use crate::geometry::{Vec3, WellPath};
 use crate::io::case_toml::{load_case, CaseOverrides};
-use crate::io::survey_csv::{read_survey_csv, SurveyUnits};
+use crate::io::survey::{read_survey, SurveyUnits};
 use crate::report::{survey_table::survey_csv, write_atomic};
 use anyhow::Context;
 use std::io::Write;
@@ -17,7 +17,7 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
         .map(|u| parse_length_unit("--md-unit", u))
         .transpose()?;
     let is_toml = a.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
-    let (path, notes, label) = if is_toml {
+    let (path, file, label) = if is_toml {
         let case = load_case(
             &a.input,
             &CaseOverrides {
@@ -26,9 +26,9 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
             },
         )?;
         let label = format!("{} ({})", case.name, case.well.survey_path.display());
-        (case.well.path, case.well.survey.notes, label)
+        (case.well.path, case.well.survey, label)
     } else {
-        let sf = read_survey_csv(
+        let sf = read_survey(
             &a.input,
             &SurveyUnits {
                 md: md_unit,
@@ -39,7 +39,7 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
             let line = sf.station_lines.get(p.index).copied().unwrap_or(0);
             crate::InputError::line(&a.input, line, Some("inc/azi"), p.message)
         })?;
-        (wp, sf.notes, a.input.display().to_string())
+        (wp, sf, a.input.display().to_string())
     };
     let table = survey_csv(&path).map_err(|e| anyhow::anyhow!("internal error: {e}"))?;
     if let Some(out) = &a.out {
@@ -54,8 +54,13 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
     let last = path.station_position(n - 1);
     let (max_dls, at) = path.max_dls();
     writeln!(out, "survey: {label}")?;
-    for note in &notes {
+    for note in &file.notes {
         writeln!(out, "  note: {note}")?;
+    }
+    let reference = file.azimuth_reference.describe();
+    match file.azimuth_reference_source.as_str() {
+        "" => writeln!(out, "  azimuth reference: {reference} (azimuths used as written)")?,
+        source => writeln!(out, "  azimuth reference: {reference} (from {source})")?,
     }
     writeln!(
         out,

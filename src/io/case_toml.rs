@@ -5,7 +5,7 @@
 //! mud density sg, weight per length kg/m, ROP m/h, trip speed m/s, angles deg, moduli GPa,
 //! material density kg/m3, viscosity cP.
 
-use super::survey_csv::{read_survey_csv, SurveyUnits};
+use super::survey::{read_survey, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
 use crate::case::fit::first_misfit;
@@ -153,7 +153,7 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
         md: ov.survey_md_unit.or(case_unit),
         angle: None,
     };
-    let survey = read_survey_csv(&survey_path, &units)?;
+    let survey = read_survey(&survey_path, &units)?;
     let origin = s
         .length_triple("origin")?
         .map(|o| Vec3::new(o[0], o[1], o[2]))
