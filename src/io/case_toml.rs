@@ -33,18 +33,37 @@ pub const DEFAULT_JOINT_LENGTH_M: f64 = 9.144;
 
 /// Read and validate a case file.
 pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| InputError::file(path, format!("cannot read case file: {e}")))?;
+    let bytes = std::fs::read(path).map_err(|e| InputError::file(path, format!("cannot read case file: {e}")))?;
+    parse_case(&bytes, path, overrides)
+}
+
+/// Parse and validate the case file contents `bytes`, as [`load_case`] does the file at `path`
+/// (used in messages, and to find the survey file relative to it).
+pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = line_of(bytes, e.valid_up_to());
+        InputError::line(
+            path,
+            line,
+            None,
+            format!(
+                "the case file is not valid UTF-8 text (byte 0x{:02X}); save it as UTF-8",
+                bytes.get(e.valid_up_to()).copied().unwrap_or(0)
+            ),
+        )
+    })?;
     if text.trim().is_empty() {
         return Err(InputError::file(path, "the case file is empty"));
     }
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         let msg = e.message().to_string();
         match e.span() {
-            Some(span) => {
-                let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
-                InputError::line(path, line, None, format!("TOML syntax error: {msg}"))
-            }
+            Some(span) => InputError::line(
+                path,
+                line_of(bytes, span.start),
+                None,
+                format!("TOML syntax error: {msg}"),
+            ),
             None => InputError::file(path, format!("TOML syntax error: {msg}")),
         }
     })?;
@@ -136,6 +155,14 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
     Ok(case)
 }
 
+/// 1-based line of byte `offset` of `bytes`; the end of a file that ends with a line end is on
+/// its last line (not on the empty line after it).
+fn line_of(bytes: &[u8], offset: usize) -> usize {
+    let newlines = |b: &[u8]| b.iter().filter(|&&c| c == b'\n').count();
+    let lines = newlines(bytes) + usize::from(!bytes.ends_with(b"\n"));
+    (newlines(&bytes[..offset.min(bytes.len())]) + 1).min(lines.max(1))
+}
+
 fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
     s.check_known(WELL_KEYS)?;
     let rel = s
@@ -144,6 +171,9 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
     let survey_path = dir.join(&rel);
     if !survey_path.exists() {
         return Err(s.error("survey", format!("survey file `{}` not found", survey_path.display())));
+    }
+    if !survey_path.is_file() {
+        return Err(s.error("survey", format!("`{}` is not a file", survey_path.display())));
     }
     let case_unit = match s.string("survey_md_unit")? {
         Some(u) => Some(lookup_dim(&u, D::Length).map_err(|m| s.error("survey_md_unit", m))?),
@@ -735,4 +765,53 @@ fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         alpha,
         accuracy,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A case file in `wells/j-shape` (so that its `survey.csv` is found).
+    fn j_shape() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/j-shape/case.toml")
+    }
+
+    fn err(text: &[u8]) -> String {
+        match parse_case(text, &j_shape(), &CaseOverrides::default()) {
+            Ok(_) => panic!("expected an error"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn syntax_error_at_the_end_is_on_the_last_line() {
+        // Found by tests/verification/fuzz_input.rs: an unterminated string at the end of a
+        // file ending with a line end was reported on the line after the last one.
+        let e = err(b"[well]\nsurvey = \"survey.csv\"\nname = \"\"\"x\n");
+        assert!(e.contains("case.toml: line 3: TOML syntax error"), "{e}");
+        assert_eq!(line_of(b"a\nb\n", 4), 2);
+        assert_eq!(line_of(b"a\nb", 3), 2);
+        assert_eq!(line_of(b"a\nb\n", 2), 2);
+        assert_eq!(line_of(b"", 0), 1);
+    }
+
+    #[test]
+    fn not_utf8_names_the_line() {
+        let e = err(b"name = \"x\"\n\n[well]\nsurvey = \"\xB0.csv\"\n");
+        assert!(
+            e.contains("case.toml: line 4: the case file is not valid UTF-8 text (byte 0xB0)"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn survey_that_is_a_directory_is_named_by_its_key() {
+        // Found while writing the fuzz test (by reading, before it ran): `survey = ""` named the
+        // directory in a file-level error ("cannot read the survey file: Is a directory").
+        let e = err(b"[well]\nsurvey = \"\"\nhole = [{ to_md = \"2600 m\", diameter = \"8.5 in\" }]\n");
+        assert!(
+            e.contains("case.toml: key `well.survey`: ") && e.contains("is not a file"),
+            "{e}"
+        );
+    }
 }
