@@ -28,7 +28,7 @@
 //! | edges | [`cli`] | parse arguments into validated settings, call one library function, write and print |
 //! | | [`report`] | summaries (JSON, CSV), stdout text and HTML reports drawn from typed results |
 //! | | [`analytical`] | closed-form references for the tests (independent of the models) |
-//! | | [`io`] | files in: case TOML, survey CSV, measured loads |
+//! | | [`io`] | files in: case TOML, survey CSV or text report, measured loads |
 //! | workflows | [`predict`], [`loads`] | prediction, tracking, back-analysis, calibration; the torque-and-drag chart |
 //! | mechanics | [`models`] | soft string, buckling, stiff FEM, fidelity levels, diagnostics |
 //! | the case | [`case`] | well, string, mud, operation, bit-rock law, solver and fidelity settings |
@@ -39,7 +39,7 @@
 //!
 //! | command | library call | typed result |
 //! |---|---|---|
-//! | `survey` | [`io::case_toml::load_case`] or [`io::survey_csv`] | [`geometry::WellPath`] |
+//! | `survey` | [`io::case_toml::load_case`] or [`io::survey::read_survey`] | [`geometry::WellPath`] |
 //! | `solve` | [`models::levels::solve_string`] | [`models::levels::StringSolve`] |
 //! | `predict` | [`predict::forecast::forecast`] | [`predict::forecast::Forecast`] |
 //! | `backanalyze` | [`predict::backanalysis::plan`], [`predict::backanalysis::run`] | [`predict::backanalysis::Backanalysis`] |

@@ -18,7 +18,7 @@ pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
 pub use operation::{Mode, Mud, Operation};
 pub use solver::{Method, SolverSettings};
 pub use tracking::TrackingSettings;
-pub use well::{SurveyFile, Well};
+pub use well::{AzimuthReference, SurveyFile, Well};
 
 use crate::string::DrillString;
 use std::path::PathBuf;

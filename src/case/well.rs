@@ -33,4 +33,48 @@ pub struct SurveyFile {
     pub notes: Vec<String>,
     /// 1-based line number of each station in the file (for errors found after reading).
     pub station_lines: Vec<usize>,
+    /// The north the azimuths are measured from, as the file states it (a qualified azimuth
+    /// column such as `Azimuth Grid`, or a report's `NORTH REF : Grid` line); the azimuths are
+    /// used as written, never converted.
+    pub azimuth_reference: AzimuthReference,
+    /// Where the file states the azimuth reference, e.g. "column `Azimuth Grid ( deg )`" or
+    /// "line 14 `NORTH REF : Grid`"; empty when it does not.
+    pub azimuth_reference_source: String,
+}
+
+/// The north a survey's azimuths are measured from, as stated by the survey file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AzimuthReference {
+    /// The file does not say.
+    #[default]
+    Unspecified,
+    /// True (geographic) north.
+    True,
+    /// Grid north of the map projection.
+    Grid,
+    /// Magnetic north.
+    Magnetic,
+}
+
+impl AzimuthReference {
+    /// Name in outputs (`summary.json` `azimuth_reference`): `unspecified`, `true`, `grid` or
+    /// `magnetic`.
+    pub fn name(self) -> &'static str {
+        match self {
+            AzimuthReference::Unspecified => "unspecified",
+            AzimuthReference::True => "true",
+            AzimuthReference::Grid => "grid",
+            AzimuthReference::Magnetic => "magnetic",
+        }
+    }
+
+    /// Words for people, e.g. `grid north`.
+    pub fn describe(self) -> &'static str {
+        match self {
+            AzimuthReference::Unspecified => "not stated in the survey file",
+            AzimuthReference::True => "true north",
+            AzimuthReference::Grid => "grid north",
+            AzimuthReference::Magnetic => "magnetic north",
+        }
+    }
 }

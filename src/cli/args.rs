@@ -22,7 +22,7 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Positions by minimum curvature from a case file or a survey CSV.
+    /// Positions by minimum curvature from a case file or a survey file (CSV or text report).
     ///
     /// Example: drillpath survey wells/j-shape/case.toml --out positions.csv
     Survey(SurveyArgs),
@@ -189,7 +189,7 @@ pub struct SolveArgs {
 /// Arguments of `drillpath survey`.
 #[derive(Debug, Args)]
 pub struct SurveyArgs {
-    /// Case file (.toml) or survey CSV.
+    /// Case file (.toml) or survey file (CSV or whitespace-separated text report).
     pub input: PathBuf,
     /// Write the positions CSV to this file (stdout shows the summary) [default: no file].
     #[arg(long)]

@@ -5,7 +5,7 @@ use super::outputs::Outputs;
 use super::parse_length_unit;
 use crate::geometry::{Vec3, WellPath};
 use crate::io::case_toml::{load_case, CaseOverrides};
-use crate::io::survey_csv::{read_survey_csv, SurveyUnits};
+use crate::io::survey::{read_survey, SurveyUnits};
 use crate::report::survey_table::survey_csv;
 use std::io::Write;
 
@@ -18,7 +18,7 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
         .transpose()?;
     let is_toml = a.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
     let mut outputs = Outputs::new();
-    let (path, notes, label) = if is_toml {
+    let (path, file, label) = if is_toml {
         let case = load_case(
             &a.input,
             &CaseOverrides {
@@ -31,9 +31,9 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
         if let Some(w) = crate::models::checks::dogleg_warning(&case) {
             tracing::warn!("{}: {w}", a.input.display());
         }
-        (case.well.path, case.well.survey.notes, label)
+        (case.well.path, case.well.survey, label)
     } else {
-        let sf = read_survey_csv(
+        let sf = read_survey(
             &a.input,
             &SurveyUnits {
                 md: md_unit,
@@ -45,7 +45,7 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
             crate::InputError::line(&a.input, line, Some("inc/azi"), p.message)
         })?;
         outputs.input(&a.input);
-        (wp, sf.notes, a.input.display().to_string())
+        (wp, sf, a.input.display().to_string())
     };
     if let Some(out) = &a.out {
         outputs.file("--out", out)?;
@@ -64,8 +64,13 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
     let last = path.station_position(n - 1);
     let (max_dls, at) = path.max_dls();
     writeln!(out, "survey: {label}")?;
-    for note in &notes {
+    for note in &file.notes {
         writeln!(out, "  note: {note}")?;
+    }
+    let reference = file.azimuth_reference.describe();
+    match file.azimuth_reference_source.as_str() {
+        "" => writeln!(out, "  azimuth reference: {reference} (azimuths used as written)")?,
+        source => writeln!(out, "  azimuth reference: {reference} (from {source})")?,
     }
     writeln!(
         out,

@@ -5,11 +5,11 @@
 //! mud density sg, weight per length kg/m, ROP m/h, trip speed m/s, angles deg, moduli GPa,
 //! material density kg/m3, viscosity cP.
 
-use super::survey_csv::{read_survey_csv, SurveyUnits};
+use super::solver_toml::{check_mesh_size, read_solver};
+use super::survey::{read_survey, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
 use crate::case::fit::first_misfit;
-use crate::case::solver::MAX_ELEMENTS;
 use crate::case::SurveyFile;
 use crate::case::*;
 use crate::error::{InputError, InputResult};
@@ -34,18 +34,37 @@ pub const DEFAULT_JOINT_LENGTH_M: f64 = 9.144;
 
 /// Read and validate a case file.
 pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| InputError::file(path, format!("cannot read case file: {e}")))?;
+    let bytes = std::fs::read(path).map_err(|e| InputError::file(path, format!("cannot read case file: {e}")))?;
+    parse_case(&bytes, path, overrides)
+}
+
+/// Parse and validate the case file contents `bytes`, as [`load_case`] does the file at `path`
+/// (used in messages, and to find the survey file relative to it).
+pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = line_of(bytes, e.valid_up_to());
+        InputError::line(
+            path,
+            line,
+            None,
+            format!(
+                "the case file is not valid UTF-8 text (byte 0x{:02X}); save it as UTF-8",
+                bytes.get(e.valid_up_to()).copied().unwrap_or(0)
+            ),
+        )
+    })?;
     if text.trim().is_empty() {
         return Err(InputError::file(path, "the case file is empty"));
     }
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         let msg = e.message().to_string();
         match e.span() {
-            Some(span) => {
-                let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
-                InputError::line(path, line, None, format!("TOML syntax error: {msg}"))
-            }
+            Some(span) => InputError::line(
+                path,
+                line_of(bytes, span.start),
+                None,
+                format!("TOML syntax error: {msg}"),
+            ),
             None => InputError::file(path, format!("TOML syntax error: {msg}")),
         }
     })?;
@@ -140,6 +159,14 @@ pub fn load_case(path: &Path, overrides: &CaseOverrides) -> InputResult<Case> {
     Ok(case)
 }
 
+/// 1-based line of byte `offset` of `bytes`; the end of a file that ends with a line end is on
+/// its last line (not on the empty line after it).
+fn line_of(bytes: &[u8], offset: usize) -> usize {
+    let newlines = |b: &[u8]| b.iter().filter(|&&c| c == b'\n').count();
+    let lines = newlines(bytes) + usize::from(!bytes.ends_with(b"\n"));
+    (newlines(&bytes[..offset.min(bytes.len())]) + 1).min(lines.max(1))
+}
+
 fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
     s.check_known(WELL_KEYS)?;
     let rel = s
@@ -149,6 +176,9 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
     if !survey_path.exists() {
         return Err(s.error("survey", format!("survey file `{}` not found", survey_path.display())));
     }
+    if !survey_path.is_file() {
+        return Err(s.error("survey", format!("`{}` is not a file", survey_path.display())));
+    }
     let case_unit = match s.string("survey_md_unit")? {
         Some(u) => Some(lookup_dim(&u, D::Length).map_err(|m| s.error("survey_md_unit", m))?),
         None => None,
@@ -157,7 +187,7 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
         md: ov.survey_md_unit.or(case_unit),
         angle: None,
     };
-    let survey = read_survey_csv(&survey_path, &units)?;
+    let survey = read_survey(&survey_path, &units)?;
     let origin = s
         .length_triple("origin")?
         .map(|o| Vec3::new(o[0], o[1], o[2]))
@@ -364,57 +394,6 @@ const BIT_ROCK_KEYS: &[&str] = &[
     "bit_friction",
     "formations",
 ];
-/// Keys accepted in the solver table (checked before any is read, so a typo is named).
-/// Smallest contact `tolerance` accepted (relative to the clearance).
-pub const MIN_TOLERANCE: f64 = 1e-8;
-
-/// Refuse element lengths that would give the string model more than [`MAX_ELEMENTS`]
-/// elements, naming the key and the remedy (before any mesh is built).
-fn check_mesh_size(s: &Section, solver: &SolverSettings, string: &DrillString) -> InputResult<()> {
-    let bha = string.bha_length_m().min(string.length_m());
-    let pipe = string.length_m() - bha;
-    let in_bha = bha / solver.bha_element_length_m.min(solver.element_length_m);
-    let in_pipe = pipe / solver.element_length_m;
-    if in_bha + in_pipe <= MAX_ELEMENTS {
-        return Ok(());
-    }
-    let (key, length, count) = if in_pipe >= in_bha {
-        ("element_length", solver.element_length_m, in_pipe)
-    } else {
-        ("bha_element_length", solver.bha_element_length_m, in_bha)
-    };
-    Err(s.error(
-        key,
-        format!(
-            "{} m elements give the string model about {:.0} elements ({count:.0} from this key), more than the {MAX_ELEMENTS} a model may have: take longer elements (the accuracy presets in docs/guide.md give the measured trade)",
-            short_number(length),
-            in_bha + in_pipe
-        ),
-    ))
-}
-
-/// `x` as written by a user: plain when short, else in scientific notation.
-fn short_number(x: f64) -> String {
-    let plain = format!("{x}");
-    if plain.len() <= 8 {
-        plain
-    } else {
-        format!("{x:e}")
-    }
-}
-
-const SOLVER_KEYS: &[&str] = &[
-    "accuracy",
-    "element_length",
-    "bha_element_length",
-    "time_limit",
-    "tolerance",
-    "fidelity",
-    "method",
-    "max_iterations",
-    "alpha",
-];
-
 /// Keys accepted in a `[[string]]` component.
 const COMPONENT_KEYS: &[&str] = &[
     "type",
@@ -722,65 +701,51 @@ fn read_bit_rock(s: &Section, default_step_m: f64) -> InputResult<BitRock> {
     })
 }
 
-fn read_solver(s: &Section) -> InputResult<SolverSettings> {
-    s.check_known(SOLVER_KEYS)?;
-    let mut d = SolverSettings::default();
-    let mut accuracy = None;
-    if let Some(name) = s.string("accuracy")? {
-        let preset = crate::case::accuracy::Accuracy::parse(&name).ok_or_else(|| {
-            s.error(
-                "accuracy",
-                format!("unknown accuracy `{name}` (expected {})", crate::case::accuracy::NAMES),
-            )
-        })?;
-        d.apply_preset(preset);
-        accuracy = Some(preset);
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A case file in `wells/j-shape` (so that its `survey.csv` is found).
+    fn j_shape() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/j-shape/case.toml")
     }
-    let el = s
-        .positive("element_length", D::Length, "m", false)?
-        .unwrap_or(d.element_length_m);
-    let bha = s
-        .positive("bha_element_length", D::Length, "m", false)?
-        .unwrap_or(d.bha_element_length_m.min(el));
-    let tol = s.number("tolerance")?.unwrap_or(d.tolerance);
-    if !(MIN_TOLERANCE..=0.1).contains(&tol) {
-        return Err(s.error(
-            "tolerance",
-            format!("{} outside [{MIN_TOLERANCE:e}, 0.1]: below {MIN_TOLERANCE:e} of the clearance a penetration is as small as the rounding of the positions in double precision, which no solve can reach", short_number(tol)),
-        ));
+
+    fn err(text: &[u8]) -> String {
+        match parse_case(text, &j_shape(), &CaseOverrides::default()) {
+            Ok(_) => panic!("expected an error"),
+            Err(e) => e.to_string(),
+        }
     }
-    let fidelity = match s.string("fidelity")? {
-        None => Fidelity::Auto,
-        Some(name) => Fidelity::parse(&name).ok_or_else(|| {
-            s.error(
-                "fidelity",
-                format!("unknown fidelity `{name}` (expected {})", crate::case::fidelity::NAMES),
-            )
-        })?,
-    };
-    let method = match s.string("method")?.as_deref() {
-        None | Some("newton") => Method::Newton,
-        Some("paper") => Method::Paper,
-        Some(other) => return Err(s.error("method", format!("unknown method `{other}` (expected newton, paper)"))),
-    };
-    let max_it = s.number("max_iterations")?.unwrap_or(d.max_iterations as f64);
-    if !(1.0..=100_000.0).contains(&max_it) {
-        return Err(s.error("max_iterations", "must be between 1 and 100000"));
+
+    #[test]
+    fn syntax_error_at_the_end_is_on_the_last_line() {
+        // Found by tests/verification/fuzz_input.rs: an unterminated string at the end of a
+        // file ending with a line end was reported on the line after the last one.
+        let e = err(b"[well]\nsurvey = \"survey.csv\"\nname = \"\"\"x\n");
+        assert!(e.contains("case.toml: line 3: TOML syntax error"), "{e}");
+        assert_eq!(line_of(b"a\nb\n", 4), 2);
+        assert_eq!(line_of(b"a\nb", 3), 2);
+        assert_eq!(line_of(b"a\nb\n", 2), 2);
+        assert_eq!(line_of(b"", 0), 1);
     }
-    let alpha = s.number("alpha")?.unwrap_or(d.alpha);
-    if !(alpha > 0.0 && alpha < 1.0) {
-        return Err(s.error("alpha", format!("{alpha} outside (0, 1)")));
+
+    #[test]
+    fn not_utf8_names_the_line() {
+        let e = err(b"name = \"x\"\n\n[well]\nsurvey = \"\xB0.csv\"\n");
+        assert!(
+            e.contains("case.toml: line 4: the case file is not valid UTF-8 text (byte 0xB0)"),
+            "{e}"
+        );
     }
-    let time_limit = s.positive("time_limit", D::Time, "s", false)?.unwrap_or(d.time_limit_s);
-    Ok(SolverSettings {
-        element_length_m: el,
-        bha_element_length_m: bha,
-        tolerance: tol,
-        fidelity,
-        method,
-        max_iterations: max_it as usize,
-        alpha,
-        time_limit_s: time_limit,
-        accuracy,
-    })
+
+    #[test]
+    fn survey_that_is_a_directory_is_named_by_its_key() {
+        // Found while writing the fuzz test (by reading, before it ran): `survey = ""` named the
+        // directory in a file-level error ("cannot read the survey file: Is a directory").
+        let e = err(b"[well]\nsurvey = \"\"\nhole = [{ to_md = \"2600 m\", diameter = \"8.5 in\" }]\n");
+        assert!(
+            e.contains("case.toml: key `well.survey`: ") && e.contains("is not a file"),
+            "{e}"
+        );
+    }
 }

@@ -1,8 +1,10 @@
-//! Input files: survey CSV and TOML case files, turned into validated library types.
+//! Input files: survey files (CSV or text report) and TOML case files, turned into validated
+//! library types.
 
 pub mod case_toml;
 pub mod measured_csv;
 pub mod paths;
-pub mod survey_csv;
+pub mod solver_toml;
+pub mod survey;
 pub mod toml_reader;
 pub mod tracking_toml;

@@ -195,7 +195,7 @@ impl<'a> Section<'a> {
                     .map(|k| format!(" (did you mean `{k}`?)"))
                     .unwrap_or_default();
                 return Err(self.error(
-                    key,
+                    &as_written(key),
                     format!("unknown key{hint}; accepted keys here: {}", known.join(", ")),
                 ));
             }
@@ -225,6 +225,17 @@ impl<'a> Section<'a> {
     }
 }
 
+/// A key as TOML writes it: bare (`od`) when it can be, else quoted (`""`, `"a b"`), so that an
+/// empty or spaced key is still visible in a message.
+fn as_written(key: &str) -> String {
+    let bare = !key.is_empty() && key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
+    if bare {
+        key.to_string()
+    } else {
+        format!("{key:?}")
+    }
+}
+
 /// Closest string by edit distance (at most 3 edits).
 fn closest<'k>(key: &str, known: &[&'k str]) -> Option<&'k str> {
     known
@@ -246,4 +257,29 @@ fn edit_distance(a: &str, b: &str) -> usize {
         prev = cur;
     }
     prev[b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unknown_empty_or_spaced_key_is_shown_quoted() {
+        // Found by tests/verification/fuzz_input.rs: `"" = 1` was reported as key ``.
+        for (text, shown) in [
+            ("\"\" = 1", "key `\"\"`"),
+            ("[mud]\n\"a b\" = 1", "key `mud.\"a b\"`"),
+            ("odd = 1", "key `odd`"),
+        ] {
+            let table: Table = text.parse().unwrap();
+            let top = Section::new(Path::new("c.toml"), "", &table);
+            let e = match table.get("mud") {
+                Some(Value::Table(t)) => Section::new(Path::new("c.toml"), "mud", t).check_known(&["density"]),
+                _ => top.check_known(&["od"]),
+            }
+            .unwrap_err()
+            .to_string();
+            assert!(e.starts_with(&format!("c.toml: {shown}: unknown key")), "{e}");
+        }
+    }
 }

@@ -19,6 +19,10 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
     page.key_values(&[
         ("case file".into(), case.path.display().to_string()),
         ("survey".into(), case.well.survey_path.display().to_string()),
+        (
+            "azimuth reference".into(),
+            case.well.survey.azimuth_reference.describe().to_string(),
+        ),
         ("stations".into(), st.len().to_string()),
         (
             "survey MD range".into(),

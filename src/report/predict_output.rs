@@ -391,6 +391,9 @@ struct ModelJson {
 pub struct PredictSummary {
     case: String,
     case_file: String,
+    /// The north the survey's (and so the predicted) azimuths are measured from, as the survey
+    /// file states it: `unspecified`, `true`, `grid` or `magnetic`.
+    azimuth_reference: &'static str,
     from_md_m: Finite,
     to_md_m: Finite,
     step_m: Finite,
@@ -414,6 +417,7 @@ impl PredictSummary {
         PredictSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
+            azimuth_reference: case.well.survey.azimuth_reference.name(),
             from_md_m: Finite(p.from_md_m),
             to_md_m: Finite(p.to_md_m),
             step_m: Finite(f.settings.step_m),
@@ -529,6 +533,8 @@ struct RunJson {
 pub struct BackanalysisSummary {
     case: String,
     case_file: String,
+    /// The north the survey's azimuths are measured from, as the survey file states it.
+    azimuth_reference: &'static str,
     /// The BHA runs (each case's name, file and bit depth), the first case's first.
     runs: Vec<RunJson>,
     intervals: usize,
@@ -597,6 +603,7 @@ impl BackanalysisSummary {
         BackanalysisSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
+            azimuth_reference: case.well.survey.azimuth_reference.name(),
             runs: std::iter::once((case, case_file))
                 .chain(later_runs.iter().copied())
                 .map(|(c, f)| RunJson {

@@ -370,6 +370,165 @@ fn md_unit_option_of_the_wrong_dimension() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Survey exports (issue 18 (9)): report-style headers, the azimuth reference, text reports.
+
+/// The fixture's survey as a report exporter writes it: units in parentheses with spaces,
+/// `Incl.`, a grid azimuth and a column not read.
+const EXPORTED_SURVEY: &str = "\
+Measured Depth ( m ),Incl. ( deg ),Azimuth Grid ( deg ),DLS (deg/30m)
+0,0,0,0
+300,0,0,0
+600,10,45,1
+1000,20,45,0.75
+";
+
+/// The fixture's survey as a whitespace-separated text report: metadata (grid north), a
+/// title, the header, its units line and the stations, one more column than read.
+const REPORT: &str = "\
+COMPANY      : Example
+NORTH REF    : Grid
+DATE         : 1/2/2024
+
+SURVEY
+MD       INC      AZI      TVD
+(m)      (deg)    (deg)    (m)
+
+0.00     0.00     0.00     0.00
+300.00   0.00     0.00     300.00
+600.00   10.00    45.00    598.48
+1000.00  20.00    45.00    984.32
+";
+
+#[test]
+fn survey_with_exported_headers_names_the_grid_reference() {
+    // Fails before issue 18: `Incl.` and `Azimuth Grid` were not column names.
+    let fx = Fixture::new();
+    fx.write("survey.csv", EXPORTED_SURVEY);
+    let plain = fx.run(&["survey", "case.toml", "--csv"]);
+    for args in [["survey", "survey.csv"], ["survey", "case.toml"]] {
+        let r = fx.run(&args);
+        assert_eq!(r.code(), Some(0), "{}", r.describe());
+        assert!(r.stdout.contains("stations: 4"), "{}", r.describe());
+        assert!(
+            r.stdout
+                .contains("azimuth reference: grid north (from column `Azimuth Grid ( deg )`)"),
+            "{}",
+            r.describe()
+        );
+    }
+    // the same positions as the fixture's plain survey
+    fx.write("survey.csv", SURVEY);
+    let r = fx.run(&["survey", "case.toml", "--csv"]);
+    assert_eq!(r.stdout, plain.stdout);
+    let r = fx.run(&["survey", "survey.csv"]);
+    assert!(
+        r.stdout
+            .contains("azimuth reference: not stated in the survey file (azimuths used as written)"),
+        "{}",
+        r.describe()
+    );
+}
+
+#[test]
+fn survey_with_grid_and_true_azimuths_is_refused_naming_both() {
+    let fx = Fixture::new();
+    fx.write(
+        "survey.csv",
+        "MD (m),Inc (deg),Azimuth Grid (deg),Azimuth True (deg)\n0,0,0,0.5\n100,1,10,10.5\n",
+    );
+    fx.expect_error(
+        &["survey", "survey.csv"],
+        &[
+            "survey.csv",
+            "line 1",
+            "`Azimuth Grid (deg)` (field 3, grid north)",
+            "`Azimuth True (deg)` (field 4, true north)",
+            "delete the column you do not want",
+        ],
+    );
+}
+
+#[test]
+fn survey_text_report_reads_as_the_csv() {
+    // Fails before issue 18: a whitespace-separated report could not be read at all.
+    let fx = Fixture::new();
+    fx.write("report.txt", REPORT);
+    let r = fx.run(&["survey", "report.txt"]);
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
+    for must in [
+        "stations: 4",
+        "note: read as a whitespace-separated survey report: header on line 6, units on line 7",
+        "azimuth reference: grid north (from line 2 `NORTH REF : Grid`)",
+    ] {
+        assert!(r.stdout.contains(must), "`{must}` missing\n{}", r.describe());
+    }
+    let from_report = fx.run(&["survey", "report.txt", "--csv"]);
+    let from_csv = fx.run(&["survey", "survey.csv", "--csv"]);
+    assert_eq!(from_report.stdout, from_csv.stdout);
+    // and named by a case
+    fx.edit_case("survey = \"survey.csv\"", "survey = \"report.txt\"");
+    let r = fx.run(&["survey", "case.toml", "--csv"]);
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
+    assert_eq!(r.stdout, from_csv.stdout);
+}
+
+#[test]
+fn survey_text_report_errors_name_the_line() {
+    let fx = Fixture::new();
+    fx.write(
+        "report.txt",
+        &REPORT.replace("600.00   10.00    45.00", "600.00   10.00"),
+    );
+    fx.expect_error(
+        &["survey", "report.txt"],
+        &["report.txt", "line 11", "3 fields", "header on line 6 names 4 columns"],
+    );
+    fx.write("report.txt", &REPORT.replace("1000.00  20.00", "1000.00  2O.00"));
+    fx.expect_error(
+        &["survey", "report.txt"],
+        &["report.txt", "line 12", "column `INC`", "`2O.00` is not a number"],
+    );
+    fx.write("report.txt", &REPORT.replace("(m)      (deg)", "(furlong) (deg)"));
+    fx.expect_error(
+        &["survey", "report.txt"],
+        &["report.txt", "line 7", "column `MD`", "furlong"],
+    );
+    fx.write("report.txt", &REPORT.replace("AZI ", "AZI_TRUE "));
+    fx.expect_error(
+        &["survey", "report.txt"],
+        &[
+            "report.txt",
+            "line 2",
+            "`Grid` (grid north) contradicts column `AZI_TRUE`",
+        ],
+    );
+}
+
+#[test]
+fn forge_16b_report_reads_as_its_derived_csv() {
+    // Reference: wells/forge-16b/16B78-32_survey.csv, derived value for value from the report
+    // by wells/tools/forge16b_survey.py: the same positions, to the digit.
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = example_dir("forge-16b");
+    let report = dir.join("16B78-32_Final_Survey_Report.txt");
+    let r = run_in(tmp.path(), &["survey", report.to_str().unwrap()]);
+    assert_eq!(r.code(), Some(0), "{}", r.describe());
+    for must in [
+        "stations: 428",
+        "azimuth reference: grid north (from line 14 `NORTH REF : Grid`)",
+        "header on line 21, units on line 22",
+    ] {
+        assert!(r.stdout.contains(must), "`{must}` missing\n{}", r.describe());
+    }
+    let from_report = run_in(tmp.path(), &["survey", report.to_str().unwrap(), "--csv"]);
+    let csv = dir.join("16B78-32_survey.csv");
+    let from_csv = run_in(tmp.path(), &["survey", csv.to_str().unwrap(), "--csv"]);
+    assert_eq!(from_report.code(), Some(0), "{}", from_report.describe());
+    assert_eq!(from_report.stdout.lines().count(), 429);
+    assert_eq!(from_report.stdout, from_csv.stdout);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Case-file errors: the file and the dotted key.
 
 #[test]

@@ -196,6 +196,7 @@ fn predict_tracking_writes_the_interface_outputs() {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
     assert_eq!(s["tracking"]["stations_compared"], 4);
+    assert_eq!(s["azimuth_reference"], "unspecified");
     assert!(s["tracking"]["inc_err_per_100m_deg"].as_f64().unwrap().is_finite());
     assert!(s["rates"]["build_rate_deg_per_30m"].as_f64().unwrap().is_finite());
 }
@@ -213,6 +214,20 @@ fn backanalyze_writes_errors_per_100m() {
     assert!(s["inc_err_per_100m_deg"].as_f64().unwrap() >= 0.0);
     assert!(s["azi_err_per_100m_deg"].as_f64().unwrap() >= 0.0);
     assert!(s["bit_rock"]["lateral_drillability"].as_f64().is_some());
+}
+
+/// The azimuth reference a survey states (issue 18: here a `true azi` column) is carried to
+/// `summary.json` of `predict` and `backanalyze` as the new key `azimuth_reference`.
+#[test]
+fn summaries_name_the_azimuth_reference() {
+    let dir = case_dir(&survey().replacen("azi_deg", "true azi [deg]", 1), &CASE);
+    let o = run(dir.path(), "predict", &["--from", "200", "--to", "220", "--out", "out"]);
+    assert!(o.success(), "{}", o.stderr);
+    assert_eq!(summary(dir.path())["azimuth_reference"], "true");
+    std::fs::remove_dir_all(dir.path().join("out")).unwrap();
+    let o = run(dir.path(), "backanalyze", &["--from", "200", "--out", "out"]);
+    assert!(o.success(), "{}", o.stderr);
+    assert_eq!(summary(dir.path())["azimuth_reference"], "true");
 }
 
 /// Default start of back-analysis: below the hole sections more than 1 in wider than the bit

@@ -10,7 +10,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::{Path, PathBuf};
 
 use drillpath::geometry::{Frame, Station, Survey, Vec3, WellPath};
-use drillpath::io::survey_csv::{read_survey_csv, SurveyUnits};
+use drillpath::io::survey::{read_survey, SurveyUnits};
 use drillpath::units::lookup;
 use proptest::prelude::*;
 use proptest::test_runner::FileFailurePersistence;
@@ -307,10 +307,10 @@ fn iscwsa_example_well_2_feet() {
 // 3. Volve 15/9-F-10 and 15/9-F-5 (real-time WITSML trajectories, metres)
 // ----------------------------------------------------------------------------------------------
 
-/// Read a Volve trajectory with `read_survey_csv`, start at `origin` and compare the file's own
+/// Read a Volve trajectory with `read_survey`, start at `origin` and compare the file's own
 /// tvd/north/east columns at every station.
 fn check_volve(path: &Path, origin: Vec3, tol_m: f64, label: &'static str) {
-    let file = read_survey_csv(path, &SurveyUnits::default()).expect("Volve survey reads");
+    let file = read_survey(path, &SurveyUnits::default()).expect("Volve survey reads");
     assert_eq!(file.md_unit, "m");
     assert_eq!(file.inc_unit, "deg");
     assert_eq!(file.azi_unit, "deg");
@@ -390,7 +390,7 @@ fn forge_16a_every_station() {
         md: lookup("ft"),
         ..Default::default()
     };
-    let file = read_survey_csv(&path, &units).expect("FORGE 16A survey reads");
+    let file = read_survey(&path, &units).expect("FORGE 16A survey reads");
     assert_eq!(file.md_unit, "ft");
     assert_eq!(file.survey.len(), 422);
     let w = WellPath::new(&file.survey, Vec3::zeros()).expect("valid well path");

@@ -12,6 +12,7 @@ mod architecture;
 mod buckling;
 mod extremes;
 mod fidelity;
+mod fuzz_input;
 mod geometry;
 mod known_truth;
 mod loads;
