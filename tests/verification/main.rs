@@ -13,6 +13,7 @@ mod buckling;
 mod extremes;
 mod fidelity;
 mod geometry;
+mod hybrid;
 mod known_truth;
 mod loads;
 mod paper;
