@@ -4,7 +4,7 @@
 //! |----------|---------------------------------------------------------------|-------|
 //! | `soft`   | soft-string torque and drag over the whole string | hook load, surface torque, axial force and torque along the string, buckling check; **no** bit side forces, tilt or bending |
 //! | `bha`    | stiff FEM of the bottom part, cut where it lies on the wall | bit forces and tilt, contacts and bending below the cut; **no** surface values |
-//! | `hybrid` | `bha` + soft string from the coupling point to the surface | all of `bha`, plus hook load and surface torque |
+//! | `hybrid` | stiff FEM of the bottom-hole assembly and the pipe just above it + soft string from the coupling point to the surface | all of `bha`, plus hook load and surface torque |
 //! | `whole`  | stiff FEM of the whole string (the seed paper's model)        | everything |
 //!
 //! `auto` picks per command ([`choose`]): `solve` reports the whole string (contacts, bending
@@ -20,7 +20,7 @@ pub enum Level {
     Soft,
     /// Stiff bottom-hole assembly only.
     Bha,
-    /// Stiff bottom-hole assembly plus soft string above the cut.
+    /// Stiff bottom-hole assembly and the pipe just above it, plus soft string above the coupling point.
     Hybrid,
     /// Stiff whole string.
     Whole,
@@ -107,7 +107,7 @@ pub fn choose(requested: Fidelity, purpose: Purpose) -> Choice {
         ),
         Fidelity::Level(Level::Hybrid) => (
             Level::Hybrid,
-            "requested: stiff bottom-hole assembly, soft string from the coupling point (half way to the cut) to the surface",
+            "requested: stiff bottom-hole assembly and the pipe just above it, soft string from the coupling point (three tangency lengths above the assembly) to the surface",
         ),
         Fidelity::Level(Level::Whole) => (Level::Whole, "requested: stiff whole string"),
         Fidelity::Auto => match purpose {

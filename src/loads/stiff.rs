@@ -317,7 +317,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
     // stiff results are reported up to the coupling node (above it the cut's clamp disturbs
     // them); the soft string above adds no torque without rotation
     let (mut max_f, friction_torque) = lr.fem.as_ref().map_or((0.0, 0.0), |f| {
-        let k = crate::models::levels::coupling_node(case, &f.model);
+        let k = f.coupling.unwrap_or(f.model.nodes() - 1);
         let max_f = f.results.nodes[..=k]
             .iter()
             .map(|n| n.contact_force_n)

@@ -2,25 +2,25 @@
 //! string, the stiff bottom-hole assembly cut where it lies on the wall, the two coupled
 //! (`hybrid`), or the whole stiff string.
 //!
-//! The coupling of `hybrid`: the soft-string integration starts at the coupling node
-//! ([`coupling_node`], half way between the highest stabilizer and the cut, away from the
-//! cut's clamp) with `F = F_c` (the FEM's effective axial force there, tension positive) and
-//! `M = T_c` (the FEM's torque there), and runs up the string above it with the same friction,
-//! speeds and mud. Without axial motion and rotation the hook load is then
-//! `sum w_b dTVD - WOB` to round-off for both parts (docs/theory.md 10.5 exact check (a)).
-//! The soft part is [`softstring::soft_string_stiff_contact`]: its wall carries the lateral
-//! load with the normal force and the circumferential friction together, as in the stiff model
-//! (docs/theory.md 4), so the torque above the cut is consistent with the stiff part below.
-//! Against `whole` the surface torque of `hybrid` is then within 1% on the example wells,
-//! forge-16a aside (+6.8%: short doglegs of its real survey that the stiff pipe bridges);
-//! Johancsik's form gave +1% to +8.4% (tests/verification/fidelity.rs).
-//!
+//! The coupling of `hybrid` ([`stiff_extent`], [`soft_above`]): the stiff model holds the whole
+//! bottom-hole assembly and the pipe three tangency lengths above it; the soft-string
+//! integration starts at the coupling node there with `F = F_c + M_c^2/(2 EI)` (the FEM's
+//! effective axial force, tension positive, plus the bending energy per length of the pipe
+//! there) and `M = T_c` (the FEM's torque), and runs up the string above it with the same
+//! friction, speeds and mud. Without axial motion and rotation the hook load is then
+//! `sum w_b dTVD - WOB` up to the bending-energy terms of the stiff part (docs/theory.md 8.3,
+//! 10.5 exact check (a)). The soft part is [`softstring::soft_string_stiff_contact`]: its wall
+//! carries the lateral load with the normal force and the circumferential friction together,
+//! as in the stiff model (docs/theory.md 4), so the torque above the cut is consistent with
+//! the stiff part below. Against `whole`: tests/verification/fidelity.rs and
+//! tests/verification/hybrid.rs (the example wells, and packed assemblies at the bottom of
+//! 10-30 deg/30 m builds; docs/theory.md 8.3 has the measured table).
 
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
 use crate::models::buckling::{soft_marks, stiff_marks, Mark};
 use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
-use crate::models::fem::bha::{bha_model, default_cut_m};
+use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::results::{extract, BitResult, NodeResult, SolveResults};
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
@@ -56,6 +56,10 @@ pub struct FemPart {
     /// Post-processed results (for a cut model `hook_load_n` and `surface_torque_nm` are the
     /// axial force and torque at the cut).
     pub results: SolveResults,
+    /// Index of the coupling node of a cut model ([`StiffExtent::coupling_m`]): the soft
+    /// string of `hybrid` takes over there and the stiff results are reported up to it. None
+    /// for a model of the whole string.
+    pub coupling: Option<usize>,
 }
 
 /// The result of one solve at a fidelity level, SI. Values a level does not compute are None.
@@ -107,14 +111,96 @@ pub fn cut_for(case: &Case) -> f64 {
     )
 }
 
-fn fem_part(model: Model, case: &Case, ctl: &SolveControls) -> Result<FemPart, SolveError> {
+/// Tangency lengths of the pipe above the bottom-hole assembly kept between the assembly's top
+/// and the coupling point of `hybrid`, and again between the coupling point and its cut.
+pub const HYBRID_TANGENCY_LENGTHS: f64 = 3.0;
+
+/// Where the stiff part of a cut level ends, m from the bit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StiffExtent {
+    /// The cut (the stiff model's top), m from the bit.
+    pub cut_m: f64,
+    /// The coupling point, m from the bit: the soft string of `hybrid` starts there, and the
+    /// stiff results are reported up to it (the cut's clamp disturbs them above).
+    pub coupling_m: f64,
+}
+
+/// The stiff part of `level` for `case` (docs/theory.md 8.2, 8.3).
+///
+/// `bha` (and any level but `hybrid`): the cut of [`cut_for`], the coupling point half way
+/// between the highest stabilizer and the cut; the cut's clamp disturbs the string within
+/// about a tangency length below it, the bit forces depend on the string within a few above
+/// the stabilizers.
+///
+/// `hybrid`: the same, but the coupling point at least [`HYBRID_TANGENCY_LENGTHS`] tangency
+/// lengths `L_t` of the pipe above the bottom-hole assembly ([`DrillString::bha_length_m`])
+/// above the assembly's top, and the cut at least as many above the coupling point (`L_t` at
+/// the inclination and hole size there). A stiff assembly lying in a curved hole is bent: it
+/// presses on the wall where it straightens and at its top, where the pipe above cannot carry
+/// its bending moment, and its axial force changes by the bending energy it releases
+/// (docs/theory.md 8.3); the soft string knows neither, so the stiff model holds the whole
+/// assembly and hands over in the pipe above it. A string without pipe above its assembly
+/// keeps the `bha` extent.
+pub fn stiff_extent(case: &Case, level: Level) -> StiffExtent {
+    let cut = cut_for(case);
+    let s_stab = case
+        .string
+        .stabilizer_contacts_m()
+        .into_iter()
+        .fold(0.0, f64::max)
+        .min(cut);
+    let bha = StiffExtent {
+        cut_m: cut,
+        coupling_m: s_stab + 0.5 * (cut - s_stab),
+    };
+    if level != Level::Hybrid {
+        return bha;
+    }
+    let top = case.string.bha_length_m();
+    if top >= case.string.length_m() - 1e-9 {
+        // no pipe above the assembly to hand over in
+        return bha;
+    }
+    let md = case.operation.bit_md_m - top;
+    let lt = tangency_length_m(
+        case.string.component_at(top + 1e-6),
+        case.well.hole.diameter_at(md),
+        case.well.path.point_at(md).inc_rad,
+        case.mud.density_kg_m3,
+    );
+    let coupling = top + HYBRID_TANGENCY_LENGTHS * lt;
+    if coupling <= bha.coupling_m {
+        return bha;
+    }
+    StiffExtent {
+        cut_m: cut
+            .max(coupling + HYBRID_TANGENCY_LENGTHS * lt)
+            .min(case.string.length_m()),
+        coupling_m: coupling,
+    }
+}
+
+/// Index of the node of `model` nearest to `s_m` from the bit.
+fn nearest_node(model: &Model, s_m: f64) -> usize {
+    (0..model.nodes())
+        .min_by(|&a, &b| {
+            let da = (model.mesh.nodes[a].s_m - s_m).abs();
+            let db = (model.mesh.nodes[b].s_m - s_m).abs();
+            da.total_cmp(&db)
+        })
+        .unwrap_or(model.nodes() - 1)
+}
+
+fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
     let sol = solve(&model, ctl)?;
     let results = extract(&model, &sol, case.mud.density_kg_m3);
+    let coupling = coupling_m.map(|s| nearest_node(&model, s));
     Ok(FemPart {
         model,
         converged: sol.converged,
         stats: sol.stats,
         results,
+        coupling,
     })
 }
 
@@ -167,7 +253,7 @@ pub fn run_with_progress(
         }
         Level::Whole => {
             on_stage(0, n, "stiff whole string");
-            let part = fem_part(Model::from_case(case), case, ctl)?;
+            let part = fem_part(Model::from_case(case), case, ctl, None)?;
             out.fill_from_fem(&part);
             out.hook_load_n = Some(part.results.hook_load_n);
             out.surface_torque_nm = Some(part.results.surface_torque_nm);
@@ -180,23 +266,23 @@ pub fn run_with_progress(
                     out.choice.level.name()
                 )));
             }
-            let cut = cut_for(case);
+            let extent = stiff_extent(case, out.choice.level);
             on_stage(0, n, "stiff bottom-hole assembly");
-            let model = bha_model(case, &case.well.path, &case.well.hole, op.bit_md_m, cut);
+            let model = bha_model(case, &case.well.path, &case.well.hole, op.bit_md_m, extent.cut_m);
             let is_cut = matches!(model.top, TopCondition::Cut { .. });
-            let part = fem_part(model, case, ctl)?;
+            let part = fem_part(model, case, ctl, is_cut.then_some(extent.coupling_m))?;
             out.fill_from_fem(&part);
-            out.cut_m = is_cut.then_some(cut);
-            if !is_cut {
-                // the string is not longer than the cut: the stiff part is the whole string
-                out.hook_load_n = Some(part.results.hook_load_n);
-                out.surface_torque_nm = Some(part.results.surface_torque_nm);
-            } else if out.choice.level == Level::Hybrid {
+            out.cut_m = is_cut.then_some(extent.cut_m);
+            if let (Level::Hybrid, Some(k)) = (out.choice.level, part.coupling) {
                 on_stage(1, n, "soft string above the coupling point");
-                let s = soft_above(case, &part);
+                let s = soft_above(case, &part, k);
                 out.hook_load_n = Some(s.hook_load_n);
                 out.surface_torque_nm = Some(s.surface_torque_nm);
                 out.soft = Some(s);
+            } else if !is_cut {
+                // the string is not longer than the cut: the stiff part is the whole string
+                out.hook_load_n = Some(part.results.hook_load_n);
+                out.surface_torque_nm = Some(part.results.surface_torque_nm);
             }
             out.fem = Some(part);
         }
@@ -214,36 +300,21 @@ impl LevelResult {
     }
 }
 
-/// Index of the node of the stiff part where the soft string takes over (and above which its
-/// results are not reported): half way between the highest stabilizer and the cut. The cut's
-/// clamp (position on the wall, axis parallel to the hole) disturbs the string within about a
-/// tangency length below it (a spurious contact couple next to the cut node), while the bit
-/// forces depend on the string within a few tangency lengths of the stabilizers: half way
-/// keeps three tangency lengths from both (with the default cut rule).
-pub fn coupling_node(case: &Case, model: &Model) -> usize {
-    let top = model.nodes() - 1;
-    let cut = model.mesh.nodes[top].s_m;
-    let s_stab = case
-        .string
-        .stabilizer_contacts_m()
-        .into_iter()
-        .fold(0.0, f64::max)
-        .min(cut);
-    let s_c = s_stab + 0.5 * (cut - s_stab);
-    (0..=top)
-        .min_by(|&a, &b| {
-            let da = (model.mesh.nodes[a].s_m - s_c).abs();
-            let db = (model.mesh.nodes[b].s_m - s_c).abs();
-            da.total_cmp(&db)
-        })
-        .unwrap_or(top)
+/// Bending strain energy per length of the stiff part `part` at its node `k`, `M^2 / (2 EI)`
+/// with the node's bending moment and the flexural rigidity of the element above it, N (J/m).
+pub fn bending_energy_n(part: &FemPart, k: usize) -> f64 {
+    let m = &part.model;
+    let ei = m.mesh.elements[k.min(m.nodes() - 2)].ei;
+    part.results.nodes[k].bending_moment_nm.powi(2) / (2.0 * ei)
 }
 
-/// The soft string from the coupling node of the stiff part `part` ([`coupling_node`]) to the
-/// surface, started from the FEM's effective axial force and torque there.
-pub fn soft_above(case: &Case, part: &FemPart) -> SoftStringResult {
+/// The soft string from node `k` of the stiff part `part` (its coupling node) to the surface.
+/// It starts with the torque there and, as its axial force, the FEM's effective axial force
+/// plus the bending energy per length there ([`bending_energy_n`]): along a beam
+/// `d/ds (F + M^2/(2 EI)) = -q.t`, the equation of the soft string's tension, so the bent
+/// pipe's axial force rises by that energy where it straightens (docs/theory.md 8.3).
+pub fn soft_above(case: &Case, part: &FemPart, k: usize) -> SoftStringResult {
     let m = &part.model;
-    let k = coupling_node(case, m);
     let upper = upper_part(&case.string, m.mesh.nodes[k].s_m);
     let op = &case.operation;
     let node = &part.results.nodes[k];
@@ -253,7 +324,7 @@ pub fn soft_above(case: &Case, part: &FemPart) -> SoftStringResult {
         string: &upper,
         mud_density_kg_m3: case.mud.density_kg_m3,
         bit_md_m: m.md_ref[k],
-        wob_n: -node.axial_force_n,
+        wob_n: -(node.axial_force_n + bending_energy_n(part, k)),
         bit_torque_nm: node.torque_nm,
         axial_speed_m_s: op.axial_speed_m_s(),
         omega_rad_s: op.omega_rad_s(),
@@ -264,7 +335,7 @@ pub fn soft_above(case: &Case, part: &FemPart) -> SoftStringResult {
 
 /// A static solve of a case at a fidelity level with what `drillpath solve` reports: the
 /// level's result, the nodes of its stiff part that are reported (the stiff part of a cut model
-/// is reported up to the coupling point, [`coupling_node`]), the buckling marks there and
+/// is reported up to the coupling point, [`FemPart::coupling`]), the buckling marks there and
 /// along the soft part above, and the assumptions the user should know of.
 pub struct StringSolve {
     /// The level's result.
@@ -320,11 +391,7 @@ pub fn solve_string(
     on_stage: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<StringSolve, FidelityError> {
     let level = run_with_progress(case, choice, ctl, on_stage)?;
-    let coupling = level
-        .fem
-        .as_ref()
-        .filter(|_| level.cut_m.is_some())
-        .map(|part| coupling_node(case, &part.model));
+    let coupling = level.fem.as_ref().and_then(|part| part.coupling);
     let last_reported_node = level
         .fem
         .as_ref()

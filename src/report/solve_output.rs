@@ -192,7 +192,7 @@ fn scope(lr: &LevelResult) -> (&'static str, Vec<&'static str>) {
             vec!["hook load", "surface torque", "string above the coupling point"],
         ),
         Level::Hybrid => (
-            "soft string from the coupling point up, started from the stiff model's axial force and torque there",
+            "soft string from the coupling point up, started from the stiff model's axial force (plus the bending energy of the pipe there) and torque",
             vec!["bending, contacts and stresses above the coupling point"],
         ),
         Level::Whole => ("stiff whole string", vec![]),

@@ -71,14 +71,15 @@ fn fidelity_bha_and_hybrid_bit_forces_match_whole() {
 #[test]
 fn fidelity_surface_values_against_whole() {
     // Reference: the whole-string FEM. Tolerances: hook load 0.2% (soft string and FEM agree
-    // on the weight; friction differs by the contact pattern; measured < 0.06%). Surface torque:
+    // on the weight; friction differs by the contact pattern; measured < 0.03%). Surface torque:
     // soft 10% (Johancsik's soft string overstates the torque of rotating pipe lying in straight
     // sections by sqrt(1 + f^2), docs/theory.md 4, 3% at f = 0.25, and differs in curved ones;
-    // measured -2.4% to +2.4%). Hybrid 3% (its soft part balances the lateral load with the
-    // normal force and the circumferential friction together, as the stiff model does; measured
-    // -0.2% to +0.9%), except forge-16a, 8% (measured +6.8%): its real survey has short
-    // doglegs in the near-vertical upper hole that the stiff pipe bridges, so the whole model's
-    // torque gain above 1,474 m is 0.81 of the soft string's there.
+    // measured -2.3% to +2.2%). Hybrid 3% (its stiff part holds the whole bottom-hole assembly,
+    // its soft part balances the lateral load with the normal force and the circumferential
+    // friction together, as the stiff model does; measured -0.2% to +1.1%), except forge-16a,
+    // 8% (measured +6.3%): its real survey has short doglegs in the near-vertical upper hole
+    // that the stiff pipe bridges, so the whole model's torque gain above 1,474 m is 0.81 of
+    // the soft string's there. Sharp builds: tests/verification/hybrid.rs.
     for name in EXAMPLES {
         let case = example(name);
         let whole = at(&case, Fidelity::Level(Level::Whole));
@@ -114,13 +115,35 @@ fn fidelity_surface_values_against_whole() {
     }
 }
 
+/// Bending energy per length `M^2/2 (1/EI_up - 1/EI_lo)` released at the stiffness changes of
+/// the stiff part of `r` up to its coupling node (its top for a whole-string model), summed, N
+/// (docs/theory.md 8.3: `F + M^2/(2 EI)` follows the soft string's balance within a section,
+/// `F` and `M` are continuous across a change).
+fn stiffness_change_energy_n(r: &LevelResult) -> f64 {
+    let Some(part) = r.fem.as_ref() else {
+        return 0.0;
+    };
+    let m = &part.model;
+    let last = part.coupling.unwrap_or(m.nodes() - 1);
+    (1..last)
+        .map(|i| {
+            let (lo, up) = (m.mesh.elements[i - 1].ei, m.mesh.elements[i].ei);
+            part.results.nodes[i].bending_moment_nm.powi(2) / 2.0 * (1.0 / up - 1.0 / lo)
+        })
+        .sum()
+}
+
 #[test]
 fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
     // Reference: docs/theory.md 10.5 exact check (a): rotating with no axial motion, the hook load
-    // is sum(w_b dTVD) over the string (exact for the soft string). Tolerance 1e-6 relative for
-    // hybrid and soft (the FEM part's residual tolerance is 1e-7 of the load scale; its BHA lies
-    // in the straight hold); the whole FEM is printed for comparison and held to 2e-4 (measured
-    // +8.2e-5 on this well: an open point, docs/theory.md 10.5 calls the check exact for the FEM too).
+    // is sum(w_b dTVD) over the string, exact for the soft string (tolerance 1e-6). A stiff part
+    // adds the bending energy released at its stiffness changes (docs/theory.md 8.3; here
+    // 1.27 N at the bit-stabilizer and the collar-HWDP changes of hybrid's stiff part, which
+    // holds the whole assembly): hybrid against sum(w_b dTVD) plus those terms, tolerance 2e-6
+    // (measured +8.9e-7, +2.7e-6 without them; the FEM part's residual tolerance is 1e-7 of the
+    // load scale). The whole FEM is printed for comparison and held to 2e-4 against the same
+    // reference (measured +8.0e-5 on this well: an open point, the energy terms explain 1.4 N of
+    // its 59 N).
     let mut case = example("j-shape");
     case.operation.mode = Mode::RotatingOffBottom;
     case.operation.wob_n = 0.0;
@@ -141,17 +164,20 @@ fn fidelity_hybrid_hook_load_is_hanging_weight_without_axial_motion() {
         Fidelity::Level(Level::Whole),
     ] {
         let r = at(&case, level);
-        let e = r.hook_load_n.unwrap() / hanging - 1.0;
+        let energy = stiffness_change_energy_n(&r);
+        let e = r.hook_load_n.unwrap() / (hanging + energy) - 1.0;
         println!(
-            "{:<6} hook load {:.4} kN, sum w_b dTVD {:.4} kN ({e:+.2e})",
+            "{:<6} hook load {:.4} kN, sum w_b dTVD {:.4} kN, stiffness-change energy {:.3} N ({e:+.2e}; {:+.2e} without it)",
             r.choice.level.name(),
             r.hook_load_n.unwrap() / 1e3,
-            hanging / 1e3
+            hanging / 1e3,
+            energy,
+            r.hook_load_n.unwrap() / hanging - 1.0
         );
-        let tol = if level == Fidelity::Level(Level::Whole) {
-            2e-4
-        } else {
-            1e-6
+        let tol = match level {
+            Fidelity::Level(Level::Whole) => 2e-4,
+            Fidelity::Level(Level::Hybrid) => 2e-6,
+            _ => 1e-6,
         };
         assert!(e.abs() < tol, "{level:?}: {e:e}");
     }

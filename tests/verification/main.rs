@@ -14,6 +14,7 @@ mod extremes;
 mod fidelity;
 mod fuzz_input;
 mod geometry;
+mod hybrid;
 mod known_truth;
 mod loads;
 mod paper;

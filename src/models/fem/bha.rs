@@ -13,7 +13,7 @@
 use super::model::{Model, TopCondition};
 use crate::case::Case;
 use crate::geometry::{HoleSize, Vec3, WellPath};
-use crate::string::DrillString;
+use crate::string::{Component, DrillString};
 
 /// Shortest cut, m from the bit.
 pub const MIN_CUT_M: f64 = 30.0;
@@ -24,6 +24,17 @@ pub const TANGENCY_LENGTHS_ABOVE: f64 = 6.0;
 /// Lateral load per length (as a fraction of the buoyed weight) below which the cut node is
 /// centred instead of lying on the wall (a near-vertical straight hole); linear in between.
 pub const CENTRED_LOAD_FRACTION: f64 = 0.02;
+
+/// Lubinski's tangency length `L_t = (24 EI r / (w_b sin I))^(1/4)` of component `c`, m, in a
+/// hole of diameter `hole_diameter_m` (m) at inclination `inc_rad` (rad; at least 5 deg in the
+/// formula) in mud of density `mud_density_kg_m3` (kg/m3); `r` is the radial clearance of its
+/// contact OD (at least 1 mm), `w_b` its buoyed weight per length (at least 1 N/m).
+pub fn tangency_length_m(c: &Component, hole_diameter_m: f64, inc_rad: f64, mud_density_kg_m3: f64) -> f64 {
+    let w = c.buoyed_weight_n_per_m(mud_density_kg_m3).abs().max(1.0);
+    let r = ((hole_diameter_m - c.contact_od_m) / 2.0).max(1e-3);
+    let sin_i = inc_rad.sin().abs().max(5f64.to_radians().sin());
+    (24.0 * c.ei_nm2() * r / (w * sin_i)).powf(0.25)
+}
 
 /// Default cut distance from the bit, m, for `string` in a hole of diameter `hole_diameter_m`
 /// at inclination `inc_rad`.
@@ -37,10 +48,7 @@ pub fn default_cut_m(string: &DrillString, hole_diameter_m: f64, inc_rad: f64, m
         .map(|c| c.top_m())
         .fold(0.0, f64::max);
     let above = string.component_at(top_of_stab + 1e-6);
-    let w = above.buoyed_weight_n_per_m(mud_density_kg_m3).abs().max(1.0);
-    let r = ((hole_diameter_m - above.contact_od_m) / 2.0).max(1e-3);
-    let sin_i = inc_rad.sin().abs().max(5f64.to_radians().sin());
-    let lt = (24.0 * above.ei_nm2() * r / (w * sin_i)).powf(0.25);
+    let lt = tangency_length_m(above, hole_diameter_m, inc_rad, mud_density_kg_m3);
     (s_stab + TANGENCY_LENGTHS_ABOVE * lt)
         .clamp(MIN_CUT_M, MAX_CUT_M)
         .min(string.length_m())
