@@ -37,10 +37,11 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         .into());
     }
     let n = stages(choice.level);
+    // one stage: a spinner, so that a long whole-string solve shows it is working
     let progress = if n > 1 {
         Progress::new(n as u64, &format!("solve {}", a.case.display()), quiet)
     } else {
-        Progress::hidden()
+        Progress::spinner(&format!("solve {}: {}", a.case.display(), choice.level.name()), quiet)
     };
     let solved = solve_string(
         &case,
