@@ -95,6 +95,7 @@ const DEG: f64 = std::f64::consts::PI / 180.0;
 const TABLE: &[(&[&str], Dimension, f64)] = &[
     (&["m", "meter", "meters", "metre", "metres"], Dimension::Length, 1.0),
     (&["ft", "feet", "foot", "'"], Dimension::Length, FOOT),
+    (&["usft", "ftus", "us survey ft", "us survey foot", "us survey feet"], Dimension::Length, 1200.0 / 3937.0),
     (&["in", "inch", "inches", "\""], Dimension::Length, INCH),
     (&["mm"], Dimension::Length, 1e-3),
     (&["cm"], Dimension::Length, 1e-2),
@@ -323,5 +324,15 @@ mod tests {
         assert!(parse_quantity("NaN m", Dimension::Length, "m").is_err());
         assert!(parse_quantity("inf", Dimension::Length, "m").is_err());
         assert!(parse_quantity("1e999 m", Dimension::Length, "m").is_err());
+    }
+
+    /// The US survey foot is exactly 1200/3937 m (NIST), 2 ppm longer than the foot: 0.6 m
+    /// over a 10,000 ft well. Common in US survey exports as `usft`.
+    #[test]
+    fn us_survey_foot_is_1200_over_3937_m() {
+        let u = lookup_dim("usft", Dimension::Length).unwrap();
+        assert_eq!(u.to_si, 1200.0 / 3937.0);
+        assert!((u.to_si - 0.304_800_609_6).abs() < 1e-10);
+        assert_eq!(lookup("US Survey Feet").unwrap().to_si, u.to_si);
     }
 }
