@@ -102,6 +102,8 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     let mut outputs = declared_outputs(&a, &cases)?;
     let name = case_file.display().to_string();
     let plan = plan(case, &req).map_err(|e| anyhow!("{name}: {e}"))?;
+    plan.check_size(settings[0].step_m)
+        .map_err(|e| anyhow!("{name}: {e}"))?;
     let bar = Progress::new(plan.intervals.len() as u64, &format!("backanalyze {name}"), quiet);
     let mut spinner: Option<Progress> = None;
     let mut bar = Some(bar);

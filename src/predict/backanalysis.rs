@@ -73,6 +73,35 @@ pub struct BackanalysisPlan {
     pub assimilate: bool,
 }
 
+/// Most march steps one back-analysis may take over all its intervals (each calibration
+/// evaluation repeats them); a larger one is refused before any solve, with the remedy.
+pub const MAX_BACKANALYSIS_STEPS: f64 = 200_000.0;
+
+impl BackanalysisPlan {
+    /// March steps over all intervals at `step_m` (m), once.
+    pub fn march_steps(&self, step_m: f64) -> f64 {
+        self.intervals
+            .iter()
+            .map(|i| ((i.to_md_m - i.from_md_m) / step_m).ceil())
+            .sum()
+    }
+
+    /// Refuse a plan whose intervals take more than [`MAX_BACKANALYSIS_STEPS`] steps at
+    /// `step_m` (m), with the remedy.
+    pub fn check_size(&self, step_m: f64) -> Result<(), String> {
+        let steps = self.march_steps(step_m);
+        if steps <= MAX_BACKANALYSIS_STEPS {
+            return Ok(());
+        }
+        Err(format!(
+            "{} intervals from {:.2} to {:.2} m MD take {steps:.0} march steps of {step_m} m, more than the {MAX_BACKANALYSIS_STEPS} a back-analysis may take: a shorter --horizon, a shorter range (--from, --to) or a longer --step",
+            self.intervals.len(),
+            self.from_md_m,
+            self.to_md_m
+        ))
+    }
+}
+
 /// Why a back-analysis cannot run.
 #[derive(Debug, thiserror::Error)]
 pub enum BackanalysisError {
@@ -479,4 +508,36 @@ fn calibrate_and_score(
         calibration,
     };
     Ok((outcome, scored))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The plan's size: consecutive intervals of 10 m from 1,000 m to 11,000 m are 1,000
+    /// intervals; at a 1 m step 10,000 steps (accepted), at a 0.04 m step 250,000 (refused,
+    /// the message names the remedy).
+    #[test]
+    fn a_plan_beyond_the_step_bound_is_refused() {
+        let intervals: Vec<Interval> = (0..1000)
+            .map(|k| Interval {
+                from_md_m: 1000.0 + 10.0 * k as f64,
+                to_md_m: 1010.0 + 10.0 * k as f64,
+                measured: (0.1, 0.2),
+            })
+            .collect();
+        let plan = BackanalysisPlan {
+            from_md_m: 1000.0,
+            to_md_m: 11_000.0,
+            horizon_m: 0.0,
+            below_previous_hole_md_m: None,
+            intervals,
+            calibration: None,
+            assimilate: false,
+        };
+        assert_eq!(plan.march_steps(1.0), 10_000.0);
+        assert!(plan.check_size(1.0).is_ok());
+        let e = plan.check_size(0.04).unwrap_err();
+        assert!(e.contains("250000") && e.contains("--horizon"), "{e}");
+    }
 }
