@@ -15,7 +15,7 @@ pub mod well;
 pub use accuracy::Accuracy;
 pub use bit_rock::{BitRock, Formation};
 pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
-pub use operation::{Mode, Mud, Operation};
+pub use operation::{FrictionSplit, Mode, Motion, Mud, Operation};
 pub use solver::{Method, SolverSettings};
 pub use tracking::TrackingSettings;
 pub use well::{AzimuthReference, SurveyFile, Well};

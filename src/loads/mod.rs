@@ -34,11 +34,6 @@ pub const MODES: [Mode; 5] = [
     Mode::Sliding,
 ];
 
-/// Axial speed used for a sliding row when the case gives no ROP, m/s. Without rotation only
-/// the direction of motion matters (friction is `f N` against it), so any positive value gives
-/// the same loads; a nonzero value keeps friction on.
-pub const SLIDING_NOMINAL_SPEED_M_S: f64 = 1.0 / 3600.0;
-
 /// Rotary speed used for the rotating rows when the case gives none, rev/min (stated in the
 /// command's output). Off bottom only the direction matters; drilling, the ratio ROP/RPM splits
 /// friction between axial and tangential.
@@ -94,8 +89,8 @@ pub fn depth_list(from_m: f64, to_m: f64, every_m: f64, md_start: f64) -> Vec<f6
 
 /// The case for one row of the chart: bit at `bit_md_m`, string refitted by
 /// [`DrillString::at_depth`], operation set for `mode` with the chart's WOB and RPM (on-bottom rows
-/// take `op.wob_n`; off bottom WOB 0; sliding without ROP moves at
-/// [`SLIDING_NOMINAL_SPEED_M_S`]); a hook load given in the case is not used.
+/// take `op.wob_n`; off bottom WOB 0; the friction's direction follows from the row's mode,
+/// [`crate::case::Operation::motion`], as in `solve`); a hook load given in the case is not used.
 pub fn case_for_row(base: &Case, string: &DrillString, bit_md_m: f64, mode: Mode, op: &ChartOperation) -> Case {
     let mut c = base.clone();
     c.string = string.clone();
@@ -111,11 +106,7 @@ pub fn set_row_operation(case: &mut Case, bit_md_m: f64, mode: Mode, op: &ChartO
     o.hook_load_n = None;
     o.wob_n = if mode.on_bottom() { op.wob_n } else { 0.0 };
     o.rpm = op.rpm;
-    o.rop_m_s = if mode == Mode::Sliding && op.rop_m_s <= 0.0 {
-        SLIDING_NOMINAL_SPEED_M_S
-    } else {
-        op.rop_m_s
-    };
+    o.rop_m_s = op.rop_m_s;
 }
 
 /// Check that every component of `string` (bit at `bit_md_m`) fits the hole where it sits (as

@@ -326,8 +326,8 @@ pub fn soft_above(case: &Case, part: &FemPart, k: usize) -> SoftStringResult {
         bit_md_m: m.md_ref[k],
         wob_n: -(node.axial_force_n + bending_energy_n(part, k)),
         bit_torque_nm: node.torque_nm,
-        axial_speed_m_s: op.axial_speed_m_s(),
-        omega_rad_s: op.omega_rad_s(),
+        axial_speed_m_s: op.motion().axial_speed_m_s,
+        omega_rad_s: op.motion().omega_rad_s,
         friction: op.friction,
         max_element_m: softstring::segment_length_m(&case.solver),
     })

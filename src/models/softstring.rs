@@ -25,15 +25,18 @@
 //! Torque is positive in the sense of rotation (`Omega > 0`, clockwise seen from above).
 //! At the bit, `F = -WOB` (compression) and `M = T_b`.
 //!
-//! When there is no motion at all (`v_a = 0` and `Omega = 0`) the direction of friction is
-//! undetermined; the string is then treated as frictionless and the result says so
-//! ([`SoftStringResult::frictionless`]).
+//! The shares `v_a/|v|` and `Omega R_c/|v|` are [`crate::case::Motion::friction_split`], the
+//! rule every model shares; a case's speeds come from [`crate::case::Operation::motion`]
+//! (sliding and tripping move in the direction the mode implies even when the case gives no
+//! speed). When there is no motion at all (`v_a = 0` and `Omega = 0`, only rotating off bottom
+//! at 0 rpm) the direction of friction is undetermined; the string is then treated as
+//! frictionless and the result says so ([`SoftStringResult::frictionless`]).
 //!
 //! Not included: mud drag torque (physics.md 2.4, ~10 N.m per 1000 m, negligible), the
 //! hole diameter (the cable lies on the axis), bending stiffness. See physics.md 6.6 for how
 //! the stiff FEM torque differs in straight sections (factor `1/sqrt(1 + f^2)`).
 
-use crate::case::Case;
+use crate::case::{Case, Motion};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::string::{Component, DrillString};
 
@@ -56,7 +59,8 @@ pub struct SoftStringInput<'a> {
     /// Bit torque, N.m, in the sense of rotation (0 off bottom). The bit boundary is `M = T_b`.
     pub bit_torque_nm: f64,
     /// Axial speed of the string, m/s, positive down the hole (running in / drilling),
-    /// negative pulling out. Only the direction of the velocity matters (with `omega_rad_s`).
+    /// negative pulling out. Only the direction of the velocity matters (with `omega_rad_s`);
+    /// from a case, [`crate::case::Operation::motion`].
     pub axial_speed_m_s: f64,
     /// Rotary speed, rad/s (positive clockwise seen from above; 0 = not rotating).
     pub omega_rad_s: f64,
@@ -182,9 +186,11 @@ pub fn soft_string_stiff_contact(input: &SoftStringInput) -> SoftStringResult {
 
 fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
     assert!(input.max_element_m > 0.0, "max_element_m must be positive");
-    let v_a = input.axial_speed_m_s;
-    let omega = input.omega_rad_s;
-    let frictionless = v_a == 0.0 && omega == 0.0;
+    let motion = Motion {
+        axial_speed_m_s: input.axial_speed_m_s,
+        omega_rad_s: input.omega_rad_s,
+    };
+    let frictionless = !motion.is_moving();
     let bit = input.path.point_at(input.bit_md_m);
     let mut f = -input.wob_n;
     let mut m = input.bit_torque_nm;
@@ -209,14 +215,9 @@ fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
         let comp = input.string.component_at(0.5 * (xa + xb));
         let w_b = comp.buoyed_weight_n_per_m(input.mud_density_kg_m3);
         let r_c = contact_radius_m(comp);
-        // velocity split for this component (the contact radius sets the sliding speed)
-        let v_t = omega * r_c;
-        let speed = v_a.hypot(v_t);
-        let (ax_share, rot_share) = if frictionless || speed == 0.0 {
-            (0.0, 0.0)
-        } else {
-            (v_a / speed, v_t / speed)
-        };
+        // friction split for this component (the contact radius sets the sliding speed)
+        let split = motion.friction_split(r_c);
+        let (ax_share, rot_share) = (split.axial, split.tangential);
         let n = n_elements(xb - xa, input.max_element_m);
         let h = (xb - xa) / n as f64;
         for j in 0..n {
@@ -271,8 +272,8 @@ pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
 
 /// Soft-string pass for a case's operation, with elements of at most `max_element_m`.
 ///
-/// - Speeds from [`crate::case::Operation::axial_speed_m_s`] and
-///   [`crate::case::Operation::omega_rad_s`]; friction from the operation where the hole
+/// - Speeds from [`crate::case::Operation::motion`] (sliding and tripping move at a nominal
+///   speed when the case gives none); friction from the operation where the hole
 ///   section gives none; mud density from the case.
 /// - WOB: the operation's (0 off bottom). When the case gives the hook load instead of the
 ///   WOB (on bottom), the WOB is solved for (secant on the soft-string hook load, clamped at 0:
@@ -281,6 +282,7 @@ pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
 pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
     let op = &case.operation;
     let bit_torque = |wob: f64| crate::models::bit::bit_torque_nm(case, wob);
+    let motion = op.motion();
     let run = |wob: f64| {
         soft_string(&SoftStringInput {
             path: &case.well.path,
@@ -290,8 +292,8 @@ pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
             bit_md_m: op.bit_md_m,
             wob_n: wob,
             bit_torque_nm: bit_torque(wob),
-            axial_speed_m_s: op.axial_speed_m_s(),
-            omega_rad_s: op.omega_rad_s(),
+            axial_speed_m_s: motion.axial_speed_m_s,
+            omega_rad_s: motion.omega_rad_s,
             friction: op.friction,
             max_element_m,
         })

@@ -305,7 +305,8 @@ impl SolveSummary {
     }
 }
 
-/// One `string.csv` row of a stiff node (interface columns).
+/// One `string.csv` row of a stiff node (interface columns; the clearance empty where the node
+/// has no gap element).
 fn node_row(n: &NodeResult) -> Result<String, String> {
     Ok([
         num(n.md_m, 3)?,
@@ -314,7 +315,7 @@ fn node_row(n: &NodeResult) -> Result<String, String> {
         num(n.position.z, 4)?,
         num(n.disp_high_m * 1e3, 3)?,
         num(n.disp_right_m * 1e3, 3)?,
-        num(n.clearance_m * 1e3, 3)?,
+        n.clearance_m.map(|c| num(c * 1e3, 3)).transpose()?.unwrap_or_default(),
         num(n.contact_force_n / 1e3, 4)?,
         num(n.contact_angle_deg, 2)?,
         num(n.axial_force_n / 1e3, 3)?,

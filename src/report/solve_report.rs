@@ -331,13 +331,17 @@ fn string_figures(
         )
         .with(Series::new(
             "wall (+ radial clearance)",
-            bha.iter().map(|n| (x(n), small_unit.show(n.clearance_m))).collect(),
+            bha.iter()
+                .filter_map(|n| n.clearance_m.map(|c| (x(n), small_unit.show(c))))
+                .collect(),
             Style::Thin,
             6,
         ))
         .with(Series::new(
             "wall (- radial clearance)",
-            bha.iter().map(|n| (x(n), -small_unit.show(n.clearance_m))).collect(),
+            bha.iter()
+                .filter_map(|n| n.clearance_m.map(|c| (x(n), -small_unit.show(c))))
+                .collect(),
             Style::Thin,
             7,
         ))

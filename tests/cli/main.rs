@@ -6,6 +6,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod drag;
 mod input;
 mod loads;
 mod output;

@@ -119,3 +119,31 @@ fn accuracy_preset_in_case_file_and_on_the_command_line() {
     let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
     assert!(fast_elements < s["solver"]["elements"].as_u64().unwrap());
 }
+
+#[test]
+fn string_csv_clearance_is_empty_without_a_gap_element() {
+    // Reference: the mesh's gap elements (docs/guide.md, outputs of `solve`): every stiff node
+    // has one except the bit face, the bit's body above it and the top node of the whole
+    // string, held on the hole axis; their `clearance_mm` cell is empty (it was 0 before), the
+    // others give the radial clearance (>= 0). seed-daqing at `whole`: exactly the first and
+    // the last row empty (its bit, 0.3 m long, has no node inside).
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().to_str().unwrap();
+    let case = "wells/seed-daqing/case.toml";
+    let out = run_in(root(), &["solve", case, "--fidelity", "whole", "--out", d, "-q"]);
+    assert!(out.success(), "{}", out.describe());
+    let csv = std::fs::read_to_string(dir.path().join("string.csv")).unwrap();
+    let mut lines = csv.lines();
+    let col = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .position(|h| h == "clearance_mm")
+        .unwrap();
+    let cells: Vec<String> = lines.map(|l| l.split(',').nth(col).unwrap().to_string()).collect();
+    let empty: Vec<usize> = (0..cells.len()).filter(|&i| cells[i].is_empty()).collect();
+    assert_eq!(empty, vec![0, cells.len() - 1], "rows with an empty clearance");
+    for c in &cells[1..cells.len() - 1] {
+        assert!(c.parse::<f64>().unwrap() >= 0.0, "{c}");
+    }
+}

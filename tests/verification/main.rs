@@ -19,6 +19,7 @@ mod known_truth;
 mod loads;
 mod paper;
 mod predict;
+mod sliding;
 mod softstring;
 mod solver;
 mod tracking;

@@ -444,8 +444,8 @@ fn compression_beyond_helical_buckling_keeps_the_pipe_in_the_hole() {
         let max_off = res
             .nodes
             .iter()
-            .filter(|n| n.clearance_m > 0.0)
-            .map(|n| (n.disp_high_m.hypot(n.disp_right_m) - n.clearance_m) / n.clearance_m)
+            .filter_map(|n| n.clearance_m.filter(|&c| c > 0.0).map(|c| (n, c)))
+            .map(|(n, c)| (n.disp_high_m.hypot(n.disp_right_m) - c) / c)
             .fold(f64::MIN, f64::max);
         let angles: Vec<f64> = res
             .nodes

@@ -11,7 +11,7 @@ use super::element::corotational::{element_forces, element_response_into, Elemen
 use super::linalg::band::BandMatrix;
 use super::linalg::band_lu::GeneralBand;
 use super::mesh::{build_mesh, Mesh};
-use crate::case::Case;
+use crate::case::{Case, Motion};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::contact::gap::{evaluate, GapInput, GapResponse};
 use crate::string::DrillString;
@@ -80,9 +80,9 @@ pub struct Loads {
     pub hook_load_n: Option<f64>,
     /// Bit torque, N.m (applied about -t at the bit).
     pub bit_torque_nm: f64,
-    /// String spin, rad/s.
+    /// String spin, rad/s ([`crate::case::Operation::motion`]).
     pub omega_rad_s: f64,
-    /// Axial speed, m/s, positive down.
+    /// Axial speed, m/s, positive down ([`crate::case::Operation::motion`]).
     pub axial_speed_m_s: f64,
     /// Mud plastic viscosity for the drag torque, Pa.s (0: off).
     pub mud_viscosity_pa_s: f64,
@@ -104,18 +104,30 @@ pub enum TopCondition {
     },
 }
 
+impl Loads {
+    /// The string's motion, whose [`Motion::friction_split`] at each contact sets the
+    /// direction of wall friction.
+    pub fn motion(&self) -> Motion {
+        Motion {
+            axial_speed_m_s: self.axial_speed_m_s,
+            omega_rad_s: self.omega_rad_s,
+        }
+    }
+}
+
 /// Loads and kinematics of `case`'s operation: WOB or hook load, bit torque
-/// ([`crate::models::bit::bit_torque_nm`] at the case's WOB), spin, axial speed, mud drag.
+/// ([`crate::models::bit::bit_torque_nm`] at the case's WOB), spin and axial speed
+/// ([`crate::case::Operation::motion`]), mud drag.
 pub fn loads_from_case(case: &Case) -> Loads {
     let op = &case.operation;
-    let omega = op.omega_rad_s();
+    let motion = op.motion();
     let bit_torque = crate::models::bit::bit_torque_nm(case, op.wob_n);
     Loads {
         wob_n: op.wob_n,
         hook_load_n: op.hook_load_n,
         bit_torque_nm: bit_torque,
-        omega_rad_s: omega,
-        axial_speed_m_s: op.axial_speed_m_s(),
+        omega_rad_s: motion.omega_rad_s,
+        axial_speed_m_s: motion.axial_speed_m_s,
         mud_viscosity_pa_s: if op.viscous_torque {
             case.mud.plastic_viscosity_pa_s
         } else {
@@ -326,7 +338,7 @@ impl Model {
 
     /// True when friction acts on a moving string: the consistent tangent is then unsymmetric.
     pub fn needs_unsymmetric(&self) -> bool {
-        self.friction.iter().any(|&f| f > 0.0) && (self.loads.omega_rad_s > 0.0 || self.loads.axial_speed_m_s != 0.0)
+        self.friction.iter().any(|&f| f > 0.0) && self.loads.motion().is_moving()
     }
 
     /// Number of nodes.
@@ -706,14 +718,11 @@ impl Model {
     /// `p = (a_perp - f' t x a_perp) / (1 + f'^2)`.
     pub fn pin_reaction(&self, i: usize, t: &Vec3, a: &Vec3) -> Vec3 {
         let a = a - t * t.dot(a);
-        let rc = self.mesh.nodes[i].contact_od_m / 2.0;
-        let spin = self.loads.omega_rad_s * rc;
-        let speed = (self.loads.axial_speed_m_s.powi(2) + spin * spin).sqrt();
-        let fp = if self.friction[i] > 0.0 && speed > 1e-12 {
-            self.friction[i] * spin / speed
-        } else {
-            0.0
-        };
+        let split = self
+            .loads
+            .motion()
+            .friction_split(self.mesh.nodes[i].contact_od_m / 2.0);
+        let fp = self.friction[i] * split.tangential;
         (a - t.cross(&a) * fp) / (1.0 + fp * fp)
     }
 

@@ -36,8 +36,9 @@ pub struct NodeResult {
     pub disp_high_m: f64,
     /// Lateral displacement toward the right side, m.
     pub disp_right_m: f64,
-    /// Radial clearance, m.
-    pub clearance_m: f64,
+    /// Radial clearance of the node's gap element, m (None where the node has no gap element:
+    /// the bit face, the bit body, the top node).
+    pub clearance_m: Option<f64>,
     /// Wall normal force, N.
     pub contact_force_n: f64,
     /// Contact angle in the gap plane, deg (0 high side, 90 right), 0 when not in contact.
@@ -181,7 +182,7 @@ fn node_result(model: &Model, sol: &Solution, i: usize, mud_density_kg_m3: f64) 
         position: st.x[i] + model.origin_m,
         disp_high_m: dh,
         disp_right_m: dr,
-        clearance_m: ev.clearance[i],
+        clearance_m: model.mesh.nodes[i].has_gap.then_some(ev.clearance[i]),
         contact_force_n: cf,
         contact_angle_deg: ang,
         axial_force_n: axial,

@@ -11,6 +11,7 @@
 //! and acts at the contact point `x + R_c n`, so it also applies the moment
 //! `R_c n x F_friction` (its `t` component is the friction torque `-f R R_c` when rotating).
 
+use crate::case::Motion;
 use crate::geometry::Vec3;
 use nalgebra::Matrix3;
 
@@ -148,12 +149,17 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
     };
     let dr_dx = if lagged { Vec3::zeros() } else { dr_dx };
     if rf > 0.0 && g.friction > 0.0 {
-        let v = t * g.axial_speed + t.cross(&n) * (g.omega * g.contact_radius);
-        let vn = v.norm();
-        if vn > 1e-12 {
-            let vh = v / vn;
-            let dv = skew(&t) * dn_dx * (g.omega * g.contact_radius);
-            let dvh = (Matrix3::identity() - vh * vh.transpose()) * dv / vn;
+        // unit sliding velocity v^ = (v_a t + Omega R_c t x n)/|v| from the shared split (|v|
+        // does not change with n, so dv^/dx = (I - v^ v^T) [t]x dn/dx Omega R_c/|v|)
+        let motion = Motion {
+            axial_speed_m_s: g.axial_speed,
+            omega_rad_s: g.omega,
+        };
+        let split = motion.friction_split(g.contact_radius);
+        if split.acts() {
+            let vh = t * split.axial + t.cross(&n) * split.tangential;
+            let dv = skew(&t) * dn_dx * split.tangential;
+            let dvh = (Matrix3::identity() - vh * vh.transpose()) * dv;
             let ff = -vh * (g.friction * rf);
             // dF_f/dx = -f (vh dR^T + R dvh)
             let dff = -(vh * dr_dx.transpose() + dvh * rf) * g.friction;

@@ -107,9 +107,9 @@ fn gap_geometry(state: &State, ev: &Evaluation, i: usize) -> GapGeometry {
 fn wall_column(model: &Model, i: usize, nrm: Vec3, tangent: Vec3) -> (Vec3, [f64; 6]) {
     let q = &model.basis[i];
     let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-    let v = tangent * model.loads.axial_speed_m_s + tangent.cross(&nrm) * (model.loads.omega_rad_s * rc);
-    let (fv, fm) = if model.friction[i] > 0.0 && v.norm() > 1e-12 {
-        let vh = v / v.norm();
+    let split = model.loads.motion().friction_split(rc);
+    let (fv, fm) = if model.friction[i] > 0.0 && split.acts() {
+        let vh = tangent * split.axial + tangent.cross(&nrm) * split.tangential;
         (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
     } else {
         (Vec3::zeros(), Vec3::zeros())

@@ -59,26 +59,26 @@ pub(crate) fn add_pin_coupling(
         return;
     };
     let n = model.dofs();
-    let (va, omega) = (model.loads.axial_speed_m_s, model.loads.omega_rad_s);
     for &i in pins {
         let f = model.friction[i];
         let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-        let spin = omega * rc;
-        let speed = (va * va + spin * spin).sqrt();
+        // axial and circumferential shares v_a/|v|, Omega R_c/|v| of the sliding velocity
+        let split = model.loads.motion().friction_split(rc);
+        let (ax, tg) = (split.axial, split.tangential);
         let p = state.pin_multipliers[i];
         let pn = p.norm();
-        if f <= 0.0 || speed <= 1e-12 || pn <= 1e-12 {
+        if f <= 0.0 || !split.acts() || pn <= 1e-12 {
             continue;
         }
         let q = &model.basis[i];
         let t = ev.axis[i].1;
         let id = nalgebra::Matrix3::identity();
         let tx = t.cross_matrix();
-        let fp = f * spin / speed;
+        let fp = f * tg;
         let mf = (id - t * t.transpose() - tx * fp) / (1.0 + fp * fp);
         let ph = p / pn;
-        let dgf = -id - (t * ph.transpose() * va + tx * spin) * (f / speed);
-        let dgm = -(t * ph.transpose() * spin - tx * va) * (f * rc / speed);
+        let dgf = -id - (t * ph.transpose() * ax + tx * tg) * f;
+        let dgm = -(t * ph.transpose() * tg - tx * ax) * (f * rc);
         let lat = nalgebra::Matrix3x2::from_columns(&[q.column(1).into_owned(), q.column(2).into_owned()]);
         let bf = q.transpose() * dgf * mf * lat;
         let bm = q.transpose() * dgm * mf * lat;

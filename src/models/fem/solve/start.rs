@@ -140,11 +140,8 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
         let i = e;
         if omega > 0.0 && model.mesh.nodes[i].has_gap && model.friction[i] > 0.0 {
             let rc = model.mesh.nodes[i].contact_od_m / 2.0;
-            let tangential = omega * rc;
-            let speed = (tangential * tangential + model.loads.axial_speed_m_s.powi(2)).sqrt();
-            if speed > 1e-12 {
-                torque += model.friction[i] * state.multipliers[i] * rc * tangential / speed;
-            }
+            let share = model.loads.motion().friction_split(rc).tangential;
+            torque += model.friction[i] * state.multipliers[i] * rc * share;
         }
         let l0 = model.sections[e].l0;
         let md = 0.5 * (model.md_ref[e] + model.md_ref[e + 1]);
