@@ -87,6 +87,38 @@ pub fn constant_compression(ei: f64, q: f64, r: f64, p: f64) -> Result<PendulumS
     })
 }
 
+/// The slope `y'(x)` of the constant-compression pendulum ([`constant_compression`]) at `x` m
+/// above the bit (0 <= x <= L), rad: the tilt of the collar's axis toward the **high side**
+/// there, the sag angle a survey sensor at `x` reads (`y'(0)` is the bit tilt, `y'(L) = 0`).
+///
+/// With `k^2 = P/EI`, `EI y'''' + P y'' = q` on the span, `y(0) = y''(0) = 0` and
+/// `y'(L) = y''(L) = 0`: `y = A + B x + C cos kx + D sin kx + q x^2 / (2P)` with
+/// `C = q/(P k^2)`, `D = (q/P)(1 - cos kL)/(k^2 sin kL)`, `B = C k sin kL - D k cos kL - q L/P`.
+/// Needs `P > 0`.
+pub fn constant_compression_slope(
+    ei: f64,
+    q: f64,
+    p: f64,
+    sol: &PendulumSolution,
+    x: f64,
+) -> Result<f64, AnalyticalError> {
+    require_positive("ei", ei)?;
+    require_positive("p", p)?;
+    require_finite("x", x)?;
+    let l = sol.tangency_length;
+    if !(0.0..=l).contains(&x) {
+        return Err(AnalyticalError::InvalidInput(
+            "x",
+            format!("{x} m is outside the span 0..{l} m"),
+        ));
+    }
+    let k = (p / ei).sqrt();
+    let c = q / (p * k * k);
+    let d = (q / p) * (1.0 - (k * l).cos()) / (k * k * (k * l).sin());
+    let b = c * k * (k * l).sin() - d * k * (k * l).cos() - q * l / p;
+    Ok(b - c * k * (k * x).sin() + d * k * (k * x).cos() + q * x / p)
+}
+
 /// One shooting evaluation at trial tangency length `l`: the three superposed RK4 solutions.
 struct Shot {
     /// y(L) of the combination satisfying y'(L) = y''(L) = 0, m.
@@ -253,6 +285,22 @@ mod tests {
     const INCH: f64 = 0.0254;
     const G: f64 = 9.80665;
     const E: f64 = 207e9;
+
+    /// The slope along the span: `y'(0)` is the closed form's bit tilt and `y'(L) = 0` (the
+    /// tangency), to 1e-9 relative.
+    #[test]
+    fn the_slope_starts_at_the_bit_tilt_and_ends_flat() {
+        let (ei, w_b) = collar(6.5);
+        let q = lateral_load(w_b, 1.2);
+        let r = (8.5 - 6.5) / 2.0 * INCH;
+        for p in [1e3, 50e3, 150e3] {
+            let sol = constant_compression(ei, q, r, p).unwrap();
+            let s0 = constant_compression_slope(ei, q, p, &sol, 0.0).unwrap();
+            assert!((s0 - sol.tilt).abs() < 1e-9 * sol.tilt.abs(), "{s0} vs {}", sol.tilt);
+            let sl = constant_compression_slope(ei, q, p, &sol, sol.tangency_length).unwrap();
+            assert!(sl.abs() < 1e-9 * sol.tilt.abs(), "{sl}");
+        }
+    }
 
     /// (EI, w_b) of a steel collar OD x 2-13/16 in, 7850 kg/m3, in 1.2 sg mud (docs/theory.md 3.1;
     /// computed here directly, not via `section`, to keep the test self-contained).

@@ -17,6 +17,12 @@ pub const STRING_HEADER: &str = "md_m,north_m,east_m,tvd_m,disp_high_mm,disp_rig
 /// cannot buckle).
 pub const BUCKLING_COLUMNS: &str = "sinusoidal_onset_kN,helical_onset_kN,buckling";
 
+/// Columns appended to `string.csv` after the buckling columns: the tilt of the string's axis
+/// from the hole axis toward the high side and the right, deg (what a survey sensor at the
+/// node reads above the hole's inclination and azimuth direction: the sag angle; empty for
+/// soft-string rows).
+pub const TILT_COLUMNS: &str = "tilt_high_deg,tilt_right_deg";
+
 /// Contacts reported in the summary: nodes with a normal force above this, N.
 pub const CONTACT_THRESHOLD_N: f64 = 1.0;
 
@@ -326,6 +332,15 @@ fn node_row(n: &NodeResult) -> Result<String, String> {
     .join(","))
 }
 
+/// The tilt cells of a stiff node.
+fn tilt_cells(n: &NodeResult) -> Result<String, String> {
+    Ok(format!(
+        "{},{}",
+        num(n.tilt_high_rad.to_degrees(), 5)?,
+        num(n.tilt_right_rad.to_degrees(), 5)?
+    ))
+}
+
 /// One `string.csv` row of a soft-string point (columns the soft string does not compute
 /// left empty; the contact force is the wall load per length times the point's share of the
 /// string).
@@ -367,22 +382,27 @@ fn mark_cells(m: &Mark) -> Result<String, String> {
 /// then the soft string's points above them, each with its buckling columns.
 pub fn string_csv(case: &Case, s: &StringSolve) -> Result<String, String> {
     let mut rows = Vec::with_capacity(s.marks.len());
+    let mut tilts = Vec::with_capacity(s.marks.len());
     for n in s.reported_nodes() {
         rows.push(node_row(n)?);
+        tilts.push(tilt_cells(n)?);
     }
     if let Some(soft) = &s.level.soft {
         for i in usize::from(s.level.fem.is_some())..soft.points.len() {
             rows.push(soft_row(case, soft, i)?);
+            tilts.push(",".to_string());
         }
     }
     if rows.len() != s.marks.len() {
         return Err(format!("{} rows but {} buckling marks", rows.len(), s.marks.len()));
     }
-    let mut out = format!("{STRING_HEADER},{BUCKLING_COLUMNS}\n");
-    for (row, m) in rows.iter().zip(&s.marks) {
+    let mut out = format!("{STRING_HEADER},{BUCKLING_COLUMNS},{TILT_COLUMNS}\n");
+    for ((row, m), tilt) in rows.iter().zip(&s.marks).zip(&tilts) {
         out.push_str(row);
         out.push(',');
         out.push_str(&mark_cells(m)?);
+        out.push(',');
+        out.push_str(tilt);
         out.push('\n');
     }
     Ok(out)

@@ -3,7 +3,9 @@
 //! Each test states its reference and tolerance. The closed forms come from
 //! `drillpath::analytical` (written and tested separately from the FEM, docs/theory.md 10).
 
-use drillpath::analytical::pendulum::{axial_gradient, lateral_load, variable_compression};
+use drillpath::analytical::pendulum::{
+    axial_gradient, constant_compression, constant_compression_slope, lateral_load, variable_compression,
+};
 use drillpath::models::fem::model::{GapTreatment, Model};
 use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, SolveControls};
@@ -693,4 +695,57 @@ bha_element_length = "1 m"
         (fem - expected).abs() < 1e-3 * expected,
         "FEM stretch {fem} m vs {expected} m"
     );
+}
+
+#[test]
+fn the_axis_tilt_along_a_pendulum_matches_the_closed_form_slope() {
+    // Reference: the constant-compression pendulum (Lubinski 1953; analytical::pendulum) is
+    // exact in a horizontal hole, where the axial force is the WOB all along the span: its slope
+    // y'(x) is the tilt of the collar's axis toward the high side at x above the bit, the sag
+    // angle a survey sensor there reads. Tolerance: 1% of the bit tilt at every node of the
+    // span, and 1% at the nodes nearest 0.25 L and 0.5 L (0.25 m elements; measured below
+    // 0.2%).
+    let (ei, w_b, r) = collar_properties();
+    let wob = 50e3;
+    let run = slick_collar(90.0, 30.0, 80.0, wob / 1e3, 0.25, true);
+    let reference = constant_compression(ei, w_b, r, wob).unwrap();
+    let l = reference.tangency_length;
+    let scale = reference.tilt.abs();
+    for (i, n) in run.res.nodes.iter().enumerate() {
+        let x = run.model.mesh.nodes[i].s_m;
+        if x > l {
+            break;
+        }
+        let slope = constant_compression_slope(ei, w_b, wob, &reference, x).unwrap();
+        assert!(
+            (n.tilt_high_rad - slope).abs() < 0.01 * scale,
+            "x {x:.2} m: FEM {:.5} deg, reference {:.5} deg",
+            n.tilt_high_rad.to_degrees(),
+            slope.to_degrees()
+        );
+        assert!(
+            n.tilt_right_rad.abs() < 1e-6 * scale,
+            "no tilt out of the vertical plane"
+        );
+    }
+    for fraction in [0.25, 0.5] {
+        let (i, x) = run
+            .model
+            .mesh
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(i, m)| (i, m.s_m))
+            .min_by(|a, b| (a.1 - fraction * l).abs().total_cmp(&(b.1 - fraction * l).abs()))
+            .unwrap();
+        let slope = constant_compression_slope(ei, w_b, wob, &reference, x).unwrap();
+        let fem = run.res.nodes[i].tilt_high_rad;
+        println!(
+            "sag at {x:.2} m of {l:.2} m: FEM {:.5} deg, reference {:.5} deg ({:+.3}%)",
+            fem.to_degrees(),
+            slope.to_degrees(),
+            100.0 * (fem - slope) / slope
+        );
+        assert!(((fem - slope) / slope).abs() < 0.01);
+    }
 }

@@ -51,6 +51,12 @@ pub struct NodeResult {
     pub bending_moment_nm: f64,
     /// Von Mises stress at the outer fibre, Pa.
     pub von_mises_pa: f64,
+    /// Tilt of the string's axis from the hole axis toward the high side, rad: what a survey
+    /// sensor here reads above the hole's inclination (the sag angle; at the bit, the bit
+    /// tilt).
+    pub tilt_high_rad: f64,
+    /// Tilt of the string's axis from the hole axis toward the right, rad.
+    pub tilt_right_rad: f64,
 }
 
 /// Summary of a solve.
@@ -106,8 +112,8 @@ fn bit_result(model: &Model, sol: &Solution) -> BitResult {
         wob_n: f_bit.dot(&frame.t),
         build_force_n: f_bit.dot(&frame.h),
         walk_force_n: f_bit.dot(&frame.r),
-        tilt_inc_rad: eb.dot(&frame.h).atan2(eb.dot(&frame.t)),
-        tilt_azi_rad: eb.dot(&frame.r).atan2(eb.dot(&frame.t)),
+        tilt_inc_rad: axis_tilt(&eb, &frame).0,
+        tilt_azi_rad: axis_tilt(&eb, &frame).1,
         torque_nm: model.loads.bit_torque_nm,
     }
 }
@@ -177,6 +183,7 @@ fn node_result(model: &Model, sol: &Solution, i: usize, mud_density_kg_m3: f64) 
     let sb = bend * od / (2.0 * inertia);
     let tau = torque * od / (4.0 * inertia);
     let vm = ((sa.abs() + sb).powi(2) + 3.0 * tau * tau).sqrt();
+    let (tilt_high_rad, tilt_right_rad) = axis_tilt(&st.triads[i].column(0).into_owned(), &f);
     NodeResult {
         md_m: md,
         position: st.x[i] + model.origin_m,
@@ -189,7 +196,15 @@ fn node_result(model: &Model, sol: &Solution, i: usize, mud_density_kg_m3: f64) 
         torque_nm: torque,
         bending_moment_nm: bend,
         von_mises_pa: vm,
+        tilt_high_rad,
+        tilt_right_rad,
     }
+}
+
+/// Tilt of the axis `e` (the node triad's first column) from the hole frame `f`'s tangent
+/// toward its high side and its right side, rad.
+fn axis_tilt(e: &Vec3, f: &crate::geometry::Frame) -> (f64, f64) {
+    (e.dot(&f.h).atan2(e.dot(&f.t)), e.dot(&f.r).atan2(e.dot(&f.t)))
 }
 
 /// Global equilibrium of a solution: the net external force (N) and moment about the bit
