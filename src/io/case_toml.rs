@@ -411,6 +411,7 @@ const COMPONENT_KEYS: &[&str] = &[
     "material_density",
     "grade",
     "yield_strength",
+    "sensor_to_bit",
 ];
 
 fn read_string(
@@ -489,8 +490,28 @@ fn read_component(c: &Section, k: usize, last: bool, mud: &Mud, bottom_m: f64) -
         joint_length_m: joint_length,
         material,
         weight_air_n_per_m: weight,
+        sensor_to_bit_m: read_sensor(c, kind, bottom_m, length)?,
     };
     Ok((component, length.is_some()))
+}
+
+/// The survey sensor's distance from the bit face (`sensor_to_bit`, m) of an `mwd` component
+/// `c` starting `bottom_m` above the bit, `length` long: it must lie on the component.
+fn read_sensor(c: &Section, kind: ComponentKind, bottom_m: f64, length: Option<f64>) -> InputResult<Option<f64>> {
+    let Some(x) = c.positive("sensor_to_bit", D::Length, "m", false)? else {
+        return Ok(None);
+    };
+    if kind != ComponentKind::Mwd {
+        return Err(c.error("sensor_to_bit", "only an `mwd` component has a survey sensor"));
+    }
+    let top = bottom_m + length.unwrap_or(f64::INFINITY);
+    if x < bottom_m - 1e-9 || x > top + 1e-9 {
+        return Err(c.error(
+            "sensor_to_bit",
+            format!("{x:.3} m from the bit is not on this component ({bottom_m:.3} to {top:.3} m from the bit)"),
+        ));
+    }
+    Ok(Some(x))
 }
 
 /// The component type of table `c`, the `k`-th from the bit (only the first may be the bit).

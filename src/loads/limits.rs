@@ -185,6 +185,7 @@ mod tests {
             joint_length_m: 9.144,
             material: m,
             weight_air_n_per_m: 29.0 * G,
+            sensor_to_bit_m: None,
         }
     }
 

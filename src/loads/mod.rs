@@ -138,6 +138,7 @@ mod tests {
             joint_length_m: 9.144,
             material: steel(),
             weight_air_n_per_m: 300.0,
+            sensor_to_bit_m: None,
         }
     }
 

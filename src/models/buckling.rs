@@ -419,6 +419,7 @@ mod tests {
             joint_length_m: 9.144,
             material: m,
             weight_air_n_per_m: 29.0 * crate::units::G,
+            sensor_to_bit_m: None,
         }
     }
 
@@ -526,6 +527,7 @@ mod tests {
             joint_length_m: 9.144,
             material: steel(),
             weight_air_n_per_m: area * 7850.0 * crate::units::G,
+            sensor_to_bit_m: None,
         }
     }
 

@@ -22,7 +22,7 @@ use crate::models::buckling::{soft_marks, stiff_marks, Mark};
 use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
-use crate::models::fem::results::{extract, BitResult, NodeResult, SolveResults};
+use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
@@ -353,6 +353,8 @@ pub struct StringSolve {
     pub yield_check: Option<YieldCheck>,
     /// A hook load below zero on bottom (None otherwise).
     pub lock_up: Option<LockUp>,
+    /// The survey sensors on the stiff part's reported nodes, with their sag angles.
+    pub sensors: Vec<SensorResult>,
 }
 
 impl StringSolve {
@@ -414,6 +416,12 @@ pub fn solve_string(
         .zip(last_reported_node)
         .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
     let lock_up = lock_up(case, level.hook_load_n, level.wob_n);
+    let sensors = level
+        .fem
+        .as_ref()
+        .zip(last_reported_node)
+        .map(|(part, last)| sensor_results(&case.string, &part.model, &part.results.nodes[..=last]))
+        .unwrap_or_default();
     Ok(StringSolve {
         level,
         last_reported_node,
@@ -422,5 +430,6 @@ pub fn solve_string(
         notes: case.string_above_survey_note().into_iter().collect(),
         yield_check,
         lock_up,
+        sensors,
     })
 }

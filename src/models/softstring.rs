@@ -347,6 +347,7 @@ mod tests {
             joint_length_m: 9.144,
             material: steel(),
             weight_air_n_per_m: w_air,
+            sensor_to_bit_m: None,
         }
     }
 

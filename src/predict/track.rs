@@ -55,6 +55,7 @@ pub fn bit_at(steps: &[StepRecord], md_m: f64) -> BitResult {
         tilt_inc_rad: mix(a.bit.tilt_inc_rad, b.bit.tilt_inc_rad),
         tilt_azi_rad: mix(a.bit.tilt_azi_rad, b.bit.tilt_azi_rad),
         torque_nm: mix(a.bit.torque_nm, b.bit.torque_nm),
+        sensor_sag_rad: a.bit.sensor_sag_rad.zip(b.bit.sensor_sag_rad).map(|(x, y)| mix(x, y)),
     }
 }
 

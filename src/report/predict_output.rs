@@ -70,9 +70,30 @@ pub fn trajectory_csv(rows: &[TrajectoryRow]) -> Result<String, String> {
     Ok(out)
 }
 
-/// `trajectory.csv` of a forecast: [`trajectory_csv`], and with an assimilation its bounds and
-/// the plain march ([`PROJECTION_COLUMNS`]).
+/// `trajectory.csv` of a forecast: [`trajectory_csv`], with an assimilation its bounds and the
+/// plain march ([`PROJECTION_COLUMNS`]), and when the string has a survey sensor the sag angle
+/// there (`sensor_sag_deg`, the last column).
 pub fn forecast_csv(f: &Forecast) -> Result<String, String> {
+    let text = forecast_columns(f)?;
+    if f.rows.iter().all(|r| r.bit.sensor_sag_rad.is_none()) {
+        return Ok(text);
+    }
+    let mut out = String::with_capacity(text.len() + 12 * f.rows.len());
+    let mut lines = text.lines();
+    out.push_str(lines.next().unwrap_or_default());
+    out.push_str(",sensor_sag_deg\n");
+    for (line, r) in lines.zip(&f.rows) {
+        let cell = r.bit.sensor_sag_rad.map(|s| num(s.to_degrees(), 5)).transpose()?;
+        out.push_str(line);
+        out.push(',');
+        out.push_str(&cell.unwrap_or_default());
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// The trajectory columns of `f`, with the projection's when assimilating.
+fn forecast_columns(f: &Forecast) -> Result<String, String> {
     let plain = trajectory_csv(&f.rows)?;
     let Some(p) = &f.projection else {
         return Ok(plain);

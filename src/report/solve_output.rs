@@ -139,6 +139,16 @@ struct LockUpJson {
     max_wob_kN: Finite,
 }
 
+/// One entry of the `sensors` key: a survey sensor's sag angle.
+#[derive(Serialize)]
+struct SensorJson {
+    component: String,
+    sensor_to_bit_m: Finite,
+    md_m: Finite,
+    sag_deg: Finite,
+    tilt_right_deg: Finite,
+}
+
 /// `summary.json` of `drillpath solve`.
 #[derive(Serialize)]
 pub struct SolveSummary {
@@ -154,6 +164,7 @@ pub struct SolveSummary {
     yield_check: Option<YieldJson>,
     lock_up: Option<LockUpJson>,
     warnings: Vec<String>,
+    sensors: Vec<SensorJson>,
 }
 
 /// The `buckling` key of `marks`, whose axial force comes from `model`.
@@ -307,6 +318,17 @@ impl SolveSummary {
                 max_wob_kN: Finite(l.max_wob_n / 1e3),
             }),
             warnings: s.warnings(case),
+            sensors: s
+                .sensors
+                .iter()
+                .map(|x| SensorJson {
+                    component: x.component.clone(),
+                    sensor_to_bit_m: Finite(x.sensor_to_bit_m),
+                    md_m: Finite(x.md_m),
+                    sag_deg: Finite(x.sag_rad.to_degrees()),
+                    tilt_right_deg: Finite(x.tilt_right_rad.to_degrees()),
+                })
+                .collect(),
         }
     }
 }

@@ -83,6 +83,18 @@ pub fn write_summary(out: &mut impl Write, case: &Case, s: &StringSolve, view: &
     for w in s.warnings(case) {
         writeln!(out, "  WARNING: {w}")?;
     }
+    for x in &s.sensors {
+        writeln!(
+            out,
+            "  sensor of `{}` at {} from the bit ({} MD): sag {} deg (it reads the inclination {} deg high; correct by {} deg)",
+            x.component,
+            view.units.depth().fmt(x.sensor_to_bit_m, 2),
+            view.units.depth().fmt(x.md_m, 2),
+            signed(x.sag_rad.to_degrees(), 4),
+            signed(x.sag_rad.to_degrees(), 4),
+            signed(-x.sag_rad.to_degrees(), 4)
+        )?;
+    }
     if lr.choice.level == Level::Whole {
         write_whole(out, case, s, view)
     } else {

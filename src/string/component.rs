@@ -86,6 +86,9 @@ pub struct Component {
     pub material: Material,
     /// Weight in air per length, N/m (given adjusted weight, or from the body and density).
     pub weight_air_n_per_m: f64,
+    /// Distance from the bit face to the survey sensor of an `mwd` component, m (None: no
+    /// sensor given).
+    pub sensor_to_bit_m: Option<f64>,
 }
 
 impl Component {

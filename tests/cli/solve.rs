@@ -2,7 +2,10 @@
 //! interface files it writes, the options that override the case, and the errors for unknown
 //! names. The levels' numbers against each other are checked in tests/verification/fidelity.rs.
 
-use crate::common::{example_dir, root, run_in, try_load_temp_case};
+use crate::common::{
+    assert_error_names, case_dir, collar_properties, example_dir, root, run_in, try_load_temp_case, BIT,
+    COLLAR_TO_SURFACE,
+};
 
 #[test]
 fn fidelity_cli_levels_write_the_interface_files() {
@@ -145,5 +148,89 @@ fn string_csv_clearance_is_empty_without_a_gap_element() {
     assert_eq!(empty, vec![0, cells.len() - 1], "rows with an empty clearance");
     for c in &cells[1..cells.len() - 1] {
         assert!(c.parse::<f64>().unwrap() >= 0.0, "{c}");
+    }
+}
+
+/// An `mwd` component with `sensor_to_bit`: `solve` reports the sag angle at the sensor
+/// (`sensors` in summary.json, a stdout line) and `predict` adds `sensor_sag_deg` to
+/// trajectory.csv. Reference: the mwd has the collars' section, so the string is a slick
+/// collar in a horizontal hole, where the constant-compression pendulum is exact: the sag at
+/// 4 m is its slope there (analytical::pendulum), within 1%. A sensor off its component and a
+/// sensor on another type are refused with the key.
+#[test]
+fn a_survey_sensor_reports_its_sag() {
+    use drillpath::analytical::pendulum::{constant_compression, constant_compression_slope};
+    let survey = "md_m,inc_deg,azi_deg\n0,0,0\n500,90,0\n800,90,0\n";
+    let case = |sensor: &str, kind: &str| {
+        format!(
+            r#"[well]
+survey = "survey.csv"
+hole = [{{ to_md = "800 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "drilling"
+wob = "50 kN"
+rpm = 60
+rop = "10 m/h"
+friction = 0.0
+{BIT}[[string]]
+type = "{kind}"
+name = "MWD"
+od = "6.5 in"
+id = "2.8125 in"
+length = "9 m"
+{sensor}
+{COLLAR_TO_SURFACE}length = "80 m"
+{COLLAR_TO_SURFACE}[solver]
+bha_element_length = "0.25 m"
+"#
+        )
+    };
+    let dir = case_dir(survey, &case("sensor_to_bit = \"4.3 m\"", "mwd"));
+    let out = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "bha", "--json"]);
+    assert!(out.success(), "{}", out.describe());
+    let s: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
+    let sensor = &s["sensors"][0];
+    assert_eq!(sensor["component"], "MWD");
+    let (ei, w_b, r) = collar_properties();
+    let reference = constant_compression(ei, w_b, r, 50e3).unwrap();
+    let slope = constant_compression_slope(ei, w_b, 50e3, &reference, 4.3).unwrap();
+    let sag = sensor["sag_deg"].as_f64().unwrap().to_radians();
+    assert!(
+        ((sag - slope) / slope).abs() < 0.01,
+        "sag {sag} rad against {slope} rad"
+    );
+    let text = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "bha"]);
+    assert!(
+        text.stdout.contains("sensor of `MWD` at 4.30 m from the bit"),
+        "{}",
+        text.stdout
+    );
+    let p = run_in(
+        dir.path(),
+        &[
+            "predict",
+            "case.toml",
+            "--from",
+            "780 m",
+            "--ahead",
+            "4 m",
+            "--step",
+            "2 m",
+            "--out",
+            "p",
+        ],
+    );
+    assert!(p.success(), "{}", p.describe());
+    let csv = std::fs::read_to_string(dir.path().join("p/trajectory.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with(",sensor_sag_deg"), "{csv}");
+    for (k, t) in [
+        ("sensor_to_bit = \"20 m\"", "mwd"),
+        ("sensor_to_bit = \"4 m\"", "collar"),
+    ] {
+        let bad = case_dir(survey, &case(k, t));
+        let r = run_in(bad.path(), &["solve", "case.toml"]);
+        assert_error_names(&r, &["string[1].sensor_to_bit"]);
     }
 }

@@ -57,6 +57,10 @@ pub fn build_mesh(string: &DrillString, settings: &SolverSettings, mud_density_k
     for c in &string.components {
         marks.push((c.bottom_m, None));
         marks.push((c.top_m(), None));
+        if let Some(x) = c.sensor_to_bit_m {
+            // a node at the survey sensor, where its sag angle is read
+            marks.push((x, None));
+        }
         if c.kind == ComponentKind::Stabilizer {
             marks.push((c.bottom_m + c.length_m / 2.0, Some(c.contact_od_m)));
         }

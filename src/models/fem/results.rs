@@ -23,6 +23,50 @@ pub struct BitResult {
     pub tilt_azi_rad: f64,
     /// Bit torque, N.m.
     pub torque_nm: f64,
+    /// Sag angle at the survey sensor of the string's first `mwd` component with one
+    /// (`sensor_to_bit`), rad ([`SensorResult::sag_rad`]); None without a sensor in the model.
+    pub sensor_sag_rad: Option<f64>,
+}
+
+/// The survey sensor of an `mwd` component in a solved model: where it is and the sag angle
+/// it reads.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorResult {
+    /// Name of the component carrying the sensor.
+    pub component: String,
+    /// Distance from the bit face to the sensor, m.
+    pub sensor_to_bit_m: f64,
+    /// MD of the sensor, m.
+    pub md_m: f64,
+    /// Sag angle: tilt of the string's axis at the sensor from the hole axis toward the high
+    /// side, rad (the sensor reads the hole's inclination plus this; the correction is minus
+    /// it).
+    pub sag_rad: f64,
+    /// Tilt of the axis at the sensor toward the right side, rad.
+    pub tilt_right_rad: f64,
+}
+
+/// The sensors of `string` that lie on the solved `nodes` of `model` (from the bit up; a
+/// sensor above a cut model's reported nodes is left out): each read at its node (the mesh
+/// has a node at every sensor).
+pub fn sensor_results(string: &crate::string::DrillString, model: &Model, nodes: &[NodeResult]) -> Vec<SensorResult> {
+    string
+        .components
+        .iter()
+        .filter_map(|c| {
+            let x = c.sensor_to_bit_m?;
+            let i = model.mesh.nodes[..nodes.len().min(model.mesh.nodes.len())]
+                .iter()
+                .position(|m| (m.s_m - x).abs() < 1e-6)?;
+            Some(SensorResult {
+                component: c.name.clone(),
+                sensor_to_bit_m: x,
+                md_m: nodes[i].md_m,
+                sag_rad: nodes[i].tilt_high_rad,
+                tilt_right_rad: nodes[i].tilt_right_rad,
+            })
+        })
+        .collect()
 }
 
 /// Per-node results.
@@ -115,6 +159,7 @@ fn bit_result(model: &Model, sol: &Solution) -> BitResult {
         tilt_inc_rad: axis_tilt(&eb, &frame).0,
         tilt_azi_rad: axis_tilt(&eb, &frame).1,
         torque_nm: model.loads.bit_torque_nm,
+        sensor_sag_rad: None,
     }
 }
 

@@ -6,7 +6,7 @@ use crate::case::Case;
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::bha_model;
 use crate::models::fem::model::{Model, State};
-use crate::models::fem::results::{extract, BitResult};
+use crate::models::fem::results::{extract, sensor_results, BitResult};
 use crate::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 use crate::models::fem::warm::transport_state;
 use crate::predict::law::BitAction;
@@ -122,7 +122,11 @@ pub(super) fn solve_at(
         .filter(|(m, _)| m.nodes() == model.nodes())
         .map(|(m, st)| transport_state(m, st, &model));
     let sol = solve_step(&model, warm_state, ctl)?;
-    let bit = extract(&model, &sol, case.mud.density_kg_m3).bit;
+    let res = extract(&model, &sol, case.mud.density_kg_m3);
+    let mut bit = res.bit;
+    bit.sensor_sag_rad = sensor_results(&case.string, &model, &res.nodes)
+        .first()
+        .map(|x| x.sag_rad);
     Ok(BitSolve {
         model,
         iterations: sol.stats.iterations,
