@@ -12,6 +12,7 @@ mod architecture;
 mod buckling;
 mod extremes;
 mod fidelity;
+mod fine_mesh;
 mod fuzz_input;
 mod geometry;
 mod hybrid;

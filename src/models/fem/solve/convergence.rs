@@ -6,7 +6,7 @@ use super::contacts::{ContactColumns, ContactSet};
 use super::controls::SolveControls;
 use super::pins::pin_offset_m;
 use crate::geometry::Vec3;
-use crate::models::fem::model::{Evaluation, Model};
+use crate::models::fem::model::{Evaluation, Model, State};
 
 /// Smallest clearance the gap tolerance is measured against, m: a gap's penetration counts
 /// relative to `max(clearance, this)`, and a pin's offset relative to this.
@@ -43,6 +43,39 @@ pub fn load_scale(model: &Model) -> f64 {
         .map(|(e, s)| e.buoyed_weight_n_per_m.abs() * s.l0)
         .sum();
     w + model.loads.wob_n.abs() + model.loads.hook_load_n.unwrap_or(0.0).abs() + 1e3
+}
+
+/// Rounding floor of the residual of `model` at `state`, relative to the load scale `scale`
+/// (N): the largest over the nodes of `eps |x_i| sum_e (EA/l0 + 12 EI/l0^3)`, the change of a
+/// node's residual when its position moves by its rounding (`eps |x_i|`, the model frame's
+/// origin at the bit), summed over its elements' axial and lateral stiffnesses. A residual
+/// cannot be computed more closely than this, so the interior-point Newton's residual
+/// tolerance is at least this floor. It grows as `l^-3` (the `12 EI / l^3` term below ~0.2 m
+/// elements): on the fulcrum BHA of docs/performance.md (Fine BHA meshes) 1.4e-9 at 0.5 m
+/// elements, 2.1e-8 at 0.1 m (below the default tolerance, 1e-7, down to ~0.055 m), 1.3e-7 at
+/// 0.05 m, 1.9e-6 at 0.02 m and 1.5e-5 at 0.01 m, where the Newton iterations had stalled at
+/// 0.3-0.4 times the floor (7e-7 at 0.02 m, 6e-6 at 0.01 m).
+pub(crate) fn rounding_floor(model: &Model, state: &State, scale: f64) -> f64 {
+    let ne = model.sections.len();
+    let stiffness = |e: usize| {
+        let s = &model.sections[e];
+        if s.l0 > 0.0 {
+            s.ea / s.l0 + 12.0 * s.ei / s.l0.powi(3)
+        } else {
+            0.0
+        }
+    };
+    (0..model.nodes())
+        .map(|i| {
+            let k: f64 = [i.checked_sub(1), (i < ne).then_some(i)]
+                .into_iter()
+                .flatten()
+                .map(stiffness)
+                .sum();
+            f64::EPSILON * state.x[i].norm() * k
+        })
+        .fold(0.0, f64::max)
+        / scale
 }
 
 /// Largest residual entry relative to the load scale `scale` (N).

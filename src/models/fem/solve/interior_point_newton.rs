@@ -19,7 +19,7 @@
 
 use super::contacts::{add_circle_stiffness, contact_columns, contact_residual, ContactColumns, ContactSet};
 use super::controls::SolveControls;
-use super::convergence::{largest_entry, likely_converged, load_scale, Measures, OuterResidual};
+use super::convergence::{largest_entry, likely_converged, load_scale, rounding_floor, Measures, OuterResidual};
 use super::hook_load_system::{bit_row, free_residual};
 use super::interior_point::{
     constraint_scale, contact_clearances, contact_dofs, ip_tolerance, previous_multipliers, ContactSubproblem,
@@ -67,8 +67,8 @@ pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveCon
         let switching = newton.switch_or_hold_pins(&mut state, &stats.residual_history);
         ev = newton.evaluate(&mut state, !skip_tangent);
         let lz = newton.linearize(&mut state, &ev, switching);
-        let equilibrium = lz.measures.equilibrium(ctl);
-        let done = equilibrium && lz.measures.pins_held(ctl) && newton.gaps.exact_pins;
+        let equilibrium = lz.measures.equilibrium(&newton.ctl);
+        let done = equilibrium && lz.measures.pins_held(&newton.ctl) && newton.gaps.exact_pins;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
             redo = true;
             continue;
@@ -125,7 +125,9 @@ struct Linearization {
 /// The interior-point Newton's settings and system for one model.
 struct InteriorPointNewton<'a> {
     model: &'a Model,
-    ctl: &'a SolveControls,
+    /// The controls, the residual tolerance raised to the residual's rounding floor
+    /// ([`rounding_floor`]) where that is higher.
+    ctl: SolveControls,
     /// Load scale, N.
     scale: f64,
     /// The hook load is unknown (the system is bordered by the WOB equation).
@@ -151,7 +153,7 @@ impl<'a> InteriorPointNewton<'a> {
     /// DOFs, their wall force the reaction, [`Model::pin_reaction`], set by each evaluation);
     /// before that they are penalty springs about their vector multipliers. A warm start that
     /// carries the pins' forces starts exact.
-    fn new(model: &'a Model, ctl: &'a SolveControls, state: &State) -> InteriorPointNewton<'a> {
+    fn new(model: &'a Model, ctl: &SolveControls, state: &State) -> InteriorPointNewton<'a> {
         let nn = model.nodes();
         let contacts = ContactSet::of(model);
         let pins = &contacts.pins;
@@ -169,10 +171,16 @@ impl<'a> InteriorPointNewton<'a> {
         } else {
             model.constrained_dofs()
         };
+        let scale = load_scale(model);
+        let floor = rounding_floor(model, state, scale);
+        tracing::debug!(floor, "rounding floor of the residual (relative to the load scale)");
         InteriorPointNewton {
             model,
-            ctl,
-            scale: load_scale(model),
+            ctl: SolveControls {
+                residual_tolerance: ctl.residual_tolerance.max(floor),
+                ..*ctl
+            },
+            scale,
             bordered: model.loads.hook_load_n.is_none(),
             top_ax: model.dof(nn - 1, 0),
             contacts,
@@ -310,7 +318,7 @@ impl<'a> InteriorPointNewton<'a> {
             "interior-point iterations and step cap (bending-rotation and lateral caps: ratio and \
              distance from the bit of the node that sets each)"
         );
-        let likely = likely_converged(cap.alpha, rn, &stats.residual_history, self.ctl);
+        let likely = likely_converged(cap.alpha, rn, &stats.residual_history, &self.ctl);
         state.hook_load_n += cap.alpha * ip.iterate.dh;
         model.update(state, &ip.iterate.du, cap.alpha);
         for (j, &i) in qidx.iter().enumerate() {

@@ -3,7 +3,8 @@
 //! changes, not the solution.
 //!
 //! [`cold_start`] is the interior-point Newton's sequence: [`stretch_start`],
-//! [`soft_string_start`], [`smooth_start`], [`wind_up_start`] on [`Model::initial_state`].
+//! [`soft_string_start`], [`smooth_start`], [`align_start`], [`wind_up_start`] on
+//! [`Model::initial_state`].
 
 use crate::geometry::min_curvature::AxisGeometry;
 use crate::geometry::Vec3;
@@ -14,12 +15,14 @@ use crate::models::softstring;
 pub const START_OFF_WALL_M: f64 = 5.0;
 
 /// The interior-point Newton's start of `model`: its initial state stretched, put on the
-/// soft-string contact sides, smoothed and wound up.
+/// soft-string contact sides, smoothed, its triads turned along the smoothed centreline and
+/// wound up.
 pub fn cold_start(model: &Model) -> State {
     let mut state = model.initial_state();
     stretch_start(model, &mut state);
     soft_string_start(model, &mut state);
     smooth_start(model, &mut state);
+    align_start(model, &mut state);
     wind_up_start(model, &mut state);
     state
 }
@@ -164,6 +167,17 @@ pub fn wind_up_start(model: &Model, state: &mut State) {
 /// per m along the string), see [`smooth_start`].
 pub const START_MAX_SLOPE: f64 = 0.005;
 
+/// Element length below which [`smooth_start`] allows less than [`START_MAX_SLOPE`]: across an
+/// element of length `l` the offset may change by `START_MAX_SLOPE l min(1, l / this)`, m. A
+/// change of slope `d` at a node is a kink of curvature `d / l`, whose nodal forces grow as
+/// `EI d / l^2`: at [`START_MAX_SLOPE`] they were 600-1,200 load scales on 0.05 m elements
+/// and 1e4-3e4 on 0.01 m ones, which stalled the interior point of the first Newton steps
+/// (docs/performance.md, Fine BHA meshes). Below this length the slope allowed shrinks with
+/// `l`, keeping the kinks' curvature at most `START_MAX_SLOPE / this`: fine meshes start
+/// nearer the hole axis. The default meshes (0.5 m BHA elements, component ends and blade
+/// centres seldom closer) are not affected.
+pub const START_KINK_LENGTH_M: f64 = 0.25;
+
 /// Smooth the soft-string start: the soft-string model puts each node on its own side of the
 /// wall at its own clearance, so where the contact side flips (end of a build) or the
 /// clearance jumps (a stabilizer between collars) neighbouring nodes sit centimetres apart
@@ -187,25 +201,70 @@ pub fn smooth_start(model: &Model, state: &mut State) {
             }
         })
         .collect();
-    let ds: Vec<f64> = (0..nn - 1).map(|e| model.sections[e].l0).collect();
+    // the lateral step allowed across each element
+    let rise: Vec<f64> = (0..nn - 1)
+        .map(|e| {
+            let l = model.sections[e].l0;
+            START_MAX_SLOPE * l * (l / START_KINK_LENGTH_M).min(1.0)
+        })
+        .collect();
     // a side change: both nodes leave the wall (the passes below ramp their neighbours)
-    for (e, &l) in ds.iter().enumerate() {
+    for (e, &step) in rise.iter().enumerate() {
         let (i, j) = (e, e + 1);
         if a[i] > 0.0 && a[j] > 0.0 {
             let jump = (dir[i] * a[i] - dir[j] * a[j]).norm() - (a[i] - a[j]).abs();
-            if jump > START_MAX_SLOPE * l {
+            if jump > step {
                 a[i] = 0.0;
                 a[j] = 0.0;
             }
         }
     }
-    for (e, &l) in ds.iter().enumerate() {
-        a[e + 1] = a[e + 1].min(a[e] + START_MAX_SLOPE * l);
+    for (e, &step) in rise.iter().enumerate() {
+        a[e + 1] = a[e + 1].min(a[e] + step);
     }
     for e in (0..nn - 1).rev() {
-        a[e] = a[e].min(a[e + 1] + START_MAX_SLOPE * ds[e]);
+        a[e] = a[e].min(a[e + 1] + rise[e]);
     }
     for i in 0..nn {
         state.x[i] = axis[i] + dir[i] * a[i];
+    }
+}
+
+/// Aligned start: turn the triad of each node between the bit and the top by the smallest
+/// rotation that takes its section axis onto the tangent of the start's centreline there (the
+/// three-point tangent of the node and its neighbours, `(l_a u_b + l_b u_a) / (l_a + l_b)` with
+/// `u_b`, `u_a` the unit chords of the elements below and above and `l_b`, `l_a` their
+/// lengths, exact for a parabola through the three nodes). [`smooth_start`] moves the nodes
+/// off the hole axis (lateral slopes up to [`START_MAX_SLOPE`]) but the triads stay on the
+/// axis frame: an element on such a ramp then has both end rotations off its chord by the
+/// slope, a bending moment `~6 EI slope / l` and end shears `~12 EI slope / l^2`. On 0.5 m
+/// elements that is a residual of 6-30 load scales; on 0.05 m elements of 600-1,200, and the
+/// first interior-point solve stalls (steps of 1e-4 to the boundary) and so does every Newton
+/// step after it (docs/performance.md, Fine BHA meshes). Turned along the centreline, the
+/// start's residual is what its curvature carries. Only nodes next to an element shorter than
+/// [`START_KINK_LENGTH_M`] are turned: on longer elements the first Newton step removes the
+/// misalignment as it is (the default meshes' starts, and so their iteration counts, are
+/// unchanged; turned everywhere, the horizontal example's whole-string solve took 17
+/// iterations instead of 7). The bit's and the top node's triads are left as they are (the
+/// bit is on the axis; the top's bending rotations may be held). Only the start changes, not
+/// the solution.
+pub fn align_start(model: &Model, state: &mut State) {
+    let nn = model.nodes();
+    for i in 1..nn.saturating_sub(1) {
+        // chords point down the hole, like the triads' section axes
+        let below = state.x[i - 1] - state.x[i];
+        let above = state.x[i] - state.x[i + 1];
+        let (lb, la) = (below.norm(), above.norm());
+        if lb <= 0.0 || la <= 0.0 || lb.min(la) >= START_KINK_LENGTH_M {
+            continue;
+        }
+        let tangent = (below * (la / lb) + above * (lb / la)).normalize();
+        let t = state.triads[i].column(0).into_owned();
+        let axis = t.cross(&tangent);
+        let sin = axis.norm();
+        if sin > 1e-15 {
+            let angle = sin.atan2(t.dot(&tangent));
+            state.triads[i] = crate::models::fem::element::rotation::exp_so3(&(axis * (angle / sin))) * state.triads[i];
+        }
     }
 }
