@@ -108,7 +108,7 @@ pub(crate) fn hold_pins_on_axis(model: &Model, state: &mut State, pins: &[usize]
     }
 }
 
-/// Lateral offset from the hole axis below which [`hold_pins_on_axis`] leaves a pin where it is,
+/// Lateral offset from the hole axis below which the pin hold (`hold_pins_on_axis`) leaves a pin where it is,
 /// m. The axis point is computed from survey stations kilometres away (the bit at 3,000 m MD:
 /// positions and MDs rounded to ~5e-13 m), so snapping every iteration moved the pin by a few
 /// 1e-14 m each time: next to a pin on 0.01 m elements (`12 EI / l^3` ~ 1e14 N/m) that is a
