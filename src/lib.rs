@@ -25,12 +25,12 @@
 //!
 //! | layer | modules | job |
 //! |---|---|---|
-//! | edges | [`cli`] | parse arguments into validated settings, call one library function, write and print |
+//! | edges | [`cli`] | parse arguments into validated settings, check the output paths against the inputs, call one library function, write all outputs together and print |
 //! | | [`report`] | summaries (JSON, CSV), stdout text and HTML reports drawn from typed results |
 //! | | [`analytical`] | closed-form references for the tests (independent of the models) |
 //! | | [`io`] | files in: case TOML, survey CSV or text report, measured loads |
 //! | workflows | [`predict`], [`loads`] | prediction, tracking, back-analysis, calibration; the torque-and-drag chart |
-//! | mechanics | [`models`] | soft string, buckling, stiff FEM, fidelity levels, diagnostics |
+//! | mechanics | [`models`] | soft string, buckling, stiff FEM, fidelity levels, diagnostics, checks against what a real string can do (yield, lock-up) |
 //! | the case | [`case`] | well, string, mud, operation, bit-rock law, solver and fidelity settings |
 //! | data | [`geometry`], [`string`] | hole axis and sizes; components and sections |
 //! | base | [`units`], [`error`], [`numerics`] | quantities and SI factors; input errors; least squares |
