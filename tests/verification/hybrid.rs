@@ -12,9 +12,9 @@
 //!
 //! The stabilizers are points of contact (`[solver] stabilizer_contact = "point"`): with blades
 //! (the default) the full-gauge ones clamp the collars, which the builds then force through
-//! with bit forces of 240-720 kN, and the whole string's solve does not converge in most of
-//! these cases (docs/guide.md, "Stabilizer blades"); the subject here is the hand-off above
-//! the assembly.
+//! with bit forces of 140-720 kN, and the whole string's solve does not converge sliding at 20
+//! and 30 deg/30 m (docs/guide.md, "Stabilizer blades"); the subject here is the hand-off
+//! above the assembly.
 //!
 //! Run with `cargo test --release --test verification hybrid:: -- --nocapture` to see the table.
 
