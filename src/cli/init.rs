@@ -50,6 +50,7 @@ od = "8.5 in"                  # blade OD (touches the wall)
 body_od = "6.5 in"
 id = "2.8125 in"
 length = "1.6 m"
+blade_length = "0.4 m"         # the blades touch the wall along this length (default: a quarter of length)
 
 [[string]]
 type = "collar"

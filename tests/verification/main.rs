@@ -9,6 +9,7 @@
 mod common;
 
 mod architecture;
+mod blade;
 mod buckling;
 mod extremes;
 mod fidelity;
