@@ -246,6 +246,19 @@ pub fn from_si(value_si: f64, unit: &str) -> f64 {
     value_si / u.to_si
 }
 
+/// `x` for an error message as a user would write it: six significant digits at most
+/// (rounding noise such as `0.06096000000000001` dropped), plain when short, else in
+/// scientific notation (`1e-300`).
+pub fn message_number(x: f64) -> String {
+    let rounded = format!("{x:.5e}").parse::<f64>().unwrap_or(x);
+    let plain = rounded.to_string();
+    if plain.len() <= 10 {
+        plain
+    } else {
+        format!("{rounded:e}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -334,5 +347,14 @@ mod tests {
         assert_eq!(u.to_si, 1200.0 / 3937.0);
         assert!((u.to_si - 0.304_800_609_6).abs() < 1e-10);
         assert_eq!(lookup("US Survey Feet").unwrap().to_si, u.to_si);
+    }
+
+    #[test]
+    fn message_numbers_read_as_written() {
+        assert_eq!(message_number(1e-6), "0.000001");
+        assert_eq!(message_number(1e-300), "1e-300");
+        assert_eq!(message_number(-0.2 * 0.3048), "-0.06096");
+        assert_eq!(message_number(0.01), "0.01");
+        assert_eq!(message_number(-1.0), "-1");
     }
 }

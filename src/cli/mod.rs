@@ -47,12 +47,6 @@ pub fn bare_unit(case: &crate::case::Case) -> &str {
     &case.well.survey.md_unit
 }
 
-/// `x` with at most six significant digits, trailing zeros dropped (for messages).
-fn significant(x: f64) -> String {
-    let text = format!("{x:.6e}");
-    text.parse::<f64>().map(|v| v.to_string()).unwrap_or(text)
-}
-
 /// Parse an optional length option (`None` when not given; bare numbers in `bare_unit`),
 /// refusing values below `min` (m).
 pub fn length_opt(name: &str, v: &Option<String>, min: f64, bare_unit: &str) -> anyhow::Result<Option<f64>> {
@@ -61,7 +55,7 @@ pub fn length_opt(name: &str, v: &Option<String>, min: f64, bare_unit: &str) -> 
     if x.is_nan() || x < min {
         anyhow::bail!(
             "option `{name}`: {} m is below the smallest accepted value {min} m",
-            significant(x)
+            crate::units::message_number(x)
         );
     }
     Ok(Some(x))

@@ -1,7 +1,7 @@
 //! The files a run writes: every output path checked against the run's inputs before any work
 //! (through links and relative paths), then all outputs written together at the end, or none.
 
-use crate::io::paths::resolve;
+use crate::io::paths::{resolve, write_temp};
 use anyhow::bail;
 use std::path::{Path, PathBuf};
 
@@ -134,7 +134,9 @@ impl Outputs {
         let result = (|| -> anyhow::Result<()> {
             for (path, contents) in &self.staged {
                 create_dirs(path, &mut created)?;
-                temps.push((write_temp(path, contents)?, path));
+                let tmp =
+                    write_temp(path, contents).map_err(|e| anyhow::anyhow!("cannot write {}: {e}", path.display()))?;
+                temps.push((tmp, path));
             }
             Ok(())
         })();
@@ -170,32 +172,6 @@ fn create_dirs(path: &Path, created: &mut Vec<PathBuf>) -> anyhow::Result<()> {
         created.push(d);
     }
     Ok(())
-}
-
-/// Write `contents` to a hidden temporary file beside `path` and return its path.
-fn write_temp(path: &Path, contents: &[u8]) -> anyhow::Result<PathBuf> {
-    use std::io::Write;
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let written = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()
-    })();
-    match written {
-        Ok(()) => Ok(tmp),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            bail!("cannot write {}: {e}", path.display())
-        }
-    }
 }
 
 /// File names as owned strings, for [`Outputs::dir`].

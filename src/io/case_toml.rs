@@ -344,6 +344,24 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
     })
 }
 
+/// Every key a case file accepts, in any table (for tools that generate or check case files,
+/// such as the readers' fuzz test).
+pub fn known_keys() -> Vec<&'static str> {
+    [
+        TOP_KEYS,
+        WELL_KEYS,
+        HOLE_KEYS,
+        MUD_KEYS,
+        OPERATION_KEYS,
+        FORMATION_KEYS,
+        BIT_ROCK_KEYS,
+        COMPONENT_KEYS,
+        super::solver_toml::SOLVER_KEYS,
+        super::tracking_toml::TRACKING_KEYS,
+    ]
+    .concat()
+}
+
 /// Keys accepted in the top table (checked before any is read, so a typo is named).
 const TOP_KEYS: &[&str] = &[
     "name",

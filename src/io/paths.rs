@@ -25,3 +25,31 @@ pub fn resolve(path: &Path) -> PathBuf {
         }
     }
 }
+
+/// Write `contents` to a hidden temporary file beside `path` (`.NAME.tmpPID`, fsynced) and
+/// return its path; on failure the temporary file is removed. Renaming it onto `path` makes
+/// the write atomic.
+pub fn write_temp(path: &Path, contents: &[u8]) -> std::io::Result<PathBuf> {
+    use std::io::Write;
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    let written = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(contents)?;
+        f.sync_all()
+    })();
+    match written {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}

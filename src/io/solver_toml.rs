@@ -30,20 +30,10 @@ pub fn check_mesh_size(s: &Section, solver: &SolverSettings, string: &DrillStrin
         key,
         format!(
             "{} m elements give the string model about {:.0} elements ({count:.0} from this key), more than the {MAX_ELEMENTS} a model may have: take longer elements (the accuracy presets in docs/guide.md give the measured trade)",
-            short_number(length),
+            crate::units::message_number(length),
             in_bha + in_pipe
         ),
     ))
-}
-
-/// `x` as written by a user: plain when short, else in scientific notation.
-fn short_number(x: f64) -> String {
-    let plain = format!("{x}");
-    if plain.len() <= 8 {
-        plain
-    } else {
-        format!("{x:e}")
-    }
 }
 
 /// Keys accepted in the solver table (checked before any is read, so a typo is named).
@@ -85,7 +75,7 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
     if !(MIN_TOLERANCE..=0.1).contains(&tol) {
         return Err(s.error(
             "tolerance",
-            format!("{} outside [{MIN_TOLERANCE:e}, 0.1]: below {MIN_TOLERANCE:e} of the clearance a penetration is as small as the rounding of the positions in double precision, which no solve can reach", short_number(tol)),
+            format!("{} outside [{MIN_TOLERANCE:e}, 0.1]: below {MIN_TOLERANCE:e} of the clearance a penetration is as small as the rounding of the positions in double precision, which no solve can reach", crate::units::message_number(tol)),
         ));
     }
     let fidelity = match s.string("fidelity")? {

@@ -15,7 +15,7 @@ use super::limits::{buckling_along, combined_torque_limit, max_stress_ratio, yie
 use super::row::{LoadRow, RowLoads, RowYield};
 use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::Case;
-use crate::models::softstring::{from_case, SoftStringResult};
+use crate::models::softstring::{at_zero_hook_load, from_case, SoftStringResult};
 use crate::string::DrillString;
 
 /// Settings of a soft-string chart.
@@ -54,9 +54,7 @@ pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
     let op = &case.operation;
     let mut res = from_case(case, max_element_m);
     if op.mode.on_bottom() && res.hook_load_n < 0.0 {
-        let mut c = case.clone();
-        c.operation.hook_load_n = Some(0.0);
-        res = from_case(&c, max_element_m);
+        res = at_zero_hook_load(case, max_element_m);
         // zero within the secant's tolerance (1e-9 N)
         res.hook_load_n = res.hook_load_n.max(0.0);
     }

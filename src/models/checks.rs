@@ -111,9 +111,7 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
     if h >= 0.0 || !case.operation.mode.on_bottom() || case.operation.hook_load_n.is_some() {
         return None;
     }
-    let mut c = case.clone();
-    c.operation.hook_load_n = Some(0.0);
-    let soft = softstring::from_case(&c, softstring::segment_length_m(&c.solver));
+    let soft = softstring::at_zero_hook_load(case, softstring::segment_length_m(&case.solver));
     let max_wob_n = (-soft.points.first()?.tension_n).max(0.0);
     Some(LockUp {
         hook_load_n: h,

@@ -54,6 +54,15 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
     hints
 }
 
+/// "stopped at the time limit of one solve, T s (`[solver] time_limit`)", for the messages of
+/// a solve that ran out of time.
+pub fn time_limit_phrase(ctl: &crate::models::fem::solve::SolveControls) -> String {
+    format!(
+        "stopped at the time limit of one solve, {} s (`[solver] time_limit`)",
+        ctl.time_limit_s
+    )
+}
+
 /// Where a stiff solve that did not converge stopped, in one phrase: "in N iterations (the
 /// limit, `[solver] max_iterations`)" or "at the time limit of T s ...".
 pub fn stop_phrase(
@@ -63,10 +72,7 @@ pub fn stop_phrase(
     let n = stats.iterations;
     let its = if n == 1 { "iteration" } else { "iterations" };
     if stats.timed_out {
-        format!(
-            "in {n} {its}: it stopped at the time limit of one solve, {} s (`[solver] time_limit`)",
-            ctl.time_limit_s
-        )
+        format!("in {n} {its}: it {}", time_limit_phrase(ctl))
     } else {
         format!(
             "in {n} {its} (the limit, `[solver] max_iterations` = {})",

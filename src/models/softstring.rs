@@ -327,6 +327,15 @@ pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
     run(w1)
 }
 
+/// The soft string of `case` with the hook load held at zero ([`from_case`] with a hook-load
+/// input of 0): on bottom, its WOB (minus the tension at the bit) is the largest the string can
+/// deliver; a larger one needs the surface to push (lock-up).
+pub fn at_zero_hook_load(case: &Case, max_element_m: f64) -> SoftStringResult {
+    let mut c = case.clone();
+    c.operation.hook_load_n = Some(0.0);
+    from_case(&c, max_element_m)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

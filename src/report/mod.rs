@@ -17,32 +17,19 @@ pub mod solve_text;
 pub mod survey_table;
 pub mod tracking_output;
 
-use std::io::Write;
 use std::path::Path;
 
-/// Write `contents` to `path` atomically: a temporary file in the same directory, then a
-/// rename, so a failed run never leaves a half-written file that looks complete.
+/// Write `contents` to `path` atomically: a temporary file in the same directory
+/// ([`crate::io::paths::write_temp`]), then a rename, so a failed run never leaves a
+/// half-written file that looks complete. Missing directories are created.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir)?;
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(contents)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    if let Some(dir) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)?;
     }
-    result
+    let tmp = crate::io::paths::write_temp(path, contents)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
 }
 
 /// A finite number for JSON output; NaN or infinity is an internal error, never written.

@@ -5,8 +5,8 @@
 //!
 //! Reference: the `loads` row of the same case, same bit depth, same fidelity. Tolerance: 1% on
 //! the hook load (the target; both commands run the same model, measured 0 to the
-//! printed digits). Before the fix `solve` sliding at ROP 0 had no friction at all: its hook
-//! load was the rotating one, 625.9 kN against the row's 485.0 kN here (+29%) at `soft`.
+//! printed digits). Without axial friction at ROP 0, `solve` sliding would give the rotating
+//! hook load, 625.9 kN against the row's 485.0 kN here (+29%) at `soft`.
 
 use std::path::Path;
 
@@ -105,8 +105,7 @@ fn solve_sliding_at_zero_rop_matches_the_loads_sliding_row() {
 
 #[test]
 fn solve_rotating_at_zero_rop_matches_the_loads_drilling_row() {
-    // Rotating at ROP 0 has no axial drag in both commands (all the friction circumferential),
-    // as before the fix.
+    // Rotating at ROP 0 has no axial drag in both commands (all the friction circumferential).
     let dir = case_dir(&j_well_survey(), &j_well_case("drilling"));
     for level in ["soft", "whole"] {
         let solve = solve_hook_load_kn(dir.path(), level);

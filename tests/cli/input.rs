@@ -401,7 +401,7 @@ MD       INC      AZI      TVD
 
 #[test]
 fn survey_with_exported_headers_names_the_grid_reference() {
-    // Fails before issue 18: `Incl.` and `Azimuth Grid` were not column names.
+    // Exported report headers: `Incl.` and `Azimuth Grid` are column names.
     let fx = Fixture::new();
     fx.write("survey.csv", EXPORTED_SURVEY);
     let plain = fx.run(&["survey", "case.toml", "--csv"]);
@@ -450,7 +450,7 @@ fn survey_with_grid_and_true_azimuths_is_refused_naming_both() {
 
 #[test]
 fn survey_text_report_reads_as_the_csv() {
-    // Fails before issue 18: a whitespace-separated report could not be read at all.
+    // A whitespace-separated report is read like a CSV.
     let fx = Fixture::new();
     fx.write("report.txt", REPORT);
     let r = fx.run(&["survey", "report.txt"]);

@@ -127,7 +127,7 @@ fn accuracy_preset_in_case_file_and_on_the_command_line() {
 fn string_csv_clearance_is_empty_without_a_gap_element() {
     // Reference: the mesh's gap elements (docs/guide.md, outputs of `solve`): every stiff node
     // has one except the bit face, the bit's body above it and the top node of the whole
-    // string, held on the hole axis; their `clearance_mm` cell is empty (it was 0 before), the
+    // string, held on the hole axis; their `clearance_mm` cell is empty (not 0), the
     // others give the radial clearance (>= 0). seed-daqing at `whole`: exactly the first and
     // the last row empty (its bit, 0.3 m long, has no node inside).
     let dir = tempfile::tempdir().unwrap();

@@ -569,77 +569,8 @@ fn fuzz_case_reader_with_mutated_cases() {
 // Case files changed value by value (still valid TOML, so the checks past the syntax are reached)
 // ----------------------------------------------------------------------------------------------
 
-/// Keys of the case file and words its string values take, for values put in place of others.
-const CASE_WORDS: &[&str] = &[
-    "name",
-    "description",
-    "well",
-    "mud",
-    "operation",
-    "string",
-    "bit_rock",
-    "solver",
-    "tracking",
-    "survey",
-    "survey_md_unit",
-    "origin",
-    "hole",
-    "caliper",
-    "to_md",
-    "diameter",
-    "friction",
-    "density",
-    "plastic_viscosity",
-    "mode",
-    "bit_md",
-    "wob",
-    "hook_load",
-    "rpm",
-    "rop",
-    "trip_speed",
-    "bit_torque",
-    "viscous_torque",
-    "from_md",
-    "rock_anisotropy",
-    "dip",
-    "dip_direction",
-    "law",
-    "lateral_drillability",
-    "walk_angle",
-    "step",
-    "bit_friction",
-    "formations",
-    "accuracy",
-    "element_length",
-    "bha_element_length",
-    "tolerance",
-    "fidelity",
-    "method",
-    "max_iterations",
-    "alpha",
-    "type",
-    "od",
-    "body_od",
-    "id",
-    "length",
-    "weight",
-    "tool_joint_od",
-    "joint_length",
-    "material",
-    "youngs_modulus",
-    "shear_modulus",
-    "material_density",
-    "grade",
-    "yield_strength",
-    "survey_noise_inc",
-    "survey_noise_azi",
-    "tendency_sd",
-    "forgetting_length",
-    "fluctuation_sd",
-    "correlation_length",
-    "window",
-    "interval",
-    "estimate",
+/// Words the case file's string values take, beside its keys ([`case_words`]).
+const VALUE_WORDS: &[&str] = &[
     "drilling",
     "sliding",
     "rotating",
@@ -672,6 +603,14 @@ const CASE_WORDS: &[&str] = &[
     "",
 ];
 
+/// Keys of the case file (every table's, from the reader) and words its string values take,
+/// for values put in place of others.
+fn case_words() -> Vec<&'static str> {
+    let mut words = drillpath::io::case_toml::known_keys();
+    words.extend_from_slice(VALUE_WORDS);
+    words
+}
+
 /// Units of the quantities a case file holds (and a few it must refuse).
 const CASE_UNITS: &[&str] = &[
     "", "m", "ft", "in", "mm", "km", "kN", "klbf", "N", "sg", "ppg", "kg/m3", "lb/ft", "kg/m", "m/h", "ft/h", "m/s",
@@ -702,7 +641,7 @@ fn toml_value() -> impl Strategy<Value = toml::Value> {
         1 => any::<i64>().prop_map(V::Integer),
         2 => (-5i64..5000).prop_map(V::Integer),
         1 => any::<bool>().prop_map(V::Boolean),
-        2 => prop::sample::select(CASE_WORDS).prop_map(|w| V::String(w.to_string())),
+        2 => prop::sample::select(case_words()).prop_map(|w| V::String(w.to_string())),
         1 => prop::sample::select(WORDS).prop_map(|w| V::String(w.to_string())),
         1 => Just(V::Array(vec![])),
         1 => Just(V::Table(toml::Table::new())),
@@ -730,7 +669,7 @@ fn value_edit() -> impl Strategy<Value = ValueEdit> {
         5 => (any::<usize>(), toml_value()).prop_map(|(k, v)| ValueEdit::Set(k, v)),
         5 => (any::<usize>(), factor).prop_map(|(k, f)| ValueEdit::Scale(k, f)),
         2 => any::<usize>().prop_map(ValueEdit::Remove),
-        2 => (any::<usize>(), prop::sample::select(CASE_WORDS), toml_value()).prop_map(|(k, w, v)| ValueEdit::Add(k, w, v)),
+        2 => (any::<usize>(), prop::sample::select(case_words()), toml_value()).prop_map(|(k, w, v)| ValueEdit::Add(k, w, v)),
     ]
 }
 

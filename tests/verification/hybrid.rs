@@ -134,12 +134,12 @@ fn at(case: &Case, level: Level) -> LevelResult {
 
 #[test]
 fn hybrid_matches_whole_at_the_bottom_of_sharp_builds() {
-    // Reference: the whole-string FEM of the same case. Before the fix the soft string took
-    // over inside the bent collars (half way between the highest stabilizer and the cut): it
-    // missed the wall forces where the collars straighten and at their top, and the bending
-    // energy the collars release there; measured on these cases hybrid's torque -8.9% (20
-    // deg/30 m) and -14.9% (30 deg/30 m) on the deep well, its hook load -1.1% rotating and
-    // -5.5% / +7.8% sliding. Now the stiff part holds the whole assembly and hands over three
+    // Reference: the whole-string FEM of the same case. A soft string taking over inside the
+    // bent collars (half way between the highest stabilizer and the cut) misses the wall forces
+    // where the collars straighten and at their top, and the bending energy the collars
+    // release there: on these cases hybrid's torque -8.9% (20 deg/30 m) and -14.9% (30 deg/30
+    // m) on the deep well, its hook load -1.1% rotating and -5.5% / +7.8% sliding. The stiff
+    // part holds the whole assembly and hands over three
     // tangency lengths above it (docs/theory.md 8.3). Tolerances: hook load 0.3% rotating,
     // 1% sliding (measured within 0.02% rotating; sliding -0.54% to +0.03%: the soft string
     // above the coupling point does not see the bending of the HWDP in the build); surface
@@ -189,7 +189,7 @@ fn soft_string_takes_over_with_the_bending_energy() {
     // axial force rises by the bending energy `M^2/(2 EI)` = 1.5 kN on top of the weight. A
     // soft string started there with `F_c + M^2/(2 EI)` gets the hook load of `whole` (rotating,
     // so friction hardly acts axially; tolerance 0.1%, measured -0.01%); started with `F_c`
-    // alone it was 1.1% low (asserted beyond 0.8%).
+    // alone it is 1.1% low (asserted beyond 0.8%).
     let case = sharp_build(Well::Shallow, 30.0, true);
     let hw = at(&case, Level::Whole).hook_load_n.unwrap();
     let bha = at(&case, Level::Bha);

@@ -70,8 +70,8 @@ fn at(case: &Case, level: Level) -> LevelResult {
 /// axial drag, `H = w_b L cos I - WOB`, and the soft string's torque is `f w_b sin I L R_c`.
 /// Tolerance: soft 1e-9 (exact to round-off); whole 0.5% (the stiff pipe lifts off the wall
 /// over about 12 m at the bit and at the top, where it is held on the axis: about 0.3%,
-/// tests/verification/loads.rs). Before the fix the sliding hook load at ROP 0 was the
-/// rotating one (+41% here).
+/// tests/verification/loads.rs). A sliding string without axial friction at ROP 0 would give the
+/// rotating hook load, 41% higher here.
 #[test]
 fn straight_inclined_hole_sliding_drag_matches_closed_form() {
     let (_, w_b, _) = pipe_properties();
@@ -136,9 +136,9 @@ friction = {friction}
 
 /// Reference: without rotation the friction is `f N` against the direction of motion whatever
 /// the speed (docs/theory.md 1, "Motion"), so a sliding string gives the same hook load at
-/// ROP 0 (the default) as at any ROP. Tolerance 1e-9 relative (the same equations). Before the
-/// fix ROP 0 was frictionless: 428.5 kN against 355.1 kN at 10 m/h (soft; whole 428.5 against
-/// 352.4 kN).
+/// ROP 0 (the default) as at any ROP. Tolerance 1e-9 relative (the same equations). Without
+/// friction at ROP 0 the hook load would be 428.5 kN against 355.1 kN at 10 m/h (soft; whole
+/// 428.5 against 352.4 kN).
 #[test]
 fn sliding_loads_do_not_depend_on_the_rop() {
     let zero = j_well_sliding("0 m/h", 0.3);
@@ -185,7 +185,6 @@ friction = {friction}
 /// Reference: the same rule in the predictor (its stiff BHA model takes the operation's motion):
 /// a sliding prediction does not depend on the ROP, 1e-9 relative on the bit's build force and
 /// the predicted inclination after 30 m. The friction-free prediction is printed for scale.
-/// Before the fix the ROP 0 prediction was the friction-free one.
 #[test]
 fn sliding_prediction_does_not_depend_on_the_rop() {
     let go = |case: &Case| {

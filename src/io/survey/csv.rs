@@ -481,7 +481,7 @@ mod tests {
 
     #[test]
     fn exported_report_headers_issue_18() {
-        // Fails before issue 18 (9): `Incl.`, `Azimuth Grid` were not column names.
+        // Exported report headers: `Incl.`, `Azimuth Grid`, units in spaced brackets.
         let f = parse("Measured Depth ( ft ),Incl. ( deg ),Azimuth Grid ( deg ),TVD ( ft ),DLS (deg/100ft)\n0,0,0,0,0\n100,2,45,99.98,2\n").unwrap();
         assert!(close(f.survey.stations()[1].md_m, 30.48));
         assert!(close(f.survey.stations()[1].inc_rad, 2_f64.to_radians()));

@@ -278,7 +278,7 @@ mod tests {
 
     #[test]
     fn made_up_report() {
-        // Fails before issue 18 (9): the first line was taken as a CSV header.
+        // A report whose first line is metadata, not a CSV header.
         let f = parse(REPORT).unwrap();
         let st: Vec<(f64, f64, f64)> = f
             .survey

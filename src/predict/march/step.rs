@@ -35,10 +35,7 @@ fn solve_step(
         return Ok(sol);
     }
     let limit = if sol.stats.timed_out {
-        format!(
-            "; stopped at the time limit of one solve, {} s (`[solver] time_limit`)",
-            ctl.time_limit_s
-        )
+        format!("; {}", crate::models::diagnose::time_limit_phrase(ctl))
     } else {
         String::new()
     };
