@@ -355,7 +355,7 @@ pub fn known_keys() -> Vec<&'static str> {
         OPERATION_KEYS,
         FORMATION_KEYS,
         BIT_ROCK_KEYS,
-        COMPONENT_KEYS,
+        super::string_toml::COMPONENT_KEYS,
         super::solver_toml::SOLVER_KEYS,
         super::tracking_toml::TRACKING_KEYS,
     ]

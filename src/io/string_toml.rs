@@ -16,7 +16,7 @@ use crate::units::{Dimension as D, G};
 pub const DEFAULT_JOINT_LENGTH_M: f64 = 9.144;
 
 /// Keys accepted in a `[[string]]` component.
-const COMPONENT_KEYS: &[&str] = &[
+pub(crate) const COMPONENT_KEYS: &[&str] = &[
     "type",
     "name",
     "od",
