@@ -99,12 +99,10 @@ fn case_text(k: usize, variant: &str, truth: bool) -> String {
     } else {
         String::new()
     };
-    // the wells were drilled, and are modelled, with point stabilizers (the model before
-    // issue 20's blades; the runs must use the model that drilled them)
     let solver = if truth {
-        "[solver]\nelement_length = \"1 m\"\nbha_element_length = \"0.25 m\"\nstabilizer_contact = \"point\"\n"
+        "[solver]\nelement_length = \"1 m\"\nbha_element_length = \"0.25 m\"\n"
     } else {
-        "[solver]\n# drilled by the model with point stabilizers (examples/known_truth.rs)\nstabilizer_contact = \"point\"\n"
+        ""
     };
     let tracking = if variant == "anisotropy" && !truth {
         "[tracking]\nestimate = [\"rock_anisotropy\"]\n"

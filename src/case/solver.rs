@@ -16,11 +16,12 @@ pub enum Method {
 /// How stabilizers and bits touch the wall (`[solver] stabilizer_contact`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StabilizerContact {
-    /// Along the blades and the bit's gauge: contact points along each blade and gauge (the
-    /// default; docs/theory.md 3.4).
+    /// Along the blades and the bit's gauge: contact points along each blade and gauge
+    /// (docs/theory.md 3.4).
     Blade,
-    /// The classic model: one contact point at each stabilizer's middle, the bit touching only
-    /// at its face, whatever the blade and gauge lengths (for comparison with published results).
+    /// The classic model (the default): one contact point at each stabilizer's middle, the bit
+    /// touching only at its face, whatever the blade and gauge lengths (docs/theory.md 3.4 says
+    /// why it is the default).
     Point,
 }
 
@@ -86,7 +87,7 @@ impl Default for SolverSettings {
             fidelity: Fidelity::Auto,
             method: Method::Newton,
             max_iterations: 300,
-            stabilizer_contact: StabilizerContact::Blade,
+            stabilizer_contact: StabilizerContact::Point,
             alpha: 0.7,
             time_limit_s: DEFAULT_TIME_LIMIT_S,
             accuracy: None,

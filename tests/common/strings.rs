@@ -16,8 +16,7 @@ length = "0.3 m"
 "#;
 
 /// A stabilizer with blades of diameter `od` (`"8.5 in"`: full gauge in the 8.5 in hole, zero
-/// clearance) on a 6.5 in body with a 2-13/16 in bore, 1.5 m long, with the default blade length
-/// (0.375 m).
+/// clearance) on a 6.5 in body with a 2-13/16 in bore, 1.5 m long.
 pub fn stabilizer(od: &str) -> String {
     format!(
         r#"[[string]]
@@ -72,33 +71,24 @@ id = "4.276 in"
 
 // ---------------------------------------------------------------------------------------------
 // The textbook BHAs (Lubinski & Woods; Millheim et al.; docs/theory.md 9.3): bit, 6.5 in collars
-// and full-gauge 8.5 in stabilizers, without the pipe above them. The textbooks analyse them
-// with each stabilizer a point of contact at its middle, so their stabilizers are points
-// (`blade_length = 0`): a full-gauge blade clamps the collar (docs/theory.md 3.4), and turns
-// the fulcrum into a holding assembly (tests/verification/predict.rs measures both).
-
-/// The full-gauge stabilizer of the textbook BHAs: [`stabilizer`] `"8.5 in"` touching at its
-/// middle only (`blade_length = 0`).
-pub fn point_stabilizer() -> String {
-    format!("{}blade_length = \"0 m\"\n", stabilizer("8.5 in"))
-}
+// and full-gauge 8.5 in stabilizers, without the pipe above them
 
 /// Fulcrum (builds): full-gauge near-bit stabilizer, 60 m of collars above.
 pub fn fulcrum_bha() -> String {
-    format!("{BIT}{}{}", point_stabilizer(), collar("60 m"))
+    format!("{BIT}{}{}", stabilizer("8.5 in"), collar("60 m"))
 }
 
 /// Pendulum (drops): the first (full-gauge) stabilizer 18.3-19.8 m above the bit, 45 m of
 /// collars above it.
 pub fn pendulum_bha() -> String {
-    let stab = point_stabilizer();
+    let stab = stabilizer("8.5 in");
     format!("{BIT}{}{stab}{}", collar("18 m"), collar("45 m"))
 }
 
 /// Packed (holds): full-gauge stabilizers at the bit, 5 m and 15 m above it, 45 m of collars
 /// above the last.
 pub fn packed_bha() -> String {
-    let stab = point_stabilizer();
+    let stab = stabilizer("8.5 in");
     format!(
         "{BIT}{stab}{}{stab}{}{stab}{}",
         collar("3 m"),

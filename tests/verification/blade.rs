@@ -65,8 +65,14 @@ fn issue_bha(under_in: f64, blade_m: Option<f64>, bit_extra: &str) -> String {
     )
 }
 
-/// The issue's case (500 m straight hole) with `string` and `solver` lines.
+/// The issue's case (500 m straight hole) with `string` and `solver` lines; the stabilizers
+/// touch along their blades (`stabilizer_contact = "blade"`) unless `solver` says otherwise.
 fn issue_case(string: &str, solver: &str) -> Case {
+    let solver = if solver.contains("stabilizer_contact") {
+        solver.to_string()
+    } else {
+        format!("stabilizer_contact = \"blade\"\n{solver}")
+    };
     let survey = format!("md_m,inc_deg,azi_deg\n0,{INC_DEG},0\n500,{INC_DEG},0\n");
     let text = format!(
         r#"

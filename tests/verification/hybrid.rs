@@ -10,12 +10,6 @@
 //! - `shallow`: the stations of wells/seed-daqing to 537 m (24 deg), then the build; its packed
 //!   BHA of 7 in collars (top 122 m above the bit), HWDP and pipe; 140 kN WOB.
 //!
-//! The stabilizers are points of contact (`[solver] stabilizer_contact = "point"`): with blades
-//! (the default) the full-gauge ones clamp the collars, which the builds then force through
-//! with bit forces of 140-720 kN, and the whole string's solve does not converge sliding at 20
-//! and 30 deg/30 m (docs/guide.md, "Stabilizer blades"); the subject here is the hand-off
-//! above the assembly.
-//!
 //! Run with `cargo test --release --test verification hybrid:: -- --nocapture` to see the table.
 
 use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
@@ -120,7 +114,7 @@ fn sharp_build(well: Well, rate_deg_30m: f64, rotating: bool) -> Case {
     let toml = format!(
         "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"{bit} m\", diameter = \"8.5 in\" }}]\n\
          [mud]\n{mud}\n[operation]\n{op}\nbit_md = \"{bit} m\"\nwob = \"{wob} kN\"\nfriction = 0.25\n\
-         {bha}[solver]\nelement_length = \"3 m\"\nbha_element_length = \"0.5 m\"\ntolerance = 1e-4\nstabilizer_contact = \"point\"\n"
+         {bha}[solver]\nelement_length = \"3 m\"\nbha_element_length = \"0.5 m\"\ntolerance = 1e-4\n"
     );
     load_temp_case(&csv, &toml)
 }

@@ -12,6 +12,7 @@ use crate::common::{
     collar, example, fulcrum_bha, load_temp_case, packed_bha, pendulum_bha, slick_bha, stabilizer, try_load_temp_case,
     BIT, PIPE_TUBE,
 };
+use drillpath::case::StabilizerContact;
 
 /// A case with `bha` + 5 in drill pipe to surface ([`PIPE_TUBE`] with 6-5/8 in tool joints) in
 /// an 8.5 in hole along `survey`, rotating at 60 rpm with `wob_kn`, friction 0.2, and extra
@@ -51,7 +52,13 @@ fn run(case: &Case, from: f64, to: f64, step: f64) -> Prediction {
 
 /// Build rate over 60 m from 300 m in the straight 20 deg hole, deg/30 m.
 fn build_rate(bha: &str, wob_kn: f64, step: f64) -> f64 {
-    let case = case_with(&straight(20.0, 0.0), bha, wob_kn, "");
+    build_rate_with(bha, wob_kn, step, StabilizerContact::Point)
+}
+
+/// [`build_rate`] with the stabilizers touching as `contact` says.
+fn build_rate_with(bha: &str, wob_kn: f64, step: f64, contact: StabilizerContact) -> f64 {
+    let mut case = case_with(&straight(20.0, 0.0), bha, wob_kn, "");
+    case.solver.stabilizer_contact = contact;
     let p = run(&case, 300.0, 360.0, step);
     interval_rates(&p).build_rate_rad_per_30m.to_degrees()
 }
@@ -59,11 +66,7 @@ fn build_rate(bha: &str, wob_kn: f64, step: f64) -> f64 {
 /// Reference: textbook tendencies (Lubinski & Woods 1953; Millheim et al. 1978; docs/theory.md 9.3,
 /// resultant-force law): fulcrum builds, pendulum drops, packed holds (|rate| much smaller);
 /// more WOB builds a fulcrum faster and makes a pendulum drop less. Rough sizes asserted:
-/// fulcrum and pendulum 0.2-5 deg/30 m in magnitude, packed below a quarter of both. The
-/// textbooks' stabilizers are points (tests/common); with blades along their 0.375 m (the
-/// default), the full-gauge near-bit stabilizer clamps the collar and the fulcrum holds (below
-/// a quarter of its point rate), while 1/32 in under gauge it builds again, more slowly than
-/// the point (issue 20; the bit forces: tests/verification/blade.rs).
+/// fulcrum and pendulum 0.2-5 deg/30 m in magnitude, packed below a quarter of both.
 #[test]
 fn textbook_bha_tendencies_at_20_degrees() {
     let fulcrum = build_rate(&fulcrum_bha(), 80.0, 2.0);
@@ -87,9 +90,13 @@ fn textbook_bha_tendencies_at_20_degrees() {
         pendulum_more > pendulum && pendulum_more < 0.0,
         "more WOB should drop less: {pendulum_more} vs {pendulum}"
     );
+    // with contact along the blades (0.375 m, `stabilizer_contact = "blade"`) a full-gauge
+    // near-bit blade clamps the collar and the fulcrum holds (below a quarter of its point
+    // rate); 1/32 in under gauge it builds again, more slowly than the point (issue 20; the
+    // bit forces: tests/verification/blade.rs)
     let bladed = |od: &str| format!("{BIT}{}{}", stabilizer(od), collar("60 m"));
-    let clamped = build_rate(&bladed("8.5 in"), 80.0, 2.0);
-    let under = build_rate(&bladed("8.46875 in"), 80.0, 2.0);
+    let clamped = build_rate_with(&bladed("8.5 in"), 80.0, 2.0, StabilizerContact::Blade);
+    let under = build_rate_with(&bladed("8.46875 in"), 80.0, 2.0, StabilizerContact::Blade);
     println!("with blades: full gauge {clamped:.3}, 1/32 in under gauge {under:.3} deg/30 m");
     assert!(
         clamped.abs() < 0.25 * fulcrum,
@@ -311,26 +318,16 @@ fn step_extrapolation_beats_the_plain_march() {
 /// remedy must work: at the suggested 0.6 m step the prediction completes without a ripple
 /// warning and its end inclination agrees with the default 1 m march within 0.1 deg
 /// (reference: the step study's horizontal row, 90.968 at 0.5 m, 90.911 at 1 m, step limit
-/// 90.91 on the smooth branch, with point stabilizers; 0.1 deg is the accuracy target of the
-/// 1 m default there). The ripple is checked with point stabilizers (`[solver]
-/// stabilizer_contact = "point"`): with blades the 0.25 m march stops at its first step.
+/// 90.91 on the smooth branch; 0.1 deg is the accuracy target of the 1 m default there).
 #[test]
 fn short_steps_on_the_horizontal_example_stop_at_the_ripple_and_name_the_remedy() {
-    use drillpath::case::StabilizerContact;
     use drillpath::predict::march::{PredictError, RIPPLE_FAIL_DEG, RIPPLE_WARN_DEG};
     let case = example("horizontal");
     let from = case.operation.bit_md_m;
     let to = from + 100.0;
     let mut s = MarchSettings::from_case(&case);
     s.step_m = 0.25;
-    // the ripple with point stabilizers, as measured in the step study; with blades (the
-    // default) the 0.25 m march finds no drilling direction at its first step (docs/guide.md
-    // "Short steps")
-    let mut point = case.clone();
-    point.solver.stabilizer_contact = StabilizerContact::Point;
-    let e = predict(&case, from, to, &s, &mut |_| {}).unwrap_err();
-    assert!(matches!(e, PredictError::NoDirection { .. }), "blades, 0.25 m: {e}");
-    match predict(&point, from, to, &s, &mut |_| {}) {
+    match predict(&case, from, to, &s, &mut |_| {}) {
         Err(e @ PredictError::Ripple { .. }) => {
             let PredictError::Ripple {
                 md_m,
@@ -364,9 +361,7 @@ fn short_steps_on_the_horizontal_example_stop_at_the_ripple_and_name_the_remedy(
     let (half, one) = (end_inc(0.6), end_inc(1.0));
     println!("end inclination: 0.6 m {half:.3} deg, 1 m {one:.3} deg");
     assert!((half - one).abs() < 0.1, "0.6 m {half} vs 1 m {one}");
-    // 90.911 deg with point stabilizers; the blades of the motor's sleeve (0.3 m) and string
-    // stabilizer (0.4 m) end 0.096 deg lower
-    assert!((one - 90.815).abs() < 0.01, "1 m march moved: {one}");
+    assert!((one - 90.911).abs() < 0.01, "1 m march moved: {one}");
 }
 
 /// A step shorter than the shortest accepted (0.2 m) is refused with its own error, never
