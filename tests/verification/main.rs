@@ -19,6 +19,7 @@ mod geometry;
 mod hybrid;
 mod known_truth;
 mod loads;
+mod mwd_sag;
 mod paper;
 mod predict;
 mod sliding;
