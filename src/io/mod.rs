@@ -5,6 +5,7 @@ pub mod case_toml;
 pub mod measured_csv;
 pub mod paths;
 pub mod solver_toml;
+pub mod string_toml;
 pub mod survey;
 pub mod toml_reader;
 pub mod tracking_toml;
