@@ -212,6 +212,7 @@ pub fn solve_refined(
             again.stats.iterations += sol.stats.iterations;
             again.stats.factorizations += sol.stats.factorizations;
             again.stats.seconds += sol.stats.seconds;
+            again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
             Ok((fine, again))
         }
         other => {
