@@ -567,7 +567,7 @@ mod tests {
         let noise = Matrix2::from_diagonal_element(0.1f64.to_radians().powi(2));
         let mut bank = FilterBank::new(&s, &[], &noise, true);
         let none = DMatrix::zeros(2, 0);
-        let turn = |k: usize| [0.0, if k % 2 == 0 { 1f64 } else { -1.0 }.to_radians()];
+        let turn = |k: usize| [0.0, if k.is_multiple_of(2) { 1f64 } else { -1.0 }.to_radians()];
         for k in 0..20 {
             let naive = [[0.0; 2], turn(k), [0.0; 2]];
             let at = Situation { naive: &naive, ..AT };
