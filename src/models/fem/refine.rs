@@ -207,7 +207,11 @@ pub fn solve_refined(
     // a warm start near the solution converges with the full tangent (as the predictor's steps
     // and the loads rows do)
     fine.consistent_tangent = true;
-    match solve_interior_point_from(&fine, state, ctl) {
+    let rest = SolveControls {
+        time_limit_s: ctl.time_limit_s - sol.stats.seconds,
+        ..*ctl
+    };
+    match solve_interior_point_from(&fine, state, &rest) {
         Ok(mut again) if again.converged => {
             again.stats.iterations += sol.stats.iterations;
             again.stats.factorizations += sol.stats.factorizations;
