@@ -140,6 +140,7 @@ struct LockUpJson {
     hook_load_kN: Finite,
     wob_kN: Finite,
     max_wob_kN: Finite,
+    results_at_wob_kN: Option<Finite>,
 }
 
 /// One entry of the `sensors` key: a survey sensor's sag angle.
@@ -321,6 +322,7 @@ impl SolveSummary {
                 hook_load_kN: Finite(l.hook_load_n / 1e3),
                 wob_kN: Finite(l.wob_n / 1e3),
                 max_wob_kN: Finite(l.max_wob_n / 1e3),
+                results_at_wob_kN: l.results_at_wob_n.map(|w| Finite(w / 1e3)),
             }),
             warnings: s.warnings(case),
             sensors: s
