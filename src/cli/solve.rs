@@ -54,7 +54,9 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     if !s.level.converged && !a.allow_unconverged {
         bail!("{}", not_converged_message(&a, &case, &s));
     }
-    let summary = json_text(&SolveSummary::new(&case, &s)).map_err(|e| anyhow!("internal error: {e}"))?;
+    let steering = crate::predict::steer::steering(&case, &SolveControls::from_settings(&case.solver));
+    let summary = json_text(&SolveSummary::new(&case, &s).with_steering(steering.as_ref()))
+        .map_err(|e| anyhow!("internal error: {e}"))?;
     if let Some(dir) = &a.out {
         let csv = string_csv(&case, &s).map_err(|e| anyhow!("internal error: {e}"))?;
         outputs.stage(dir.join("summary.json"), summary.as_bytes());
@@ -74,6 +76,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         units: a.view.units,
         out_dir: a.out.as_deref(),
         report: a.view.report.as_deref(),
+        steering: steering.as_ref(),
     };
     write_summary(&mut out, &case, &s, &view)?;
     Ok(())

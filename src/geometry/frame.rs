@@ -75,6 +75,30 @@ impl Frame {
     }
 }
 
+/// Inclination below which a toolface is read as magnetic toolface (from north) instead of
+/// gravity toolface (from the high side), rad: 5 deg, where the high side of a survey tool
+/// becomes poorly defined (MWD tools switch near there).
+pub const MAGNETIC_TOOLFACE_BELOW_RAD: f64 = 5.0 * std::f64::consts::PI / 180.0;
+
+/// Unit direction perpendicular to the hole tangent `t` that toolface `toolface_rad` (rad)
+/// points to, global: `cos(tf) h + sin(tf) r` (gravity toolface, from the high side `h`,
+/// positive toward the right side `r = t x h`) when the inclination is at least
+/// [`MAGNETIC_TOOLFACE_BELOW_RAD`]; below it `cos(tf) n + sin(tf) t x n` with `n` north made
+/// perpendicular to `t` (magnetic toolface, from the survey's north).
+pub fn toolface_direction(t: &Vec3, toolface_rad: f64) -> Vec3 {
+    let t = t.normalize();
+    let (s, c) = toolface_rad.sin_cos();
+    let inc = (t.x * t.x + t.y * t.y).sqrt().atan2(t.z);
+    if inc >= MAGNETIC_TOOLFACE_BELOW_RAD {
+        let f = Frame::from_tangent(&t, 0.0);
+        f.h * c + f.r * s
+    } else {
+        let north = Vec3::new(1.0, 0.0, 0.0);
+        let n = (north - t * t.dot(&north)).normalize();
+        n * c + t.cross(&n) * s
+    }
+}
+
 /// Rotate `v` about the unit axis `a` by `angle` rad (Rodrigues).
 pub fn rotate_about(v: &Vec3, a: &Vec3, angle: f64) -> Vec3 {
     let (s, c) = angle.sin_cos();

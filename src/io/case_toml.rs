@@ -346,6 +346,7 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
         friction,
         bit_torque_nm: bit_torque,
         viscous_torque: viscous,
+        toolface_rad: super::motor_toml::read_toolface(s)?,
     })
 }
 
@@ -397,6 +398,7 @@ const OPERATION_KEYS: &[&str] = &[
     "friction",
     "bit_torque",
     "viscous_torque",
+    "toolface",
 ];
 /// Keys accepted in the formation table (checked before any is read, so a typo is named).
 const FORMATION_KEYS: &[&str] = &["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"];
@@ -430,6 +432,8 @@ const COMPONENT_KEYS: &[&str] = &[
     "grade",
     "yield_strength",
     "sensor_to_bit",
+    "bend_angle",
+    "bend_to_bit",
 ];
 
 fn read_string(
@@ -447,6 +451,9 @@ fn read_string(
     for (k, c) in secs.iter().enumerate() {
         let bottom = comps.last().map(|p: &Component| p.top_m()).unwrap_or(0.0);
         let (component, has_length) = read_component(c, k, k + 1 == secs.len(), mud, bottom)?;
+        if component.bend.is_some() && comps.iter().any(|p| p.bend.is_some()) {
+            return Err(c.error("bend_angle", "a string may have one bent housing"));
+        }
         if !has_length {
             missing_length = Some(k);
         }
@@ -509,6 +516,7 @@ fn read_component(c: &Section, k: usize, last: bool, mud: &Mud, bottom_m: f64) -
         material,
         weight_air_n_per_m: weight,
         sensor_to_bit_m: read_sensor(c, kind, bottom_m, length)?,
+        bend: super::motor_toml::read_bend(c, kind, bottom_m, length)?,
     };
     Ok((component, length.is_some()))
 }

@@ -3,6 +3,7 @@
 
 pub mod case_toml;
 pub mod measured_csv;
+pub mod motor_toml;
 pub mod paths;
 pub mod solver_toml;
 pub mod survey;

@@ -420,6 +420,7 @@ mod tests {
             material: m,
             weight_air_n_per_m: 29.0 * crate::units::G,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 
@@ -528,6 +529,7 @@ mod tests {
             material: steel(),
             weight_air_n_per_m: area * 7850.0 * crate::units::G,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 

@@ -21,6 +21,7 @@ use crate::case::Case;
 use crate::models::buckling::{soft_marks, stiff_marks, Mark};
 use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
+use crate::models::fem::kink::solve_holding_toolface;
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
@@ -191,8 +192,15 @@ fn nearest_node(model: &Model, s_m: f64) -> usize {
         .unwrap_or(model.nodes() - 1)
 }
 
-fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
-    let sol = solve(&model, ctl)?;
+fn fem_part(
+    mut model: Model,
+    case: &Case,
+    ctl: &SolveControls,
+    coupling_m: Option<f64>,
+) -> Result<FemPart, SolveError> {
+    // a bent housing is held at its toolface against the string's twist (a straight string is
+    // solved once)
+    let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
     let results = extract(&model, &sol, case.mud.density_kg_m3);
     let coupling = coupling_m.map(|s| nearest_node(&model, s));
     Ok(FemPart {

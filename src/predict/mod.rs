@@ -9,5 +9,6 @@ pub mod forecast;
 pub mod intervals;
 pub mod law;
 pub mod march;
+pub mod steer;
 pub mod track;
 pub mod tracking;

@@ -23,4 +23,5 @@ mod predict;
 mod sliding;
 mod softstring;
 mod solver;
+mod steering;
 mod tracking;

@@ -47,6 +47,18 @@ pub struct Mesh {
     pub nodes: Vec<MeshNode>,
     /// Elements, `elements[e]` joins nodes e and e+1.
     pub elements: Vec<MeshElement>,
+    /// The bent housing's node and angle (None: a straight string).
+    pub bend: Option<MeshBend>,
+}
+
+/// Where the unloaded string axis kinks: a bent motor housing on the mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshBend {
+    /// Index of the node at the bend (> 0): the element below it (`node - 1`) is the one whose
+    /// unloaded axis is turned by the bend.
+    pub node: usize,
+    /// Bend angle, rad.
+    pub angle_rad: f64,
 }
 
 /// Build the mesh of `string` with `settings`' element lengths and mud density (kg/m3).
@@ -57,6 +69,10 @@ pub fn build_mesh(string: &DrillString, settings: &SolverSettings, mud_density_k
     for c in &string.components {
         marks.push((c.bottom_m, None));
         marks.push((c.top_m(), None));
+        if let Some(b) = c.bend {
+            // a node at the bent housing, where the unloaded axis kinks
+            marks.push((b.to_bit_m, None));
+        }
         if let Some(x) = c.sensor_to_bit_m {
             // a node at the survey sensor, where its sag angle is read
             marks.push((x, None));
@@ -170,5 +186,17 @@ pub fn build_mesh(string: &DrillString, settings: &SolverSettings, mud_density_k
             }
         })
         .collect();
-    Mesh { nodes, elements }
+    let bend = string.bend().and_then(|b| {
+        let node = nodes
+            .iter()
+            .enumerate()
+            .min_by(|a, c| (a.1.s_m - b.to_bit_m).abs().total_cmp(&(c.1.s_m - b.to_bit_m).abs()))
+            .map(|(k, _)| k)?;
+        // a bend at the bit face or at the top of the string has no element on one side
+        (node > 0 && node < nodes.len() - 1).then_some(MeshBend {
+            node,
+            angle_rad: b.angle_rad,
+        })
+    });
+    Mesh { nodes, elements, bend }
 }

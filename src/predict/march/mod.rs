@@ -16,7 +16,7 @@ pub use step::{
     TURN_TOLERANCE_RAD,
 };
 
-use super::law::{deviation, drilling_direction, LawParams};
+use super::law::deviation;
 use crate::case::{BitRock, Case};
 use crate::geometry::{Frame, HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::default_cut_m;
@@ -27,7 +27,8 @@ use hole::PredictedHole;
 use nalgebra::Matrix2;
 use ripple::RippleWatch;
 use std::time::Instant;
-use step::{implicit_step, solve_at, BitSolve, StepOutcome};
+use step::{implicit_step, StepOutcome};
+pub(crate) use step::{solve_bit, BitSolve};
 
 pub use crate::case::bit_rock::MIN_STEP_M;
 
@@ -338,15 +339,12 @@ pub fn predict_from(
     let ctl = &settings.controls;
     let tendency = settings.tendency;
     let cut = model_cut_m(case, start, &hole, settings)?;
-    let direction_at = |path: &WellPath, md: f64, bit: &BitResult| -> Vec3 {
-        let frame = path.frame_at(md);
-        drilling_direction(&frame, &bit_action(bit), &LawParams::at(bit_rock, md))
-    };
+    let faces = crate::predict::steer::toolfaces(case);
     let mut s = from;
-    let first = solve_at(case, start, &hole, s, cut, warm, ctl)?;
+    let first = solve_bit(case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
     let mut iterations = first.iterations;
     let dofs = first.model.dofs();
-    let mut records = vec![(s, first.bit, direction_at(start, s, &first.bit), first.iterations)];
+    let mut records = vec![(s, first.bit, first.direction, first.iterations)];
     *warm = Some((first.model, first.state));
     let start_warm = warm.clone();
     let mut hole_pred = PredictedHole {
@@ -382,8 +380,8 @@ pub fn predict_from(
         // reference frame (rad)
         let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
             let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
-            let sol = solve_at(case, &p, &hole, s1, cut, warm, ctl)?;
-            let d = direction_at(&p, s1, &sol.bit);
+            let sol = solve_bit(case, bit_rock, &p, &hole, s1, cut, warm, ctl, &faces)?;
+            let d = sol.direction;
             let chord = (p.point_at(s1).position - x0).normalize();
             let (dh, dr) = deviation(&reference, &d);
             let (ch, cr) = deviation(&reference, &chord);

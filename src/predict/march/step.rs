@@ -2,23 +2,22 @@
 //! the implicit step's Newton iteration on the direction of the step's chord.
 
 use super::{PredictError, WarmStart};
-use crate::case::Case;
+use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::bha_model;
+use crate::models::fem::kink::solve_holding_toolface;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, sensor_results, BitResult};
-use crate::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
+use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::transport_state;
 use crate::predict::law::BitAction;
+use crate::predict::law::{drilling_direction, LawParams};
+use crate::predict::steer::{mean_bit, mean_direction};
 use nalgebra::{Matrix2, Vector2};
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
 /// full cold [`solve`] (its own start).
-fn solve_step(
-    model: &Model,
-    warm: Option<State>,
-    ctl: &SolveControls,
-) -> Result<crate::models::fem::solve::Solution, PredictError> {
+fn solve_step(model: &Model, warm: Option<State>, ctl: &SolveControls) -> Result<Solution, PredictError> {
     let md = model.bit_md_m;
     let wrap = |source| PredictError::Solve { md_m: md, source };
     if let Some(state) = warm {
@@ -34,6 +33,11 @@ fn solve_step(
     if sol.converged {
         return Ok(sol);
     }
+    Err(not_converged(model, &sol, ctl))
+}
+
+/// The error of the solve `sol` of `model` that did not converge.
+fn not_converged(model: &Model, sol: &Solution, ctl: &SolveControls) -> PredictError {
     let limit = if sol.stats.timed_out {
         format!("; {}", crate::models::diagnose::time_limit_phrase(ctl))
     } else {
@@ -52,13 +56,13 @@ fn solve_step(
                 .collect();
             format!("; contacts changing state at {}", near.join(", "))
         };
-    Err(PredictError::NotConverged {
-        md_m: md,
+    PredictError::NotConverged {
+        md_m: model.bit_md_m,
         iterations: sol.stats.iterations,
         residual: sol.stats.residual_history.last().copied().unwrap_or(f64::NAN),
         penetration: sol.stats.max_penetration,
         detail,
-    })
+    }
 }
 
 /// The bit action seen by the law.
@@ -90,46 +94,83 @@ pub const MAX_TURN_CHANGE_RAD: f64 = 0.05;
 /// Finite-difference perturbation of the turn angles for the direction Jacobian, rad.
 pub const TURN_PERTURBATION_RAD: f64 = 1e-4;
 
-/// One solved bit position: the model, the solution's state and the bit results.
-pub(super) struct BitSolve {
-    /// The model.
-    pub(super) model: Model,
+/// One solved bit position: the model, the solution's state, the bit results and the
+/// drilling direction.
+pub(crate) struct BitSolve {
+    /// The model (at the first toolface solved).
+    pub(crate) model: Model,
     /// Its solved state.
-    pub(super) state: State,
-    /// Bit forces and tilt.
-    pub(super) bit: BitResult,
-    /// Newton iterations of the solve.
-    pub(super) iterations: usize,
+    pub(crate) state: State,
+    /// Bit forces and tilt (the mean over the toolfaces of a rotating bent housing,
+    /// [`crate::predict::steer::mean_bit`]).
+    pub(crate) bit: BitResult,
+    /// Drilling direction of the bit-rock law (global unit vector; the mean over the
+    /// toolfaces of a rotating bent housing, [`crate::predict::steer::mean_direction`]).
+    pub(crate) direction: Vec3,
+    /// Newton iterations of the solves.
+    pub(crate) iterations: usize,
 }
 
-/// Solve the string with the bit at `md_m` in `path`, warm-started from `warm`.
-pub(super) fn solve_at(
+/// Solve the string of `case` with the bit at `md_m` in `path` at each of the toolfaces
+/// `faces` (rad; [`crate::predict::steer::toolfaces`]), the first warm-started from `warm`
+/// (the others from scratch), and apply the bit-rock law of `bit_rock` to each: the first
+/// toolface's model and state, the mean bit results and the mean drilling direction.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_bit(
     case: &Case,
+    bit_rock: &BitRock,
     path: &WellPath,
     hole: &HoleSize,
     md_m: f64,
     cut_m: f64,
     warm: &WarmStart,
     ctl: &SolveControls,
+    faces: &[f64],
 ) -> Result<BitSolve, PredictError> {
-    let mut model = bha_model(case, path, hole, md_m, cut_m);
-    model.consistent_tangent = true;
-    let warm_state = warm
-        .as_ref()
-        .filter(|(m, _)| m.nodes() == model.nodes())
-        .map(|(m, st)| transport_state(m, st, &model));
-    let sol = solve_step(&model, warm_state, ctl)?;
-    let res = extract(&model, &sol, case.mud.density_kg_m3);
-    let mut bit = res.bit;
-    bit.sensor_sag_rad = sensor_results(&case.string, &model, &res.nodes)
-        .first()
-        .map(|x| x.sag_rad);
-    Ok(BitSolve {
-        model,
-        iterations: sol.stats.iterations,
-        state: sol.state,
-        bit,
-    })
+    let frame = path.frame_at(md_m);
+    let params = LawParams::at(bit_rock, md_m);
+    let mut first: Option<BitSolve> = None;
+    let (mut bits, mut dirs, mut iterations) = (Vec::new(), Vec::new(), 0);
+    for (k, &tf) in faces.iter().enumerate() {
+        let mut model = bha_model(case, path, hole, md_m, cut_m);
+        model.consistent_tangent = true;
+        model.set_toolface(tf);
+        let warm_state = warm
+            .as_ref()
+            .filter(|(m, _)| k == 0 && m.nodes() == model.nodes())
+            .map(|(m, st)| transport_state(m, st, &model));
+        let mut sol = solve_step(&model, warm_state, ctl)?;
+        if model.kink.is_some() {
+            // the housing turned back to its toolface against the string's twist
+            sol = solve_holding_toolface(&mut model, ctl, |_| Ok(sol))
+                .map_err(|source| PredictError::Solve { md_m, source })?;
+            if !sol.converged {
+                return Err(not_converged(&model, &sol, ctl));
+            }
+        }
+        let res = extract(&model, &sol, case.mud.density_kg_m3);
+        let mut bit = res.bit;
+        bit.sensor_sag_rad = sensor_results(&case.string, &model, &res.nodes)
+            .first()
+            .map(|x| x.sag_rad);
+        iterations += sol.stats.iterations;
+        bits.push(bit);
+        dirs.push(drilling_direction(&frame, &bit_action(&bit), &params));
+        if k == 0 {
+            first = Some(BitSolve {
+                model,
+                state: sol.state,
+                bit,
+                direction: dirs[0],
+                iterations: 0,
+            });
+        }
+    }
+    let mut out = first.expect("at least one toolface");
+    out.bit = mean_bit(&bits);
+    out.direction = mean_direction(&dirs);
+    out.iterations = iterations;
+    Ok(out)
 }
 
 /// Result of one implicit step's Newton iteration on the turn angles.
