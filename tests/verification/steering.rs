@@ -343,3 +343,33 @@ fn zero_bend_reproduces_the_straight_motor() {
         assert_eq!(end(&pa), end(&pb), "{mode}");
     }
 }
+
+/// The predictor settles at the steady dogleg: sliding a 1.5 deg motor at toolface 90 deg in a
+/// horizontal hole (the turn is to the right, so the inclination and the gravity load stay
+/// nearly constant), 60 m from a straight hole; the dogleg rate over the last 15 m against the
+/// motor yield of [`steady_turn`] at the start. Reference: the steady dogleg is the rate of
+/// the march in a hole of constant curvature (docs/theory.md 9.9); the march starts from a
+/// straight hole, so 5% is allowed for what is left of the transient over 60 m.
+#[test]
+fn predicted_slide_settles_at_the_motor_yield() {
+    use drillpath::predict::march::{predict, MarchSettings};
+    let mut c = motor_case(90.0, 45.0, 1.5, "sliding", 90.0);
+    c.operation.bit_md_m = 1900.0;
+    let y = turn(&c);
+    let settings = MarchSettings::from_case(&c);
+    let t0 = std::time::Instant::now();
+    let p = predict(&c, 1900.0, 1960.0, &settings, &mut |_| {}).unwrap();
+    let secs = t0.elapsed().as_secs_f64();
+    let (a, b) = (p.path.point_at(1945.0), p.path.point_at(1960.0));
+    let rate = deg30(a.tangent.dot(&b.tangent).clamp(-1.0, 1.0).acos() / 15.0);
+    let yd = deg30(y.dogleg_rad_per_m());
+    println!(
+        "steady {yd:.3} deg/30 m (build {:.3}, right {:.3}); predicted over 1945-1960 m: {rate:.3} deg/30 m; inc {:.2} deg at 1960 m; {:.2} s for 60 m",
+        deg30(y.build_rad_per_m),
+        deg30(y.right_rad_per_m),
+        b.inc_rad.to_degrees(),
+        secs
+    );
+    assert!((rate - yd).abs() < 0.05 * yd, "{rate} vs {yd}");
+    assert!(p.steps.iter().all(|s| s.steer.is_some_and(|st| !st.rotating)));
+}

@@ -1,6 +1,7 @@
 //! Mesh of the string along the hole axis, from the bit (node 0) to the surface.
 //!
-//! Nodes sit at component boundaries, stabilizer blade centres and tool joints; elements are
+//! Nodes sit at component boundaries, stabilizer blade centres, tool joints, survey sensors
+//! and the bend of a bent motor housing; elements are
 //! at most `bha_element_length` in the bottom-hole assembly and `element_length` above
 //! (docs/theory.md 5.2). Each node knows its contact diameter: blade OD at a stabilizer centre,
 //! tool-joint OD at a joint, body OD elsewhere; the bit node has no gap (it is centred).

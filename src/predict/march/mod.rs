@@ -129,6 +129,37 @@ pub struct StepRecord {
     pub direction: Vec3,
     /// Newton iterations of this step's solve.
     pub iterations: usize,
+    /// How a bent housing drilled the step (None: a straight string).
+    pub steer: Option<StepSteer>,
+}
+
+/// How a bent housing drills: sliding at a toolface or rotating.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepSteer {
+    /// The string rotates (the housing turns with it, the drilling direction is the mean over
+    /// a revolution); else it slides.
+    pub rotating: bool,
+    /// The toolface set, rad ([`crate::case::Operation::toolface_rad`]; the first of the
+    /// revolution when rotating).
+    pub toolface_rad: f64,
+}
+
+impl StepSteer {
+    /// How `case`'s string drills (None for a straight string).
+    pub fn of_case(case: &Case) -> Option<StepSteer> {
+        case.string.bend().map(|_| StepSteer {
+            rotating: case.operation.rotates(),
+            toolface_rad: case.operation.toolface_rad,
+        })
+    }
+    /// `slide` or `rotate`.
+    pub fn mode_name(&self) -> &'static str {
+        if self.rotating {
+            "rotate"
+        } else {
+            "slide"
+        }
+    }
 }
 
 /// A prediction from `from_md_m` to `to_md_m`.
@@ -339,7 +370,7 @@ pub fn predict_from(
     let ctl = &settings.controls;
     let tendency = settings.tendency;
     let cut = model_cut_m(case, start, &hole, settings)?;
-    let faces = crate::predict::steer::toolfaces(case);
+    let faces = crate::predict::revolution::toolfaces(case);
     let mut s = from;
     let first = solve_bit(case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
     let mut iterations = first.iterations;
@@ -441,7 +472,7 @@ pub fn predict_from(
         *warm = Some((sol1.model, sol1.state));
     }
     ripple.warn_at_end();
-    let steps = step_records(records, &path);
+    let steps = step_records(records, &path, StepSteer::of_case(case));
     Ok(Prediction {
         path,
         steps,
@@ -506,8 +537,12 @@ fn failed_step_error(failed: Result<StepOutcome, PredictError>, md_m: f64, step_
 }
 
 /// The step records on the final hole `path` from (bit MD, bit results, drilling direction,
-/// iterations) per solved step.
-fn step_records(records: Vec<(f64, BitResult, Vec3, usize)>, path: &WellPath) -> Vec<StepRecord> {
+/// iterations) per solved step, each drilled as `steer` says.
+fn step_records(
+    records: Vec<(f64, BitResult, Vec3, usize)>,
+    path: &WellPath,
+    steer: Option<StepSteer>,
+) -> Vec<StepRecord> {
     records
         .into_iter()
         .map(|(md, bit, direction, iterations)| {
@@ -520,6 +555,7 @@ fn step_records(records: Vec<(f64, BitResult, Vec3, usize)>, path: &WellPath) ->
                 bit,
                 direction,
                 iterations,
+                steer,
             }
         })
         .collect()

@@ -5,14 +5,14 @@ use super::{PredictError, WarmStart};
 use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::bha_model;
-use crate::models::fem::kink::solve_holding_toolface;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, sensor_results, BitResult};
+use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::transport_state;
 use crate::predict::law::BitAction;
 use crate::predict::law::{drilling_direction, LawParams};
-use crate::predict::steer::{mean_bit, mean_direction};
+use crate::predict::revolution::{mean_bit, mean_direction};
 use nalgebra::{Matrix2, Vector2};
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
@@ -102,17 +102,17 @@ pub(crate) struct BitSolve {
     /// Its solved state.
     pub(crate) state: State,
     /// Bit forces and tilt (the mean over the toolfaces of a rotating bent housing,
-    /// [`crate::predict::steer::mean_bit`]).
+    /// [`crate::predict::revolution::mean_bit`]).
     pub(crate) bit: BitResult,
     /// Drilling direction of the bit-rock law (global unit vector; the mean over the
-    /// toolfaces of a rotating bent housing, [`crate::predict::steer::mean_direction`]).
+    /// toolfaces of a rotating bent housing, [`crate::predict::revolution::mean_direction`]).
     pub(crate) direction: Vec3,
     /// Newton iterations of the solves.
     pub(crate) iterations: usize,
 }
 
 /// Solve the string of `case` with the bit at `md_m` in `path` at each of the toolfaces
-/// `faces` (rad; [`crate::predict::steer::toolfaces`]), the first warm-started from `warm`
+/// `faces` (rad; [`crate::predict::revolution::toolfaces`]), the first warm-started from `warm`
 /// (the others from scratch), and apply the bit-rock law of `bit_rock` to each: the first
 /// toolface's model and state, the mean bit results and the mean drilling direction.
 #[allow(clippy::too_many_arguments)]
