@@ -112,9 +112,11 @@ pub(crate) struct BitSolve {
 }
 
 /// Solve the string of `case` with the bit at `md_m` in `path` at each of the toolfaces
-/// `faces` (rad; [`crate::predict::revolution::toolfaces`]), the first warm-started from `warm`
-/// (the others from scratch), and apply the bit-rock law of `bit_rock` to each: the first
-/// toolface's model and state, the mean bit results and the mean drilling direction.
+/// `faces` (rad; [`crate::predict::revolution::toolfaces`]) and apply the bit-rock law of
+/// `bit_rock` to each: the first toolface's model and state, the mean bit results and the mean
+/// drilling direction. The first toolface is warm-started from `warm`, the others solved from
+/// scratch; a bent housing's kink starts turned by the twist found by the warm start's (or the
+/// previous toolface's) solve and is held at its toolface ([`solve_holding_toolface`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_bit(
     case: &Case,
@@ -131,10 +133,14 @@ pub(crate) fn solve_bit(
     let params = LawParams::at(bit_rock, md_m);
     let mut first: Option<BitSolve> = None;
     let (mut bits, mut dirs, mut iterations) = (Vec::new(), Vec::new(), 0);
+    let mut correction = warm.as_ref().map(|(m, _)| m.kink_correction_rad()).unwrap_or(0.0);
     for (k, &tf) in faces.iter().enumerate() {
         let mut model = bha_model(case, path, hole, md_m, cut_m);
         model.consistent_tangent = true;
         model.set_toolface(tf);
+        model.turn_kink(tf + correction);
+        // the other toolfaces from scratch: the state of the toolface before is a poorer start
+        // (measured: twice the iterations of a cold start)
         let warm_state = warm
             .as_ref()
             .filter(|(m, _)| k == 0 && m.nodes() == model.nodes())
@@ -147,6 +153,7 @@ pub(crate) fn solve_bit(
             if !sol.converged {
                 return Err(not_converged(&model, &sol, ctl));
             }
+            correction = model.kink_correction_rad();
         }
         let res = extract(&model, &sol, case.mud.density_kg_m3);
         let mut bit = res.bit;

@@ -17,6 +17,21 @@ impl Model {
         self.kink = Kink::of_mesh(&self.mesh, &self.basis, toolface_rad);
     }
 
+    /// Turn the bent housing's kink to `orientation_rad` (rad) about the unloaded triads, the
+    /// model's toolface unchanged (a first guess of [`solve_holding_toolface`]: the toolface
+    /// plus the twist of a similar solved state).
+    pub fn turn_kink(&mut self, orientation_rad: f64) {
+        self.kink = Kink::of_mesh(&self.mesh, &self.basis, orientation_rad);
+    }
+
+    /// The kink's turn beyond the model's toolface, rad (0 for a straight string): what
+    /// [`solve_holding_toolface`] found for the string's twist.
+    pub fn kink_correction_rad(&self) -> f64 {
+        self.kink
+            .map(|k| k.orientation_rad - self.loads.toolface_rad)
+            .unwrap_or(0.0)
+    }
+
     /// The toolface of the bent housing in `state`, rad in (-pi, pi] (None for a straight
     /// string): the direction the section below the bend points off the section above it,
     /// in the toolface reference of the hole at the bend node's axis point
@@ -48,7 +63,8 @@ pub const MAX_TOOLFACE_SOLVES: usize = 10;
 /// [`TOOLFACE_TOLERANCE_RAD`], each further solve warm-started from the last: the string
 /// twists under torque (the bit's, the wall's friction), which turns the housing, and the
 /// toolface a driller sets and reads is the one downhole. A straight string is solved once.
-/// Returns the last solution (not converged when a turned solve did not converge).
+/// Returns the last solution (not converged when a turned solve did not converge), its
+/// iteration count that of all the solves.
 pub fn solve_holding_toolface(
     model: &mut Model,
     ctl: &SolveControls,
@@ -56,11 +72,17 @@ pub fn solve_holding_toolface(
 ) -> Result<Solution, SolveError> {
     let mut sol = first(model)?;
     let target = model.loads.toolface_rad;
+    let mut iterations = sol.stats.iterations;
     for _ in 0..MAX_TOOLFACE_SOLVES {
         let (Some(k), Some(actual)) = (model.kink, model.housing_toolface(&sol.state)) else {
             break;
         };
         let miss = wrap_pi(target - actual);
+        tracing::debug!(
+            target_deg = target.to_degrees(),
+            miss_deg = miss.to_degrees(),
+            "housing toolface"
+        );
         if miss.abs() <= TOOLFACE_TOLERANCE_RAD || !sol.converged {
             break;
         }
@@ -69,6 +91,8 @@ pub fn solve_holding_toolface(
             Ok(s) if s.converged => s,
             _ => solve(model, ctl)?,
         };
+        iterations += sol.stats.iterations;
     }
+    sol.stats.iterations = iterations;
     Ok(sol)
 }
