@@ -134,6 +134,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         .table("tracking")?
         .unwrap_or_else(|| Section::new(path, "tracking", &empty));
     let tracking = read_tracking(&tr_sec, wellpath.md_end() - wellpath.md_start())?;
+    let steering = super::steering_toml::read_steering(&top, &dir, operation.toolface_rad)?;
 
     let case = Case {
         name,
@@ -152,6 +153,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         bit_rock,
         solver,
         tracking,
+        steering,
     };
     if let Some(note) = case.string_above_survey_note() {
         tracing::warn!("{}: {note}", path.display());
@@ -364,6 +366,7 @@ pub fn known_keys() -> Vec<&'static str> {
         COMPONENT_KEYS,
         super::solver_toml::SOLVER_KEYS,
         super::tracking_toml::TRACKING_KEYS,
+        super::steering_toml::STEERING_KEYS,
     ]
     .concat()
 }
@@ -379,6 +382,8 @@ const TOP_KEYS: &[&str] = &[
     "bit_rock",
     "solver",
     "tracking",
+    "steering",
+    "slide_sheet",
 ];
 /// Keys accepted in the well table (checked before any is read, so a typo is named).
 const WELL_KEYS: &[&str] = &["survey", "survey_md_unit", "origin", "hole", "caliper"];

@@ -204,7 +204,7 @@ pub struct Steering {
 
 /// The motor yield and the rotating tendency of `case`'s bent housing (None for a straight
 /// string): [`steady_turn`] with the string sliding at the operation's toolface, and rotating
-/// at the case's rotary speed ([`DEFAULT_TENDENCY_RPM`] when it gives none). Not computed (the
+/// at the case's rotary speed ([`crate::case::DEFAULT_ROTATING_RPM`] when it gives none). Not computed (the
 /// reason given) off bottom, with a hook load given instead of the WOB, or when the steady
 /// curvature is not found.
 pub fn steering(case: &Case, ctl: &SolveControls) -> Option<Steering> {
@@ -222,7 +222,7 @@ pub fn steering(case: &Case, ctl: &SolveControls) -> Option<Steering> {
         let mut rotate = case.clone();
         rotate.operation.mode = Mode::Drilling;
         if rotate.operation.rpm <= 0.0 {
-            rotate.operation.rpm = DEFAULT_TENDENCY_RPM;
+            rotate.operation.rpm = crate::case::DEFAULT_ROTATING_RPM;
         }
         steady_turn(&slide, &case.bit_rock, ctl)
             .and_then(|a| Ok((a, steady_turn(&rotate, &case.bit_rock, ctl)?)))
@@ -236,6 +236,3 @@ pub fn steering(case: &Case, ctl: &SolveControls) -> Option<Steering> {
         tendencies,
     })
 }
-
-/// Rotary speed of the rotating tendency when the case gives none, rev/min.
-pub const DEFAULT_TENDENCY_RPM: f64 = 60.0;

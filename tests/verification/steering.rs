@@ -419,3 +419,137 @@ fn bent_motor_at_every_stiff_level_keeps_its_toolface() {
         }
     }
 }
+
+/// The motor case of [`motor_case`] (bit at 2,000 m, toolface 0) in `mode` with `extra` in the
+/// case file (top-level keys before the tables, `[[steering]]` tables after them) and the files
+/// `files` (name, text) beside it, read as users' cases are.
+fn motor_case_plan(mode: &str, extra: &str, files: &[(&str, &str)]) -> drillpath::error::InputResult<Case> {
+    // top-level keys (`slide_sheet`) before the tables, `[[steering]]` tables after the string
+    let (top, tables) = if extra.starts_with("[[") {
+        ("", extra)
+    } else {
+        (extra, "")
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let survey = "md_m,inc_deg,azi_deg\n0,0,45\n500,0,45\n1000,30,45\n2000,30,45\n";
+    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
+    let case = format!(
+        r#"{top}
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "2000 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "{mode}"
+wob = "60 kN"
+rpm = 60
+friction = 0.25
+{}
+{tables}
+"#,
+        motor_string(1.5, 2.0, 8.375)
+    );
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    drillpath::io::case_toml::load_case(&dir.path().join("case.toml"), &Default::default())
+}
+
+/// Steering plans: a plan that repeats the operation everywhere gives the plain prediction to
+/// the last bit; a slide sheet alternating 10 m slides at the high side with 10 m of rotation
+/// drills its slides near the motor's yield and its rotation near neutral, and the per-step
+/// mode follows the sheet. Reference: the plain march; the steady dogleg of 9.9 (a 10 m slide
+/// after rotating is short against the assembly's transient: 70-105% of the yield allowed;
+/// measured 89% and 81%; rotation below 30% of it, measured 28% and 17%, the slide's transient
+/// included).
+#[test]
+fn steering_plan_drives_the_march() {
+    use drillpath::predict::march::{predict, MarchSettings};
+    let plain = motor_case_plan("sliding", "", &[]).unwrap();
+    let same = motor_case_plan(
+        "sliding",
+        "[[steering]]\nfrom_md = 1800\nto_md = 1900\nmode = \"slide\"\ntoolface = 0\n",
+        &[],
+    )
+    .unwrap();
+    let settings = MarchSettings::from_case(&plain);
+    let a = predict(&plain, 1850.0, 1870.0, &settings, &mut |_| {}).unwrap();
+    let b = predict(&same, 1850.0, 1870.0, &settings, &mut |_| {}).unwrap();
+    let end = |p: &drillpath::predict::march::Prediction| {
+        let s = p.steps.last().unwrap();
+        (s.inc_rad, s.azi_rad, s.position)
+    };
+    assert_eq!(end(&a), end(&b));
+    let sheet = "md_from [m],md_to [m],mode,toolface_deg\n1850,1860,slide,0\n1860,1870,rotate,\n1870,1880,slide,0\n1880,1890,rotate,\n";
+    let c = motor_case_plan("drilling", "slide_sheet = \"slides.csv\"", &[("slides.csv", sheet)]).unwrap();
+    assert_eq!(c.steering.intervals.len(), 4);
+    let p = predict(&c, 1850.0, 1890.0, &MarchSettings::from_case(&c), &mut |_| {}).unwrap();
+    let yield_ = deg30(turn(&motor_case(30.0, 45.0, 1.5, "sliding", 0.0)).dogleg_rad_per_m());
+    let inc = |md: f64| p.path.point_at(md).inc_rad.to_degrees();
+    let rates = [(1850.0, 1860.0), (1860.0, 1870.0), (1870.0, 1880.0), (1880.0, 1890.0)]
+        .map(|(x, y)| (inc(y) - inc(x)) / (y - x) * 30.0);
+    println!(
+        "build per interval {rates:?} deg/30 m; yield {yield_:.2}; {:.2} s",
+        p.seconds
+    );
+    for (k, r) in rates.iter().enumerate() {
+        if k % 2 == 0 {
+            assert!(*r > 0.7 * yield_ && *r < 1.05 * yield_, "slide {k}: {r} vs {yield_}");
+        } else {
+            assert!(r.abs() < 0.3 * yield_, "rotate {k}: {r}");
+        }
+    }
+    for s in &p.steps[1..] {
+        let st = s.steer.unwrap();
+        let mid = s.md_m - 0.25;
+        let want_rotating = (1860.0..1870.0).contains(&mid) || (1880.0..1890.0).contains(&mid);
+        assert_eq!(st.rotating, want_rotating, "step to {}", s.md_m);
+    }
+}
+
+/// Bad steering plans: overlapping or backward intervals, in the case or the slide sheet, are
+/// errors naming the key or the line.
+#[test]
+fn bad_steering_plans_are_named() {
+    let err = |extra: &str, sheet: &str| {
+        motor_case_plan("sliding", extra, &[("slides.csv", sheet)])
+            .err()
+            .expect("an error")
+            .to_string()
+    };
+    let e = err(
+        "[[steering]]\nfrom_md = 100\nto_md = 200\nmode = \"slide\"\n[[steering]]\nfrom_md = 150\nto_md = 250\nmode = \"rotate\"\n",
+        "",
+    );
+    assert!(e.contains("`steering[1].from_md`") && e.contains("overlaps"), "{e}");
+    let e = err("[[steering]]\nfrom_md = 200\nto_md = 100\nmode = \"slide\"\n", "");
+    assert!(e.contains("`steering[0].to_md`") && e.contains("deeper"), "{e}");
+    let e = err("[[steering]]\nfrom_md = 100\nto_md = 200\nmode = \"reaming\"\n", "");
+    assert!(e.contains("`steering[0].mode`") && e.contains("reaming"), "{e}");
+    let sheet = "md_from,md_to,mode,toolface_deg\n100,200,slide,0\n# note\n190,300,rotate,\n";
+    let e = err("slide_sheet = \"slides.csv\"", sheet);
+    assert!(
+        e.contains("slides.csv") && e.contains("line 4") && e.contains("overlaps"),
+        "{e}"
+    );
+    let sheet = "md_from,md_to,mode,toolface_deg\n100,200,slide,0\n300,250,rotate,\n";
+    let e = err("slide_sheet = \"slides.csv\"", sheet);
+    assert!(
+        e.contains("slides.csv") && e.contains("line 3") && e.contains("deeper"),
+        "{e}"
+    );
+    let sheet = "md_from,md_to,toolface_deg\n100,200,0\n";
+    let e = err("slide_sheet = \"slides.csv\"", sheet);
+    assert!(
+        e.contains("slides.csv") && e.contains("line 1") && e.contains("mode"),
+        "{e}"
+    );
+    let sheet = "md_from,md_to,mode,toolface_deg\n100,200,slide,east\n";
+    let e = err("slide_sheet = \"slides.csv\"", sheet);
+    assert!(
+        e.contains("slides.csv") && e.contains("line 2") && e.contains("toolface_deg"),
+        "{e}"
+    );
+}

@@ -27,7 +27,7 @@ use hole::PredictedHole;
 use nalgebra::Matrix2;
 use ripple::RippleWatch;
 use std::time::Instant;
-use step::{implicit_step, StepOutcome};
+use step::{backtracking_step, implicit_step, StepOutcome};
 pub(crate) use step::{solve_bit, BitSolve};
 
 pub use crate::case::bit_rock::MIN_STEP_M;
@@ -370,12 +370,20 @@ pub fn predict_from(
     let ctl = &settings.controls;
     let tendency = settings.tendency;
     let cut = model_cut_m(case, start, &hole, settings)?;
-    let faces = crate::predict::revolution::toolfaces(case);
+    let bent = case.string.bend().is_some();
     let mut s = from;
-    let first = solve_bit(case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
+    let start_case = steered_at(case, s);
+    let faces = crate::predict::revolution::toolfaces(&start_case);
+    let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
     let mut iterations = first.iterations;
     let dofs = first.model.dofs();
-    let mut records = vec![(s, first.bit, first.direction, first.iterations)];
+    let mut records = vec![(
+        s,
+        first.bit,
+        first.direction,
+        first.iterations,
+        StepSteer::of_case(&start_case),
+    )];
     *warm = Some((first.model, first.state));
     let start_warm = warm.clone();
     let mut hole_pred = PredictedHole {
@@ -401,7 +409,14 @@ pub fn predict_from(
         if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
             ds = to_md_m - s;
         }
+        // a step ends at the next end of a steering interval at least a minimum step ahead
+        if let Some(b) = case.steering.next_boundary(s, MIN_STEP_M - 1e-9) {
+            ds = ds.min(b - s);
+        }
         let s1 = s + ds;
+        // the step drills as the steering interval at its middle says
+        let step_case = steered_at(case, s + 0.5 * ds);
+        let faces = crate::predict::revolution::toolfaces(&step_case);
         let reference = Frame::from_tangent(&last_chord, path.point_at(s).azi_rad);
         let x0 = path.point_at(s).position;
         let chord_of = |turn: [f64; 2]| -> Vec3 {
@@ -411,7 +426,7 @@ pub fn predict_from(
         // reference frame (rad)
         let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
             let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
-            let sol = solve_bit(case, bit_rock, &p, &hole, s1, cut, warm, ctl, &faces)?;
+            let sol = solve_bit(&step_case, bit_rock, &p, &hole, s1, cut, warm, ctl, &faces)?;
             let d = sol.direction;
             let chord = (p.point_at(s1).position - x0).normalize();
             let (dh, dr) = deviation(&reference, &d);
@@ -425,7 +440,16 @@ pub fn predict_from(
         } else {
             [0.0f64; 2]
         };
-        let outcome = match implicit_step(&eval, turn, &mut jac, warm, s1) {
+        let mut result = implicit_step(&eval, turn, &mut jac, warm, s1);
+        if bent && !matches!(&result, Ok(o) if o.converged) {
+            // a bent housing's deviation swings steeply with the turn: Newton with backtracking
+            let retry = backtracking_step(&eval, turn, warm, s1);
+            if matches!(&retry, Ok(o) if o.converged) {
+                result = retry;
+                jac = None;
+            }
+        }
+        let outcome = match result {
             Ok(o) if o.converged => o,
             failed => {
                 // a failed implicit step, or a string solve that failed on the way: a shorter step
@@ -467,12 +491,12 @@ pub fn predict_from(
         check_on_earth(&p1, s1)?;
         path = p1;
         s = s1;
-        records.push((s, sol1.bit, dir, step_iterations));
+        records.push((s, sol1.bit, dir, step_iterations, StepSteer::of_case(&step_case)));
         on_step(s);
         *warm = Some((sol1.model, sol1.state));
     }
     ripple.warn_at_end();
-    let steps = step_records(records, &path, StepSteer::of_case(case));
+    let steps = step_records(records, &path);
     Ok(Prediction {
         path,
         steps,
@@ -537,15 +561,11 @@ fn failed_step_error(failed: Result<StepOutcome, PredictError>, md_m: f64, step_
 }
 
 /// The step records on the final hole `path` from (bit MD, bit results, drilling direction,
-/// iterations) per solved step, each drilled as `steer` says.
-fn step_records(
-    records: Vec<(f64, BitResult, Vec3, usize)>,
-    path: &WellPath,
-    steer: Option<StepSteer>,
-) -> Vec<StepRecord> {
+/// iterations, how a bent housing drilled it) per solved step.
+fn step_records(records: Vec<StepData>, path: &WellPath) -> Vec<StepRecord> {
     records
         .into_iter()
-        .map(|(md, bit, direction, iterations)| {
+        .map(|(md, bit, direction, iterations, steer)| {
             let p = path.point_at(md);
             StepRecord {
                 md_m: md,
@@ -559,6 +579,19 @@ fn step_records(
             }
         })
         .collect()
+}
+
+/// What the march keeps of a solved step: bit MD, bit results, drilling direction, iterations,
+/// how a bent housing drilled it.
+type StepData = (f64, BitResult, Vec3, usize, Option<StepSteer>);
+
+/// `case` drilling as its steering plan says at `md_m` (its own operation where no interval
+/// covers it).
+fn steered_at(case: &Case, md_m: f64) -> std::borrow::Cow<'_, Case> {
+    match case.steering.at(md_m) {
+        Some(iv) => std::borrow::Cow::Owned(case.steered(iv)),
+        None => std::borrow::Cow::Borrowed(case),
+    }
 }
 
 /// Predict `case` from `from_md_m` on its survey (the measured hole behind) to `to_md_m`;

@@ -287,3 +287,85 @@ pub(super) fn implicit_step(
         iterations: step_iterations,
     })
 }
+
+/// Newton iterations allowed in [`backtracking_step`].
+pub const MAX_BACKTRACKING_ITERATIONS: usize = 30;
+
+/// Halvings of one Newton update in [`backtracking_step`].
+pub const MAX_BACKTRACKING_HALVINGS: usize = 30;
+
+/// The implicit step of a bent housing when [`implicit_step`] fails: Newton's method on the turn
+/// angles from `turn` with the Jacobian by differences at every iterate and each update halved
+/// until the deviation falls. A bent housing's deviation swings steeply with the turn (its side
+/// force is of the size of the WOB and changes sign within a fraction of a degree), where the
+/// plain iteration, its update capped, jumps across the root back and forth.
+pub(super) fn backtracking_step(
+    eval: &StepResidual,
+    mut turn: [f64; 2],
+    warm: &WarmStart,
+    md_m: f64,
+) -> Result<StepOutcome, PredictError> {
+    let norm = |x: &[f64; 2]| x[0].abs().max(x[1].abs());
+    let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
+    let mut iterations = sol1.iterations;
+    let mut converged = false;
+    let mut last_update = f64::INFINITY;
+    for _ in 0..MAX_BACKTRACKING_ITERATIONS {
+        let r_norm = norm(&res);
+        if r_norm < DIRECTION_TOLERANCE_RAD
+            || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
+        {
+            converged = true;
+            break;
+        }
+        let mut j = Matrix2::zeros();
+        for c in 0..2 {
+            let mut tp = turn;
+            tp[c] += TURN_PERTURBATION_RAD;
+            let (_, sp, rp, _) = eval(tp, warm)?;
+            iterations += sp.iterations;
+            for r in 0..2 {
+                j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
+            }
+        }
+        let Some(jinv) = j.try_inverse() else {
+            break;
+        };
+        let mut dt = -(jinv * Vector2::new(res[0], res[1]));
+        let big = dt.amax();
+        if big > MAX_TURN_CHANGE_RAD {
+            dt *= MAX_TURN_CHANGE_RAD / big;
+        }
+        let mut accepted = false;
+        for _ in 0..MAX_BACKTRACKING_HALVINGS {
+            let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
+            let (p, sol, r, d) = eval(new_turn, warm)?;
+            iterations += sol.iterations;
+            if norm(&r) < r_norm {
+                last_update = dt.amax();
+                (turn, p1, sol1, res, dir) = (new_turn, p, sol, r, d);
+                accepted = true;
+                break;
+            }
+            dt *= 0.5;
+        }
+        if !accepted {
+            break;
+        }
+    }
+    tracing::debug!(
+        md = md_m,
+        converged,
+        residual = norm(&res),
+        "backtracking implicit step"
+    );
+    Ok(StepOutcome {
+        converged,
+        turn,
+        path: p1,
+        solve: sol1,
+        residual: res,
+        direction: dir,
+        iterations,
+    })
+}
