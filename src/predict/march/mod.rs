@@ -403,16 +403,7 @@ pub fn predict_from(
     let mut cur_step = step;
     let mut ripple = RippleWatch::new(from, step);
     while s < to_md_m - 1e-9 {
-        // the last step ends exactly at the target; a sliver shorter than half the minimum
-        // step is merged into this one
-        let mut ds = cur_step.min(to_md_m - s);
-        if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
-            ds = to_md_m - s;
-        }
-        // a step ends at the next end of a steering interval at least a minimum step ahead
-        if let Some(b) = case.steering.next_boundary(s, MIN_STEP_M - 1e-9) {
-            ds = ds.min(b - s);
-        }
+        let ds = step_length(case, s, cur_step, to_md_m);
         let s1 = s + ds;
         // the step drills as the steering interval at its middle says
         let step_case = steered_at(case, s + 0.5 * ds);
@@ -440,16 +431,7 @@ pub fn predict_from(
         } else {
             [0.0f64; 2]
         };
-        let mut result = implicit_step(&eval, turn, &mut jac, warm, s1);
-        if bent && !matches!(&result, Ok(o) if o.converged) {
-            // a bent housing's deviation swings steeply with the turn: Newton with backtracking
-            let retry = backtracking_step(&eval, turn, warm, s1);
-            if matches!(&retry, Ok(o) if o.converged) {
-                result = retry;
-                jac = None;
-            }
-        }
-        let outcome = match result {
+        let outcome = match step_with_retry(&eval, turn, &mut jac, warm, s1, bent) {
             Ok(o) if o.converged => o,
             failed => {
                 // a failed implicit step, or a string solve that failed on the way: a shorter step
@@ -509,6 +491,43 @@ pub fn predict_from(
         start_warm,
         ripple_deg: ripple.now.0.to_degrees(),
     })
+}
+
+/// Length of the step from `s` (m MD) at the step in use `cur_step` (m) toward `to_md_m`: the
+/// last step ends exactly at the target (a sliver shorter than half the minimum step is merged
+/// into it), and a step ends at the next end of one of `case`'s steering intervals at least a
+/// minimum step ahead.
+fn step_length(case: &Case, s: f64, cur_step: f64, to_md_m: f64) -> f64 {
+    let mut ds = cur_step.min(to_md_m - s);
+    if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
+        ds = to_md_m - s;
+    }
+    if let Some(b) = case.steering.next_boundary(s, MIN_STEP_M - 1e-9) {
+        ds = ds.min(b - s);
+    }
+    ds
+}
+
+/// [`implicit_step`] ending at `s1` from `turn`; for a string with a bent housing (`bent`)
+/// retried by [`backtracking_step`] when it fails (the kept Jacobian `jac` then dropped).
+fn step_with_retry(
+    eval: &step::StepResidual,
+    turn: [f64; 2],
+    jac: &mut Option<Matrix2<f64>>,
+    warm: &WarmStart,
+    s1: f64,
+    bent: bool,
+) -> Result<StepOutcome, PredictError> {
+    let result = implicit_step(eval, turn, jac, warm, s1);
+    if bent && !matches!(&result, Ok(o) if o.converged) {
+        // a bent housing's deviation swings steeply with the turn: Newton with backtracking
+        let retry = backtracking_step(eval, turn, warm, s1);
+        if matches!(&retry, Ok(o) if o.converged) {
+            *jac = None;
+            return retry;
+        }
+    }
+    result
 }
 
 /// Cut distance of the string model above the bit at the start of `start` (the settings' or
