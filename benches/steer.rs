@@ -23,7 +23,9 @@ use std::hint::black_box;
 use std::path::Path;
 
 fn case(file: &str, mode: Mode) -> Case {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("wells/horizontal").join(file);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("wells/horizontal")
+        .join(file);
     let mut c = load_case(&path, &CaseOverrides::default()).unwrap();
     c.operation.mode = mode;
     c
@@ -50,7 +52,12 @@ fn bench_steer(cr: &mut Criterion) {
         let model = cut_model(&c);
         let mut m = model.clone();
         let sol = solve_holding_toolface(&mut m, &ctl, |m| solve(m, &ctl)).unwrap();
-        println!("{name}: {} DOF, {} Newton iterations, converged {}", m.dofs(), sol.stats.iterations, sol.converged);
+        println!(
+            "{name}: {} DOF, {} Newton iterations, converged {}",
+            m.dofs(),
+            sol.stats.iterations,
+            sol.converged
+        );
         group.bench_function(name, |b| {
             b.iter(|| {
                 let mut m = model.clone();
@@ -61,7 +68,9 @@ fn bench_steer(cr: &mut Criterion) {
     let c = case("steered.toml", Mode::Drilling);
     let ctl = SolveControls::from_settings(&c.solver);
     group.sample_size(10);
-    group.bench_function("yield_and_rotating_tendency", |b| b.iter(|| black_box(steering(&c, &ctl))));
+    group.bench_function("yield_and_rotating_tendency", |b| {
+        b.iter(|| black_box(steering(&c, &ctl)))
+    });
     group.finish();
 }
 

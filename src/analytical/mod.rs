@@ -14,9 +14,12 @@
 //! - [`pendulum`]: Lubinski pendulum BHA, constant and linearly varying compression (6.2).
 //! - [`beam_column`]: simply supported beam-column under uniform load (6.3).
 //! - [`buckling`]: Euler, sinusoidal and helical buckling loads in inclined holes (6.4).
+//! - [`contact_beam`]: planar beam-column with unilateral wall contact at every point, for
+//!   stabilizer blades and bit gauges touching along their length (3.4).
 
 pub mod beam_column;
 pub mod buckling;
+pub mod contact_beam;
 pub mod pendulum;
 pub mod section;
 

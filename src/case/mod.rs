@@ -17,7 +17,7 @@ pub use accuracy::Accuracy;
 pub use bit_rock::{BitRock, Formation};
 pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
 pub use operation::{FrictionSplit, Mode, Motion, Mud, Operation};
-pub use solver::{Method, SolverSettings};
+pub use solver::{Method, SolverSettings, StabilizerContact};
 pub use steering::{SteeringInterval, SteeringPlan};
 pub use tracking::TrackingSettings;
 pub use well::{AzimuthReference, SurveyFile, Well};

@@ -1,4 +1,5 @@
-//! Solver settings: element lengths, contact tolerance, fidelity, contact scheme, iteration limit.
+//! Solver settings: element lengths, contact tolerance, fidelity, contact scheme, iteration
+//! limit, stabilizer contact model.
 
 use super::accuracy::Accuracy;
 use super::fidelity::Fidelity;
@@ -10,6 +11,38 @@ pub enum Method {
     Newton,
     /// The seed paper's modified Newton with gap additional forces (eq. 15).
     Paper,
+}
+
+/// How stabilizers and bits touch the wall (`[solver] stabilizer_contact`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StabilizerContact {
+    /// Along the blades and the bit's gauge: contact points along each blade and gauge
+    /// (docs/theory.md 3.4).
+    Blade,
+    /// The classic model (the default): one contact point at each stabilizer's middle, the bit
+    /// touching only at its face, whatever the blade and gauge lengths (docs/theory.md 3.4 says
+    /// why it is the default).
+    Point,
+}
+
+impl StabilizerContact {
+    /// Accepted names, for messages.
+    pub const NAMES: &'static str = "blade, point";
+    /// Parse the case-file name.
+    pub fn parse(s: &str) -> Option<StabilizerContact> {
+        match s {
+            "blade" => Some(StabilizerContact::Blade),
+            "point" => Some(StabilizerContact::Point),
+            _ => None,
+        }
+    }
+    /// Name as written in case files.
+    pub fn name(self) -> &'static str {
+        match self {
+            StabilizerContact::Blade => "blade",
+            StabilizerContact::Point => "point",
+        }
+    }
 }
 
 /// Default wall-clock limit of one solve, s (`[solver] time_limit`).
@@ -34,6 +67,11 @@ pub struct SolverSettings {
     pub method: Method,
     /// Iteration limit.
     pub max_iterations: usize,
+    /// How stabilizers and bits touch the wall.
+    pub stabilizer_contact: StabilizerContact,
+    /// Whether a stiff solve refines the assembly's mesh where a collar comes onto the wall and
+    /// solves again (`refine_contacts`; [`crate::models::fem::refine`]).
+    pub refine_contacts: bool,
     /// Paper scheme's gradient-update factor alpha in (0, 1).
     pub alpha: f64,
     /// Wall-clock limit of one solve, s (`time_limit`).
@@ -52,6 +90,8 @@ impl Default for SolverSettings {
             fidelity: Fidelity::Auto,
             method: Method::Newton,
             max_iterations: 300,
+            stabilizer_contact: StabilizerContact::Point,
+            refine_contacts: true,
             alpha: 0.7,
             time_limit_s: DEFAULT_TIME_LIMIT_S,
             accuracy: None,

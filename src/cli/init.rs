@@ -50,6 +50,7 @@ od = "8.5 in"                  # blade OD (touches the wall)
 body_od = "6.5 in"
 id = "2.8125 in"
 length = "1.6 m"
+blade_length = "0.4 m"         # blades' length, used with [solver] stabilizer_contact = "blade" (default: a quarter of length)
 
 [[string]]
 type = "collar"
@@ -106,6 +107,7 @@ bha_element_length = "0.5 m"   # longest element in the BHA
 tolerance = 1e-4               # contact gap tolerance relative to the clearance
 fidelity = "auto"
 method = "newton"
+stabilizer_contact = "point"   # "blade": stabilizers touch along their blades (docs/guide.md)
 "#;
 
 /// Survey stations of the starter well: (MD m, inclination deg, azimuth deg).

@@ -7,6 +7,7 @@ pub mod motor_toml;
 pub mod paths;
 pub mod solver_toml;
 pub mod steering_toml;
+pub mod string_toml;
 pub mod survey;
 pub mod toml_reader;
 pub mod tracking_toml;

@@ -47,6 +47,8 @@ pub const SOLVER_KEYS: &[&str] = &[
     "method",
     "max_iterations",
     "alpha",
+    "stabilizer_contact",
+    "refine_contacts",
 ];
 
 /// The `[solver]` table `s`, every value checked and named on error.
@@ -100,6 +102,19 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         return Err(s.error("alpha", format!("{alpha} outside (0, 1)")));
     }
     let time_limit = s.positive("time_limit", D::Time, "s", false)?.unwrap_or(d.time_limit_s);
+    let stabilizer_contact = match s.string("stabilizer_contact")? {
+        None => d.stabilizer_contact,
+        Some(name) => StabilizerContact::parse(&name).ok_or_else(|| {
+            s.error(
+                "stabilizer_contact",
+                format!(
+                    "unknown stabilizer contact `{name}` (expected {})",
+                    StabilizerContact::NAMES
+                ),
+            )
+        })?,
+    };
+    let refine_contacts = s.boolean("refine_contacts")?.unwrap_or(d.refine_contacts);
     Ok(SolverSettings {
         element_length_m: el,
         bha_element_length_m: bha,
@@ -107,6 +122,8 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         fidelity,
         method,
         max_iterations: max_it as usize,
+        stabilizer_contact,
+        refine_contacts,
         alpha,
         time_limit_s: time_limit,
         accuracy,

@@ -180,6 +180,7 @@ mod tests {
             bottom_m: 0.0,
             body_od_m: 5.0 * 0.0254,
             contact_od_m: 5.0 * 0.0254,
+            contact_length_m: 0.0,
             id_m: 4.276 * 0.0254,
             tool_joint_od_m: None,
             joint_length_m: 9.144,

@@ -133,6 +133,7 @@ mod tests {
             bottom_m: bottom,
             body_od_m: 0.127,
             contact_od_m: 0.127,
+            contact_length_m: 0.0,
             id_m: 0.1,
             tool_joint_od_m: None,
             joint_length_m: 9.144,

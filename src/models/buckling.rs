@@ -414,6 +414,7 @@ mod tests {
             bottom_m: 0.0,
             body_od_m: od,
             contact_od_m: od,
+            contact_length_m: 0.0,
             id_m: id,
             tool_joint_od_m: None,
             joint_length_m: 9.144,
@@ -523,6 +524,7 @@ mod tests {
             } else {
                 od
             },
+            contact_length_m: 0.0,
             id_m: id,
             tool_joint_od_m: None,
             joint_length_m: 9.144,

@@ -351,6 +351,7 @@ mod tests {
             bottom_m: 0.0,
             body_od_m: 0.127,
             contact_od_m: 0.127,
+            contact_length_m: 0.0,
             id_m: 0.1086,
             tool_joint_od_m: tj,
             joint_length_m: 9.144,

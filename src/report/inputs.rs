@@ -4,6 +4,7 @@ use super::display_units::UnitSystem;
 use super::html::Page;
 use super::schematic::{bha_svg, shown_length_m};
 use crate::case::Case;
+use crate::string::ComponentKind;
 
 /// Add the well, BHA, mud and operation sections for `case` with the bit at `bit_md_m`.
 pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSystem) -> Result<(), String> {
@@ -81,6 +82,10 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
                 depth_unit.fmt(c.length_m, 2),
                 small_unit.fmt(c.body_od_m, 1),
                 small_unit.fmt(c.contact_od_m, 1),
+                match c.kind {
+                    ComponentKind::Stabilizer | ComponentKind::Bit => depth_unit.fmt(c.contact_length_m, 2),
+                    _ => String::new(),
+                },
                 small_unit.fmt(c.id_m, 1),
             ]
         })
@@ -93,6 +98,7 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
             "length".into(),
             "body OD".into(),
             "contact OD".into(),
+            "blade / gauge length".into(),
             "ID".into(),
         ],
         &rows,

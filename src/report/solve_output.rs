@@ -83,6 +83,9 @@ struct SolverJson {
     final_residual: Option<Finite>,
     #[serde(skip_serializing_if = "Option::is_none")]
     max_penetration_rel: Option<Finite>,
+    /// `blade` or `point` (`[solver] stabilizer_contact`); absent for the soft string.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stabilizer_contact: Option<&'static str>,
 }
 
 /// The `fidelity` key: the level asked for and run, and what it does not compute.
@@ -264,7 +267,7 @@ fn fidelity_json(s: &StringSolve) -> FidelityJson {
     }
 }
 
-fn solver_json(lr: &LevelResult) -> SolverJson {
+fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
     match &lr.fem {
         Some(p) => SolverJson {
             converged: p.converged,
@@ -275,6 +278,7 @@ fn solver_json(lr: &LevelResult) -> SolverJson {
             seconds: Finite(lr.seconds),
             final_residual: Some(Finite(*p.stats.residual_history.last().unwrap_or(&0.0))),
             max_penetration_rel: Some(Finite(p.stats.max_penetration)),
+            stabilizer_contact: Some(case.solver.stabilizer_contact.name()),
         },
         None => SolverJson {
             converged: true,
@@ -285,6 +289,7 @@ fn solver_json(lr: &LevelResult) -> SolverJson {
             seconds: Finite(lr.seconds),
             final_residual: None,
             max_penetration_rel: None,
+            stabilizer_contact: None,
         },
     }
 }
@@ -333,7 +338,7 @@ impl SolveSummary {
                 moment_imbalance_kNm: Finite(p.results.moment_imbalance_nm.norm() / 1e3),
                 largest_force_kN: Finite(p.results.largest_force_n / 1e3),
             }),
-            solver: solver_json(lr),
+            solver: solver_json(case, lr),
             fidelity: fidelity_json(s),
             buckling: buckling_json(&s.marks, axial_force_model(lr.choice.level)),
             notes: s.notes.clone(),

@@ -7,9 +7,11 @@ use std::f64::consts::PI;
 /// Kind of string component.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ComponentKind {
-    /// Drill bit (centred on the hole axis at its face; does not touch the wall above it).
+    /// Drill bit (centred on the hole axis at its face; above the face it touches the wall only
+    /// along its gauge, if it has one).
     Bit,
-    /// Stabilizer: touches the wall at the middle of its length with its blade OD.
+    /// Stabilizer: touches the wall with its blade OD along its blades, centred on its length
+    /// (at its middle only with `[solver] stabilizer_contact = "point"`).
     Stabilizer,
     /// Drill collar.
     Collar,
@@ -61,6 +63,19 @@ impl ComponentKind {
     pub const NAMES: &'static str = "bit, stabilizer, collar, pipe, hwdp, motor, mwd, sub, jar";
 }
 
+/// Fraction of a stabilizer's length its blades take when `blade_length` is not given.
+pub const DEFAULT_BLADE_FRACTION: f64 = 0.25;
+/// Shortest default blade, m (12 in), or the whole stabilizer if it is shorter.
+pub const MIN_DEFAULT_BLADE_M: f64 = 0.3;
+
+/// Blade length of a stabilizer `length_m` long whose case gives none, m: a quarter of its
+/// length, at least 0.3 m (the whole stabilizer when shorter). Typical of integral-blade string
+/// and near-bit stabilizers, whose gauge blades of about 0.4-0.45 m (16-18 in) sit on bodies of
+/// 1.5-1.8 m (docs/guide.md, `[[string]]`; a typical value, not a catalogue's).
+pub fn default_blade_length_m(length_m: f64) -> f64 {
+    (DEFAULT_BLADE_FRACTION * length_m).max(MIN_DEFAULT_BLADE_M.min(length_m))
+}
+
 /// One component of the string, SI units. Positions are distances from the bit face, m.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Component {
@@ -76,6 +91,10 @@ pub struct Component {
     pub body_od_m: f64,
     /// Contact diameter where the component touches the wall: stabilizer blade OD, bit OD, else body OD, m.
     pub contact_od_m: f64,
+    /// Length over which the contact OD touches the wall, m: a stabilizer's blades (centred on
+    /// the component), a bit's gauge (from the face up; 0: the face only); 0 for the other
+    /// kinds, whose whole body may touch (docs/theory.md 3.4).
+    pub contact_length_m: f64,
     /// Inner diameter, m (0 for a solid body).
     pub id_m: f64,
     /// Tool-joint outer diameter, m, if the component has tool joints.
@@ -150,6 +169,22 @@ impl Component {
     /// Weight in air per length of the plain body, N/m.
     pub fn body_weight_n_per_m(&self) -> f64 {
         self.area_m2() * self.material.density_kg_m3 * G
+    }
+    /// Where the contact OD touches the wall along a blade or gauge: distances from the bit face
+    /// of its lower and upper ends, m. A stabilizer's blades are centred on it; a bit's gauge
+    /// starts at the face. None for the other kinds and for a bit without gauge.
+    pub fn contact_zone_m(&self) -> Option<(f64, f64)> {
+        match self.kind {
+            ComponentKind::Stabilizer => {
+                let mid = self.bottom_m + self.length_m / 2.0;
+                let half = self.contact_length_m.min(self.length_m) / 2.0;
+                Some((mid - half, mid + half))
+            }
+            ComponentKind::Bit if self.contact_length_m > 0.0 => {
+                Some((self.bottom_m, self.bottom_m + self.contact_length_m.min(self.length_m)))
+            }
+            _ => None,
+        }
     }
     /// True for components meshed as part of the stiff bottom-hole assembly (not pipe/HWDP).
     pub fn is_bha(&self) -> bool {

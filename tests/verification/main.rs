@@ -9,6 +9,7 @@
 mod common;
 
 mod architecture;
+mod blade;
 mod buckling;
 mod extremes;
 mod fidelity;
@@ -18,6 +19,7 @@ mod geometry;
 mod hybrid;
 mod known_truth;
 mod loads;
+mod mwd_sag;
 mod paper;
 mod predict;
 mod sliding;

@@ -9,8 +9,10 @@ use drillpath::predict::march::{predict, MarchSettings, Prediction, StepScheme};
 use drillpath::predict::track::interval_rates;
 
 use crate::common::{
-    example, fulcrum_bha, load_temp_case, packed_bha, pendulum_bha, slick_bha, try_load_temp_case, PIPE_TUBE,
+    collar, example, fulcrum_bha, load_temp_case, packed_bha, pendulum_bha, slick_bha, stabilizer, try_load_temp_case,
+    BIT, PIPE_TUBE,
 };
+use drillpath::case::StabilizerContact;
 
 /// A case with `bha` + 5 in drill pipe to surface ([`PIPE_TUBE`] with 6-5/8 in tool joints) in
 /// an 8.5 in hole along `survey`, rotating at 60 rpm with `wob_kn`, friction 0.2, and extra
@@ -50,7 +52,13 @@ fn run(case: &Case, from: f64, to: f64, step: f64) -> Prediction {
 
 /// Build rate over 60 m from 300 m in the straight 20 deg hole, deg/30 m.
 fn build_rate(bha: &str, wob_kn: f64, step: f64) -> f64 {
-    let case = case_with(&straight(20.0, 0.0), bha, wob_kn, "");
+    build_rate_with(bha, wob_kn, step, StabilizerContact::Point)
+}
+
+/// [`build_rate`] with the stabilizers touching as `contact` says.
+fn build_rate_with(bha: &str, wob_kn: f64, step: f64, contact: StabilizerContact) -> f64 {
+    let mut case = case_with(&straight(20.0, 0.0), bha, wob_kn, "");
+    case.solver.stabilizer_contact = contact;
     let p = run(&case, 300.0, 360.0, step);
     interval_rates(&p).build_rate_rad_per_30m.to_degrees()
 }
@@ -82,6 +90,19 @@ fn textbook_bha_tendencies_at_20_degrees() {
         pendulum_more > pendulum && pendulum_more < 0.0,
         "more WOB should drop less: {pendulum_more} vs {pendulum}"
     );
+    // with contact along the blades (0.375 m, `stabilizer_contact = "blade"`) a full-gauge
+    // near-bit blade clamps the collar and the fulcrum holds (below a quarter of its point
+    // rate); 1/32 in under gauge it builds again, more slowly than the point (issue 20; the
+    // bit forces: tests/verification/blade.rs)
+    let bladed = |od: &str| format!("{BIT}{}{}", stabilizer(od), collar("60 m"));
+    let clamped = build_rate_with(&bladed("8.5 in"), 80.0, 2.0, StabilizerContact::Blade);
+    let under = build_rate_with(&bladed("8.46875 in"), 80.0, 2.0, StabilizerContact::Blade);
+    println!("with blades: full gauge {clamped:.3}, 1/32 in under gauge {under:.3} deg/30 m");
+    assert!(
+        clamped.abs() < 0.25 * fulcrum,
+        "a full-gauge blade should hold: {clamped}"
+    );
+    assert!((0.2..fulcrum).contains(&under), "1/32 in under should build: {under}");
 }
 
 /// Step convergence of the default (`Arc`) march: fulcrum BHA over 60 m from 300 m in the

@@ -37,6 +37,7 @@ fn pipe(len: f64, w_air: f64, tj: Option<f64>) -> Component {
         bottom_m: 0.0,
         body_od_m: 0.127,
         contact_od_m: 0.127,
+        contact_length_m: 0.0,
         id_m: 4.276 * 0.0254,
         tool_joint_od_m: tj,
         joint_length_m: 9.144,

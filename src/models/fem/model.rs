@@ -268,7 +268,9 @@ impl Model {
     /// `bit_md_m` in the hole `path`/`hole`, with `case`'s mud, operation and mesh settings;
     /// the top is held as [`TopCondition::Surface`].
     pub fn for_string(case: &Case, string: &DrillString, path: &WellPath, hole: &HoleSize, bit_md_m: f64) -> Model {
-        let mesh = build_mesh(string, &case.solver, case.mud.density_kg_m3);
+        let mesh = build_mesh(string, &case.solver, case.mud.density_kg_m3, &|s| {
+            hole.diameter_at(bit_md_m - s)
+        });
         Model::new(
             path.clone(),
             hole.clone(),

@@ -142,20 +142,28 @@ pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveRe
     }
 }
 
-/// Bit forces (the reaction of the held bit DOFs, bit on rock) and tilt of a solution.
+/// Bit forces (the reaction of the held bit DOFs, bit on rock, plus the lateral wall forces
+/// of the bit's gauge) and tilt of a solution.
 fn bit_result(model: &Model, sol: &Solution) -> BitResult {
     let r = &sol.eval.residual;
     // bit reaction (rock on bit) in global, bit on rock = minus that
     let qb = &model.basis[0];
     let react = qb * Vec3::new(r[model.dof(0, 0)], r[model.dof(0, 1)], r[model.dof(0, 2)]);
     let f_bit = -react;
+    // the gauge's wall forces are the bit's too (their lateral part: the WOB is the face's)
+    let gauge: Vec3 = (0..model.nodes())
+        .filter(|&i| model.mesh.nodes[i].on_bit_gauge)
+        .filter_map(|i| sol.eval.gaps[i].as_ref())
+        .filter(|g| g.normal_force > 0.0)
+        .map(|g| -g.force)
+        .sum();
     let frame = model.path.frame_at(model.bit_md_m);
     let eb = sol.state.triads[0].column(0).into_owned();
     BitResult {
         md_m: model.bit_md_m,
         wob_n: f_bit.dot(&frame.t),
-        build_force_n: f_bit.dot(&frame.h),
-        walk_force_n: f_bit.dot(&frame.r),
+        build_force_n: (f_bit + gauge).dot(&frame.h),
+        walk_force_n: (f_bit + gauge).dot(&frame.r),
         tilt_inc_rad: axis_tilt(&eb, &frame).0,
         tilt_azi_rad: axis_tilt(&eb, &frame).1,
         torque_nm: model.loads.bit_torque_nm,
