@@ -515,8 +515,7 @@ fn steering_plan_drives_the_march() {
 fn bad_steering_plans_are_named() {
     let err = |extra: &str, sheet: &str| {
         motor_case_plan("sliding", extra, &[("slides.csv", sheet)])
-            .err()
-            .expect("an error")
+            .expect_err("an error")
             .to_string()
     };
     let e = err(
