@@ -63,7 +63,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         outputs.stage(dir.join("string.csv"), csv);
     }
     if let Some(file) = &a.view.report {
-        outputs.stage(file.clone(), solve_html(&case, &s, a.view.units)?);
+        outputs.stage(file.clone(), solve_html(&case, &s, a.view.units, steering.as_ref())?);
     }
     outputs.commit()?;
     let mut out = std::io::stdout().lock();
