@@ -47,3 +47,44 @@ impl SteeringPlan {
             .fold(None, |best: Option<f64>, b| Some(best.map_or(b, |x| x.min(b))))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan() -> SteeringPlan {
+        let iv = |a: f64, b: f64, rotating: bool| SteeringInterval {
+            from_md_m: a,
+            to_md_m: b,
+            rotating,
+            toolface_rad: 0.0,
+        };
+        SteeringPlan {
+            intervals: vec![iv(100.0, 110.0, false), iv(110.0, 140.0, true), iv(200.0, 205.0, false)],
+            sheet_path: None,
+        }
+    }
+
+    /// An interval holds its top, not its bottom; gaps are held by none.
+    #[test]
+    fn the_interval_at_an_md() {
+        let p = plan();
+        assert!(p.at(99.9).is_none());
+        assert!(!p.at(100.0).unwrap().rotating);
+        assert!(p.at(110.0).unwrap().rotating);
+        assert!(p.at(139.99).unwrap().rotating);
+        assert!(p.at(150.0).is_none());
+        assert!(!p.at(204.0).unwrap().rotating);
+        assert!(p.at(205.0).is_none());
+    }
+
+    /// The next end at least `min_ahead` deeper.
+    #[test]
+    fn the_next_interval_end() {
+        let p = plan();
+        assert_eq!(p.next_boundary(90.0, 0.2), Some(100.0));
+        assert_eq!(p.next_boundary(99.9, 0.2), Some(110.0));
+        assert_eq!(p.next_boundary(140.0, 0.2), Some(200.0));
+        assert_eq!(p.next_boundary(205.0, 0.2), None);
+    }
+}

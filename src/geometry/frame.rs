@@ -118,6 +118,25 @@ mod tests {
         assert!((f.t.cross(&f.h) - f.r).norm() < 1e-12);
     }
 
+    /// Gravity toolface from the high side toward the right; magnetic (from north, toward
+    /// east) within 5 deg of vertical.
+    #[test]
+    fn toolface_directions() {
+        let t = tangent(30f64.to_radians(), 45f64.to_radians());
+        let f = Frame::from_tangent(&t, 0.0);
+        let hp = std::f64::consts::FRAC_PI_2;
+        assert!((toolface_direction(&t, 0.0) - f.h).norm() < 1e-12);
+        assert!((toolface_direction(&t, hp) - f.r).norm() < 1e-12);
+        assert!((toolface_direction(&t, std::f64::consts::PI) + f.h).norm() < 1e-12);
+        let v = tangent(2f64.to_radians(), 200f64.to_radians());
+        let n = toolface_direction(&v, 0.0);
+        let e = toolface_direction(&v, hp);
+        assert!(n.x > 0.999 && n.dot(&v).abs() < 1e-12, "{n:?}");
+        assert!(e.y > 0.999 && e.dot(&v).abs() < 1e-12, "{e:?}");
+        let down = Vec3::new(0.0, 0.0, 1.0);
+        assert!((toolface_direction(&down, 0.0) - Vec3::new(1.0, 0.0, 0.0)).norm() < 1e-12);
+    }
+
     #[test]
     fn frame_matches_physics_formulas() {
         // docs/theory.md 2.4: h = (cos I cos A, cos I sin A, -sin I), r = (-sin A, cos A, 0).
