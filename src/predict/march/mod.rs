@@ -402,6 +402,7 @@ pub fn predict_from(
     // the step in use: halved where the implicit step fails, grown back after a success
     let mut cur_step = step;
     let mut ripple = RippleWatch::new(from, step);
+    let mut last_steer = StepSteer::of_case(&start_case);
     while s < to_md_m - 1e-9 {
         let ds = step_length(case, s, cur_step, to_md_m);
         let s1 = s + ds;
@@ -469,11 +470,13 @@ pub fn predict_from(
         } else {
             hole_pred.path_with(None)?
         };
+        let steer = StepSteer::of_case(&step_case);
+        restart_on_steering_change(&mut ripple, &mut last_steer, steer, s, step);
         ripple.after_step(s1, &hole_pred.chords)?;
         check_on_earth(&p1, s1)?;
         path = p1;
         s = s1;
-        records.push((s, sol1.bit, dir, step_iterations, StepSteer::of_case(&step_case)));
+        records.push((s, sol1.bit, dir, step_iterations, steer));
         on_step(s);
         *warm = Some((sol1.model, sol1.state));
     }
@@ -491,6 +494,21 @@ pub fn predict_from(
         start_warm,
         ripple_deg: ripple.now.0.to_degrees(),
     })
+}
+
+/// Restart the ripple watch `ripple` at `s` (m MD; step `step`, m) when the steering of the
+/// step `steer` differs from the last step's `last`: a change of the steering plan turns the
+/// hole on purpose, so the ripple is measured from there on.
+fn restart_on_steering_change(
+    ripple: &mut RippleWatch,
+    last: &mut Option<StepSteer>,
+    steer: Option<StepSteer>,
+    s: f64,
+    step: f64,
+) {
+    if steer != *last {
+        (*ripple, *last) = (RippleWatch::new(s, step), steer);
+    }
 }
 
 /// Length of the step from `s` (m MD) at the step in use `cur_step` (m) toward `to_md_m`: the
