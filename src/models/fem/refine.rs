@@ -221,11 +221,16 @@ pub fn solve_refined(
     // a warm start near the solution converges with the full tangent (as the predictor's steps
     // and the loads rows do)
     fine.consistent_tangent = true;
-    match solve_holding_toolface(&mut fine, ctl, |m| solve_interior_point_from(m, state, ctl)) {
+    let rest = SolveControls {
+        time_limit_s: ctl.time_limit_s - sol.stats.seconds,
+        ..*ctl
+    };
+    match solve_holding_toolface(&mut fine, &rest, |m| solve_interior_point_from(m, state, &rest)) {
         Ok(mut again) if again.converged => {
             again.stats.iterations += sol.stats.iterations;
             again.stats.factorizations += sol.stats.factorizations;
             again.stats.seconds += sol.stats.seconds;
+            again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
             Ok((fine, again))
         }
         other => {
