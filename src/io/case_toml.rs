@@ -129,6 +129,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         .table("tracking")?
         .unwrap_or_else(|| Section::new(path, "tracking", &empty));
     let tracking = read_tracking(&tr_sec, wellpath.md_end() - wellpath.md_start())?;
+    let steering = super::steering_toml::read_steering(&top, &dir, operation.toolface_rad)?;
 
     let case = Case {
         name,
@@ -147,6 +148,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         bit_rock,
         solver,
         tracking,
+        steering,
     };
     if let Some(note) = case.string_above_survey_note() {
         tracing::warn!("{}: {note}", path.display());
@@ -341,6 +343,7 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
         friction,
         bit_torque_nm: bit_torque,
         viscous_torque: viscous,
+        toolface_rad: super::motor_toml::read_toolface(s)?,
     })
 }
 
@@ -358,6 +361,7 @@ pub fn known_keys() -> Vec<&'static str> {
         super::string_toml::COMPONENT_KEYS,
         super::solver_toml::SOLVER_KEYS,
         super::tracking_toml::TRACKING_KEYS,
+        super::steering_toml::STEERING_KEYS,
     ]
     .concat()
 }
@@ -373,6 +377,8 @@ const TOP_KEYS: &[&str] = &[
     "bit_rock",
     "solver",
     "tracking",
+    "steering",
+    "slide_sheet",
 ];
 /// Keys accepted in the well table (checked before any is read, so a typo is named).
 const WELL_KEYS: &[&str] = &["survey", "survey_md_unit", "origin", "hole", "caliper"];
@@ -392,6 +398,7 @@ const OPERATION_KEYS: &[&str] = &[
     "friction",
     "bit_torque",
     "viscous_torque",
+    "toolface",
 ];
 /// Keys accepted in the formation table (checked before any is read, so a typo is named).
 const FORMATION_KEYS: &[&str] = &["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"];

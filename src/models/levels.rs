@@ -25,6 +25,7 @@ use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
 use crate::models::fem::solve::continuation;
+use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
@@ -193,12 +194,19 @@ fn nearest_node(model: &Model, s_m: f64) -> usize {
         .unwrap_or(model.nodes() - 1)
 }
 
-fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
+fn fem_part(
+    mut model: Model,
+    case: &Case,
+    ctl: &SolveControls,
+    coupling_m: Option<f64>,
+) -> Result<FemPart, SolveError> {
+    // a bent housing is held at its toolface against the string's twist (a straight string is
+    // solved once)
     let (model, sol) = if case.solver.refine_contacts {
         let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
         refine::solve_refined(model, ctl, case.string.bha_length_m(), h)?
     } else {
-        let sol = solve(&model, ctl)?;
+        let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
         (model, sol)
     };
     let results = extract(&model, &sol, case.mud.density_kg_m3);

@@ -26,4 +26,5 @@ mod slack_off;
 mod sliding;
 mod softstring;
 mod solver;
+mod steering;
 mod tracking;
