@@ -412,7 +412,7 @@ pub fn solve_string(
     let mut delivered = None;
     if !level.converged && choice.level == Level::Whole {
         if let Some((wob, r)) = whole_at_lock_up(case, choice, ctl, on_stage) {
-            delivered = Some((level.wob_n, wob, r.hook_load_n.unwrap_or(0.0)));
+            delivered = Some((case.operation.wob_n, wob));
             level = r;
         }
     }
@@ -439,7 +439,7 @@ pub fn solve_string(
         .zip(last_reported_node)
         .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
     let lock_up = match delivered {
-        Some((asked, wob, _)) => soft_lock_up_at(case, asked).map(|l| LockUp {
+        Some((asked, wob)) => soft_lock_up_at(case, asked).map(|l| LockUp {
             results_at_wob_n: Some(wob),
             ..l
         }),
