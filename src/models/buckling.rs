@@ -252,6 +252,62 @@ pub fn marks(
         .collect()
 }
 
+/// Shortest run of stiff nodes beyond the helical onset checked by [`unbuckled_helical_runs`], m.
+pub const MIN_HELICAL_RUN_M: f64 = 10.0;
+
+/// Spread of the wall contact angles (deg) below which a run beyond the helical onset is taken
+/// as unbuckled: a helix turns its contact once round the wall every pitch.
+pub const UNBUCKLED_SPREAD_DEG: f64 = 60.0;
+
+/// The runs (upper and lower MD, m) of the stiff model's nodes `nodes` whose `marks` say helical
+/// (compression beyond the helical onset) over at least [`MIN_HELICAL_RUN_M`], where the solved
+/// string lies unbuckled: its wall contacts stay within [`UNBUCKLED_SPREAD_DEG`] of one another
+/// (or it touches nowhere). The static solve can converge to the straight string on one side of
+/// the hole, an equilibrium past its stability limit, and then misses the helix's wall force
+/// (Mitchell's `r F^2 / (4 EI)`) and its drag.
+pub fn unbuckled_helical_runs(marks: &[Mark], nodes: &[crate::models::fem::results::NodeResult]) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut run: Vec<usize> = Vec::new();
+    let flush = |run: &mut Vec<usize>, out: &mut Vec<(f64, f64)>| {
+        if let (Some(&a), Some(&b)) = (run.first(), run.last()) {
+            let (top, bottom) = (marks[a].md_m.min(marks[b].md_m), marks[a].md_m.max(marks[b].md_m));
+            let angles: Vec<f64> = run
+                .iter()
+                .filter(|&&i| nodes[i].contact_force_n > 1.0)
+                .map(|&i| nodes[i].contact_angle_deg)
+                .collect();
+            if bottom - top >= MIN_HELICAL_RUN_M && circular_spread_deg(&angles) < UNBUCKLED_SPREAD_DEG {
+                out.push((top, bottom));
+            }
+        }
+        run.clear();
+    };
+    for (i, m) in marks.iter().enumerate().take(nodes.len()) {
+        if m.state == BuckleState::Helical {
+            run.push(i);
+        } else {
+            flush(&mut run, &mut out);
+        }
+    }
+    flush(&mut run, &mut out);
+    out
+}
+
+/// The smallest arc (deg) holding every angle of `angles` (deg); 0 for none or one.
+fn circular_spread_deg(angles: &[f64]) -> f64 {
+    let mut a: Vec<f64> = angles.iter().map(|x| x.rem_euclid(360.0)).collect();
+    if a.len() < 2 {
+        return 0.0;
+    }
+    a.sort_by(f64::total_cmp);
+    let largest_gap = a
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .chain(std::iter::once(360.0 - a[a.len() - 1] + a[0]))
+        .fold(0.0, f64::max);
+    360.0 - largest_gap
+}
+
 /// Marks at the nodes of a stiff solve of `case`: the results `nodes` (bit first, possibly
 /// fewer than the mesh's) on the mesh of `model`.
 pub fn stiff_marks(
@@ -477,6 +533,14 @@ mod tests {
     }
 
     /// Reference: hand-made marks: zones are the contiguous buckled runs, helical wins.
+    #[test]
+    fn circular_spread_spans_the_smallest_arc() {
+        assert_eq!(circular_spread_deg(&[]), 0.0);
+        assert_eq!(circular_spread_deg(&[170.0, 190.0, 180.0]), 20.0);
+        assert_eq!(circular_spread_deg(&[350.0, 10.0]), 20.0);
+        assert!((circular_spread_deg(&[0.0, 90.0, 180.0, 270.0]) - 270.0).abs() < 1e-12);
+    }
+
     #[test]
     fn zones_group_contiguous_runs() {
         let mk = |md: f64, st: BuckleState, c: f64| Mark {

@@ -18,7 +18,7 @@
 
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
-use crate::models::buckling::{soft_marks, stiff_marks, Mark};
+use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
@@ -380,6 +380,14 @@ impl StringSolve {
         w.extend(self.yield_check.and_then(|y| y.warning()));
         if let Some(l) = &self.lock_up {
             w.push(l.warning(case.operation.mode.name()));
+        }
+        let runs = unbuckled_helical_runs(self.stiff_marks(), self.reported_nodes());
+        if !runs.is_empty() {
+            let where_: Vec<String> = runs.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
+            w.push(format!(
+                "the stiff pipe is compressed beyond the helical buckling onset at {} but the solve found it unbuckled there (its wall contacts stay on one side): its wall force and drag there are those of straight pipe and miss the helix's (Mitchell's r F^2/(4 EI)); treat the hook load and torque with caution (a known limit, docs/guide.md)",
+                where_.join(", ")
+            ));
         }
         w
     }
