@@ -18,7 +18,7 @@ pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
 pub use operation::{FrictionSplit, Mode, Motion, Mud, Operation};
 pub use solver::{Method, SolverSettings, StabilizerContact};
 pub use tracking::TrackingSettings;
-pub use well::{AzimuthReference, SurveyFile, Well};
+pub use well::{AzimuthReference, StationInfo, SurveyFile, Well};
 
 use crate::string::DrillString;
 use std::path::PathBuf;

@@ -22,7 +22,7 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Positions by minimum curvature from a case file or a survey file (CSV or text report).
+    /// Positions by minimum curvature from a case file or a survey file (CSV, text report, spreadsheet, WITSML).
     ///
     /// Example: drillpath survey wells/j-shape/case.toml --out positions.csv
     Survey(SurveyArgs),
@@ -189,7 +189,8 @@ pub struct SolveArgs {
 /// Arguments of `drillpath survey`.
 #[derive(Debug, Args)]
 pub struct SurveyArgs {
-    /// Case file (.toml) or survey file (CSV or whitespace-separated text report).
+    /// Case file (.toml) or survey file (CSV, whitespace-separated text report, spreadsheet
+    /// .xlsx/.xls/.ods, or WITSML 1.4.1.1 trajectory .xml).
     pub input: PathBuf,
     /// Write the positions CSV to this file (stdout shows the summary) [default: no file].
     #[arg(long)]
@@ -200,6 +201,12 @@ pub struct SurveyArgs {
     /// Print the positions CSV on stdout instead of the summary.
     #[arg(long)]
     pub csv: bool,
+    /// Trajectory of a WITSML file to read, by name or uid [default: the only one; the case's survey_trajectory].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub trajectory: Option<String>,
+    /// Sheet of a spreadsheet to read, by name [default: the first with a survey header; the case's survey_sheet].
+    #[arg(long, value_name = "NAME")]
+    pub sheet: Option<String>,
 }
 
 /// Arguments of `drillpath loads`.

@@ -7,7 +7,7 @@
 
 use super::solver_toml::{check_mesh_size, read_solver};
 use super::string_toml::read_string;
-use super::survey::{read_survey, SurveyUnits};
+use super::survey::{convert_reference, parse_reference, read_survey, survey_format, SurveyFormat, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
 use crate::case::SurveyFile;
@@ -181,10 +181,36 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
     let units = SurveyUnits {
         md: ov.survey_md_unit.or(case_unit),
         angle: None,
+        trajectory: s.string("survey_trajectory")?,
+        sheet: s.string("survey_sheet")?,
     };
-    let survey = read_survey(&survey_path, &units)?;
+    let format = survey_format(&survey_path);
+    if units.trajectory.is_some() && format != SurveyFormat::Witsml {
+        return Err(s.error(
+            "survey_trajectory",
+            "the survey file is not a WITSML file: only a WITSML file has trajectories to choose from",
+        ));
+    }
+    if units.sheet.is_some() && format != SurveyFormat::Spreadsheet {
+        return Err(s.error(
+            "survey_sheet",
+            "the survey file is not a spreadsheet (.xlsx, .xls, .ods): it has no sheets to choose from",
+        ));
+    }
+    let mut survey = read_survey(&survey_path, &units)?;
+    if let Some(text) = s.string("azimuth_reference")? {
+        let to = parse_reference(&text).ok_or_else(|| {
+            s.error(
+                "azimuth_reference",
+                format!("`{text}` is not a north: expected `true`, `grid` or `magnetic`"),
+            )
+        })?;
+        convert_reference(&mut survey, to).map_err(|m| s.error("azimuth_reference", m))?;
+    }
+    // the case's origin, else the position the survey file gives its first station (WITSML)
     let origin = s
         .length_triple("origin")?
+        .or(survey.origin)
         .map(|o| Vec3::new(o[0], o[1], o[2]))
         .unwrap_or_else(Vec3::zeros);
     let secs = s.tables("hole")?.ok_or_else(|| {
@@ -375,7 +401,16 @@ const TOP_KEYS: &[&str] = &[
     "tracking",
 ];
 /// Keys accepted in the well table (checked before any is read, so a typo is named).
-const WELL_KEYS: &[&str] = &["survey", "survey_md_unit", "origin", "hole", "caliper"];
+const WELL_KEYS: &[&str] = &[
+    "survey",
+    "survey_md_unit",
+    "survey_trajectory",
+    "survey_sheet",
+    "azimuth_reference",
+    "origin",
+    "hole",
+    "caliper",
+];
 /// Keys accepted in the hole table (checked before any is read, so a typo is named).
 const HOLE_KEYS: &[&str] = &["to_md", "diameter", "friction"];
 /// Keys accepted in the mud table (checked before any is read, so a typo is named).

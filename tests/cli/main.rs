@@ -14,3 +14,4 @@ mod predict;
 mod refusals;
 mod report;
 mod solve;
+mod witsml;

@@ -26,3 +26,4 @@ mod sliding;
 mod softstring;
 mod solver;
 mod tracking;
+mod witsml;

@@ -154,6 +154,7 @@ mod tests {
         let units = SurveyUnits {
             md: md.and_then(lookup),
             angle: angle.and_then(lookup),
+            ..Default::default()
         };
         parse_survey(text.as_bytes(), Path::new(FILE), &units)
     }

@@ -1,0 +1,142 @@
+//! WITSML trajectories on the command line: a case whose survey is the real Volve F-5 WITSML
+//! file gives the same positions and solve as the example case on the CSV extracted from it;
+//! the azimuth reference is converted when the case asks; a trajectory is chosen by name.
+//! The data files are in `../shared/data/` beside the repository (or beside a worktree's
+//! folder); if absent the test prints a note and returns.
+
+use std::path::{Path, PathBuf};
+
+use crate::common::{assert_error_names, example_dir, run_in, run_ok};
+
+/// A file of the shared data directory, if present.
+fn shared(name: &str) -> Option<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let found = ["../shared/data", "../../shared/data"]
+        .iter()
+        .map(|d| root.join(d).join(name))
+        .find(|p| p.is_file());
+    if found.is_none() {
+        println!("NOTE: {name} is absent from ../shared/data: test skipped");
+    }
+    found
+}
+
+/// A copy of the volve-f5 example case in a temporary directory, reading the WITSML file
+/// instead of the CSV, with no `origin` (the tie-in position comes from the file) and `extra`
+/// added to `[well]`.
+fn f5_case(xml: &Path, extra: &str) -> tempfile::TempDir {
+    let text = std::fs::read_to_string(example_dir("volve-f5").join("case.toml")).unwrap();
+    let mut out = String::new();
+    for line in text.lines() {
+        if line.starts_with("survey = ") {
+            out += &format!("survey = \"{}\"\n{extra}\n", xml.display());
+        } else if !line.starts_with("origin = ") {
+            out += line;
+            out.push('\n');
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("case.toml"), out).unwrap();
+    dir
+}
+
+#[test]
+fn the_f5_witsml_case_equals_the_csv_case() {
+    let Some(xml) = shared("volve-witsml/15_9-F-5_trajectory_slb.xml") else {
+        return;
+    };
+    let dir = f5_case(&xml, "");
+    let csv_case = example_dir("volve-f5").join("case.toml");
+    let csv_case = csv_case.to_str().unwrap();
+    let a = run_ok(".", &["survey", csv_case, "--csv"]);
+    let b = run_ok(dir.path(), &["survey", "case.toml", "--csv"]);
+    assert_eq!(
+        a.stdout, b.stdout,
+        "the same positions from the XML (tie-in from the file) and the CSV (origin in the case)"
+    );
+    let s = run_ok(dir.path(), &["survey", "case.toml"]);
+    assert!(
+        s.stdout.contains("azimuth reference: grid north (from element `aziRef` `grid north`; magDeclUsed -2.21 deg, gridCorUsed -0.95 deg)"),
+        "{}",
+        s.stdout
+    );
+    let a = run_ok(".", &["solve", csv_case, "--json"]);
+    let b = run_ok(dir.path(), &["solve", "case.toml", "--json"]);
+    let bit = |r: &str| {
+        let j: serde_json::Value = serde_json::from_str(r).unwrap();
+        (j["bit"].clone(), j["surface"].clone())
+    };
+    assert_eq!(bit(&a.stdout), bit(&b.stdout));
+}
+
+#[test]
+fn the_case_converts_grid_to_true_north() {
+    let Some(xml) = shared("volve-witsml/15_9-F-5_trajectory_slb.xml") else {
+        return;
+    };
+    let grid = run_ok(".", &["survey", xml.to_str().unwrap(), "--csv"]);
+    let dir = f5_case(&xml, "azimuth_reference = \"true\"");
+    let r = run_ok(dir.path(), &["survey", "case.toml", "--csv"]);
+    let azi = |text: &str| -> Vec<f64> {
+        text.lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(2).unwrap().parse().unwrap())
+            .collect()
+    };
+    let (g, t) = (azi(&grid.stdout), azi(&r.stdout));
+    // true = grid + gridCorUsed (-0.95 deg); the tie-in's azimuth 0 wraps to 359.05
+    for (k, (g, t)) in g.iter().zip(&t).enumerate() {
+        let d = (t - g + 540.0).rem_euclid(360.0) - 180.0;
+        assert!((d + 0.95).abs() < 1.5e-4, "station {k}: grid {g}, true {t}");
+    }
+    let s = run_ok(dir.path(), &["survey", "case.toml"]);
+    assert!(
+        s.stdout
+            .contains("azimuth reference: true north (from `[well] azimuth_reference`, converted from grid north"),
+        "{}",
+        s.stdout
+    );
+    assert!(
+        s.stdout
+            .contains("+ gridCorUsed -0.95 deg = -0.95 deg added to every azimuth"),
+        "{}",
+        s.stdout
+    );
+    let dir = f5_case(&xml, "azimuth_reference = \"east\"");
+    let r = run_in(dir.path(), &["survey", "case.toml"]);
+    assert_error_names(
+        &r,
+        &["case.toml: key `well.azimuth_reference`", "`east` is not a north"],
+    );
+}
+
+#[test]
+fn a_trajectory_is_chosen_by_name_and_f4_is_refused() {
+    let Some(xml) = shared("volve-witsml/15_9-F-9A_2016_trajectory_bhi.xml") else {
+        return;
+    };
+    let x = xml.to_str().unwrap();
+    run_ok(".", &["survey", x, "--trajectory", "MWD-15/9-F-9 A"]);
+    let r = run_in(".", &["survey", x, "--trajectory", "nope"]);
+    assert_error_names(
+        &r,
+        &[
+            "root element `trajectorys`",
+            "no `trajectory` named or with uid `nope`",
+            "`MWD-15/9-F-9 A` (uid `4VIRG33`)",
+        ],
+    );
+    assert_eq!(r.code(), Some(2));
+    let Some(f4) = shared("volve-witsml/15_9-F-4_2008_trajectory_slb.xml") else {
+        return;
+    };
+    let r = run_in(".", &["survey", f4.to_str().unwrap()]);
+    assert_error_names(
+        &r,
+        &[
+            "line 17, element `azi` of station `S-0` (MD 0 m)",
+            "67 of the 68 stations",
+        ],
+    );
+    assert_eq!(r.code(), Some(2));
+}
