@@ -1,4 +1,4 @@
-//! WITSML trajectories on the command line: a case whose survey is the real Volve F-5 WITSML
+//! WITSML trajectories and spreadsheets on the command line: a case whose survey is the real Volve F-5 WITSML
 //! file gives the same positions and solve as the example case on the CSV extracted from it;
 //! the azimuth reference is converted when the case asks; a trajectory is chosen by name.
 //! The data files are in `../shared/data/` beside the repository (or beside a worktree's
@@ -139,4 +139,51 @@ fn a_trajectory_is_chosen_by_name_and_f4_is_refused() {
         ],
     );
     assert_eq!(r.code(), Some(2));
+}
+
+#[test]
+fn a_spreadsheet_survey_on_the_command_line_and_in_a_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let csv = example_dir("j-shape").join("survey.csv");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut book = rust_xlsxwriter::Workbook::new();
+    let sheet = book.add_worksheet().set_name("Survey").unwrap();
+    for (r, line) in text.lines().filter(|l| !l.starts_with('#')).enumerate() {
+        for (c, f) in line.split(',').enumerate() {
+            match f.parse::<f64>() {
+                Ok(v) => sheet.write_number(r as u32, c as u16, v).unwrap(),
+                Err(_) => sheet.write_string(r as u32, c as u16, f).unwrap(),
+            };
+        }
+    }
+    book.save(d.join("s.xlsx")).unwrap();
+    let a = run_ok(".", &["survey", csv.to_str().unwrap(), "--csv"]);
+    let b = run_ok(d, &["survey", "s.xlsx", "--csv", "--sheet", "Survey"]);
+    assert_eq!(a.stdout, b.stdout);
+    let r = run_in(d, &["survey", "s.xlsx", "--sheet", "Other"]);
+    assert_error_names(&r, &["s.xlsx: no sheet named `Other`", "`Survey`"]);
+    let r = run_in(".", &["survey", csv.to_str().unwrap(), "--sheet", "Survey"]);
+    assert_error_names(&r, &["option --sheet", "spreadsheet survey file only"]);
+    let r = run_in(".", &["survey", csv.to_str().unwrap(), "--trajectory", "T"]);
+    assert_error_names(&r, &["option --trajectory", "WITSML survey file only"]);
+    let case = std::fs::read_to_string(example_dir("j-shape").join("case.toml")).unwrap();
+    let survey_line = case.lines().find(|l| l.starts_with("survey = ")).unwrap();
+    std::fs::write(
+        d.join("case.toml"),
+        case.replace(survey_line, "survey = \"s.xlsx\"\nsurvey_sheet = \"Survey\""),
+    )
+    .unwrap();
+    let c = run_ok(d, &["survey", "case.toml", "--csv"]);
+    assert_eq!(a.stdout, c.stdout);
+    std::fs::write(
+        d.join("case.toml"),
+        case.replace(
+            survey_line,
+            &format!("survey = \"{}\"\nsurvey_sheet = \"Survey\"", csv.display()),
+        ),
+    )
+    .unwrap();
+    let r = run_in(d, &["survey", "case.toml"]);
+    assert_error_names(&r, &["case.toml: key `well.survey_sheet`", "not a spreadsheet"]);
 }

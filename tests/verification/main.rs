@@ -25,5 +25,6 @@ mod predict;
 mod sliding;
 mod softstring;
 mod solver;
+mod spreadsheet;
 mod tracking;
 mod witsml;

@@ -1,6 +1,7 @@
 //! Survey file reader: measured depth, inclination and azimuth columns found by name in a
-//! delimited (CSV) file or a whitespace-separated text report, converted to SI and validated
-//! into a [`Survey`].
+//! delimited (CSV) file, a whitespace-separated text report or a spreadsheet (module `sheet`,
+//! the CSV rules on one sheet's cells), converted to SI and validated into a [`Survey`]; a
+//! WITSML trajectory is read by [`crate::io::witsml::trajectory`].
 //!
 //! The contract (docs/guide.md, "Survey file rules"):
 //! - a UTF-8 BOM is stripped, CRLF is accepted, a file that is not UTF-8 is read as Latin-1;
@@ -23,6 +24,7 @@
 mod csv;
 mod header;
 mod north;
+mod sheet;
 mod text_report;
 
 pub use north::{convert_reference, parse_reference};
@@ -86,8 +88,9 @@ pub fn survey_format(path: &Path) -> SurveyFormat {
 }
 
 /// Read and validate the survey file at `path`: a WITSML 1.4.1.1 trajectory (extension `.xml`,
-/// or contents starting with `<`; [`crate::io::witsml::trajectory`]), or a CSV or text report
-/// (see the module documentation).
+/// or contents starting with `<`; [`crate::io::witsml::trajectory`]), a spreadsheet (`.xlsx`,
+/// `.xlsm`, `.xlsb`, `.xls`, `.ods`: one sheet read with the CSV rules), or a CSV or text
+/// report (see the module documentation).
 pub fn read_survey(path: &Path, units: &SurveyUnits) -> InputResult<SurveyFile> {
     let ext = path
         .extension()
@@ -97,6 +100,9 @@ pub fn read_survey(path: &Path, units: &SurveyUnits) -> InputResult<SurveyFile> 
     if ext == "xml" {
         let text = crate::io::witsml::read_text(path)?;
         return read_trajectory(&text, path, units);
+    }
+    if survey_format(path) == SurveyFormat::Spreadsheet {
+        return sheet::read_sheet(path, units);
     }
     let bytes = std::fs::read(path).map_err(|e| InputError::file(path, format!("cannot read the survey file: {e}")))?;
     parse_survey(&bytes, path, units)
