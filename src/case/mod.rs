@@ -40,6 +40,8 @@ pub struct Case {
     pub operation: Operation,
     /// The string (empty when only a survey was given).
     pub string: DrillString,
+    /// The WITSML tubular file the string was read from (`string_from`), if any.
+    pub string_from: Option<PathBuf>,
     /// Bit-rock law.
     pub bit_rock: BitRock,
     /// Solver settings.
@@ -53,10 +55,12 @@ pub struct Case {
 pub const ABOVE_SURVEY_NOTE_M: f64 = 1.0;
 
 impl Case {
-    /// Every file the case was read from: the case file, its survey and its caliper.
+    /// Every file the case was read from: the case file, its survey, its caliper and the
+    /// WITSML tubular of its string.
     pub fn input_files(&self) -> Vec<PathBuf> {
         let mut files = vec![self.path.clone(), self.well.survey_path.clone()];
         files.extend(self.well.caliper_path.clone());
+        files.extend(self.string_from.clone());
         files
     }
 

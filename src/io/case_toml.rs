@@ -10,6 +10,7 @@ use super::string_toml::read_string;
 use super::survey::{convert_reference, parse_reference, read_survey, survey_format, SurveyFormat, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
+use super::witsml::tubular::parse_tubular;
 use crate::case::SurveyFile;
 use crate::case::*;
 use crate::error::{InputError, InputResult};
@@ -110,10 +111,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         .unwrap_or_else(|| Section::new(path, "operation", &empty));
     let operation = read_operation(&op_sec, &wellpath, &hole, overrides)?;
 
-    let string = match top.tables("string")? {
-        Some(secs) => read_string(&secs, &top, &operation, &hole, &mud)?,
-        None => DrillString { components: vec![] },
-    };
+    let (string, string_from, string_notes) = read_case_string(&top, &dir, &operation, &hole, &mud)?;
 
     let sol_sec = top
         .table("solver")?
@@ -144,6 +142,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         mud,
         operation,
         string,
+        string_from,
         bit_rock,
         solver,
         tracking,
@@ -151,7 +150,59 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
     if let Some(note) = case.string_above_survey_note() {
         tracing::warn!("{}: {note}", path.display());
     }
+    for note in string_notes {
+        tracing::warn!("{note}");
+    }
     Ok(case)
+}
+
+/// The string of the case: its `[[string]]` tables, or the WITSML tubular `string_from` names
+/// (with that file's path and the notes of its reading, to show once the case is read), or none.
+fn read_case_string(
+    top: &Section,
+    dir: &Path,
+    operation: &Operation,
+    hole: &HoleSize,
+    mud: &Mud,
+) -> InputResult<(DrillString, Option<PathBuf>, Vec<String>)> {
+    let from = top.string("string_from")?;
+    let chosen = top.string("string_from_tubular")?;
+    let other_as_tube = top.boolean("string_other_as_tube")?.unwrap_or(false);
+    match (top.tables("string")?, from) {
+        (Some(_), Some(_)) => Err(top.error(
+            "string_from",
+            "the case has both `[[string]]` tables and `string_from`: give one of them",
+        )),
+        (Some(secs), None) => Ok((read_string(&secs, top, operation, hole, mud)?, None, vec![])),
+        (None, Some(rel)) => {
+            let xml = dir.join(&rel);
+            if !xml.is_file() {
+                return Err(top.error(
+                    "string_from",
+                    format!("WITSML tubular file `{}` not found", xml.display()),
+                ));
+            }
+            let text = crate::io::witsml::read_text(&xml)?;
+            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube)?;
+            let secs: Vec<Section> = tub
+                .components
+                .iter()
+                .map(|c| Section::new(&xml, format!("tubularComponent[{}]", c.uid), &c.table))
+                .collect();
+            let string = read_string(&secs, top, operation, hole, mud)?;
+            let notes = tub.notes.iter().map(|n| format!("{}: {n}", xml.display())).collect();
+            Ok((string, Some(xml), notes))
+        }
+        (None, None) if chosen.is_some() || other_as_tube => Err(top.error(
+            if chosen.is_some() {
+                "string_from_tubular"
+            } else {
+                "string_other_as_tube"
+            },
+            "applies only with `string_from`",
+        )),
+        (None, None) => Ok((DrillString { components: vec![] }, None, vec![])),
+    }
 }
 
 /// 1-based line of byte `offset` of `bytes`; the end of a file that ends with a line end is on
@@ -396,6 +447,9 @@ const TOP_KEYS: &[&str] = &[
     "mud",
     "operation",
     "string",
+    "string_from",
+    "string_from_tubular",
+    "string_other_as_tube",
     "bit_rock",
     "solver",
     "tracking",

@@ -15,6 +15,7 @@
 
 pub mod example;
 pub mod trajectory;
+pub mod tubular;
 
 use std::io::Read;
 use std::path::Path;
