@@ -55,11 +55,12 @@ pub struct Case {
 pub const ABOVE_SURVEY_NOTE_M: f64 = 1.0;
 
 impl Case {
-    /// Every file the case was read from: the case file, its survey, its caliper and the
-    /// WITSML tubular of its string.
+    /// Every file the case was read from: the case file, its survey, its caliper, and the
+    /// WITSML wbGeometry of its hole and tubular of its string.
     pub fn input_files(&self) -> Vec<PathBuf> {
         let mut files = vec![self.path.clone(), self.well.survey_path.clone()];
         files.extend(self.well.caliper_path.clone());
+        files.extend(self.well.hole_from.clone());
         files.extend(self.string_from.clone());
         files
     }

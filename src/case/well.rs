@@ -12,6 +12,8 @@ pub struct Well {
     pub survey_path: PathBuf,
     /// Caliper file path, when the case names one.
     pub caliper_path: Option<PathBuf>,
+    /// The WITSML wbGeometry file the hole sections were read from (`hole_from`), if any.
+    pub hole_from: Option<PathBuf>,
     /// Hole axis.
     pub path: WellPath,
     /// Hole diameter by MD.

@@ -10,6 +10,7 @@ use super::string_toml::read_string;
 use super::survey::{convert_reference, parse_reference, read_survey, survey_format, SurveyFormat, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
+use super::witsml::geometry::{hole_sections, parse_geometry};
 use super::witsml::tubular::parse_tubular;
 use crate::case::SurveyFile;
 use crate::case::*;
@@ -77,7 +78,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
     let well_sec = top
         .table("well")?
         .ok_or_else(|| top.error("well", "missing the [well] table (survey and hole sizes)"))?;
-    let (survey_file, survey_path, origin, hole) = read_well(&well_sec, &dir, overrides)?;
+    let (survey_file, survey_path, origin, hole, hole_from) = read_well(&well_sec, &dir, overrides)?;
     let caliper_path = well_sec.string("caliper")?.map(|rel| dir.join(rel));
     let wellpath = WellPath::new(&survey_file.survey, origin).map_err(|p| {
         let line = survey_file.station_lines.get(p.index).copied().unwrap_or(0);
@@ -136,6 +137,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
             survey: survey_file,
             survey_path,
             caliper_path,
+            hole_from,
             path: wellpath,
             hole,
         },
@@ -190,7 +192,18 @@ fn read_case_string(
                 .map(|c| Section::new(&xml, format!("tubularComponent[{}]", c.uid), &c.table))
                 .collect();
             let string = read_string(&secs, top, operation, hole, mud)?;
-            let notes = tub.notes.iter().map(|n| format!("{}: {n}", xml.display())).collect();
+            let mut notes: Vec<String> = tub.notes.iter().map(|n| format!("{}: {n}", xml.display())).collect();
+            if let (Some(len), Some(c), Some(t)) = (tub.top_len_m, string.components.last(), tub.components.last()) {
+                if (len - c.length_m).abs() > 0.01 {
+                    notes.push(format!(
+                        "{}: the topmost component `{}` ({}) fills the string to the surface: {:.2} m long, not its `len` {len} m",
+                        xml.display(),
+                        t.uid,
+                        t.kind,
+                        c.length_m
+                    ));
+                }
+            }
             Ok((string, Some(xml), notes))
         }
         (None, None) if chosen.is_some() || other_as_tube => Err(top.error(
@@ -213,7 +226,78 @@ fn line_of(bytes: &[u8], offset: usize) -> usize {
     (newlines(&bytes[..offset.min(bytes.len())]) + 1).min(lines.max(1))
 }
 
-fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
+/// What `[well]` gives: the survey as read and its path, the origin, the hole and the WITSML
+/// file it was read from (`hole_from`), if any.
+type WellParts = (SurveyFile, PathBuf, Vec3, HoleSize, Option<PathBuf>);
+
+/// The hole sections of the `hole` list of `[well]` (`s`).
+fn read_hole_list(s: &Section) -> InputResult<Vec<HoleSection>> {
+    let secs = s.tables("hole")?.ok_or_else(|| {
+        s.error(
+            "hole",
+            "missing the hole sections, e.g. hole = [{ to_md = \"3000 m\", diameter = \"8.5 in\" }] (or hole_from = \"geometry.xml\", a WITSML wbGeometry)",
+        )
+    })?;
+    if secs.is_empty() {
+        return Err(s.error("hole", "needs at least one section"));
+    }
+    let mut sections = Vec::new();
+    for h in &secs {
+        h.check_known(HOLE_KEYS)?;
+        let to_md = h.req_quantity("to_md", D::Length, "m")?;
+        let diameter = h
+            .positive("diameter", D::Length, "in", false)?
+            .ok_or_else(|| h.error("diameter", "missing hole diameter"))?;
+        if diameter > 2.0 {
+            return Err(h.error(
+                "diameter",
+                format!("hole diameter {diameter:.3} m is not plausible (bare numbers are inches)"),
+            ));
+        }
+        let friction = h.number("friction")?;
+        if let Some(f) = friction {
+            if !(0.0..=1.5).contains(&f) {
+                return Err(h.error("friction", format!("friction coefficient {f} outside [0, 1.5]")));
+            }
+        }
+        if let Some(prev) = sections.last() {
+            let prev: &HoleSection = prev;
+            if to_md <= prev.to_md_m {
+                return Err(h.error("to_md", "hole sections must be listed top down with increasing to_md"));
+            }
+        }
+        sections.push(HoleSection {
+            to_md_m: to_md,
+            diameter_m: diameter,
+            friction,
+        });
+    }
+    Ok(sections)
+}
+
+/// The hole sections of the WITSML wbGeometry `rel` (relative to `dir`) that `[well]
+/// hole_from` (`s`) names, with the file's path; `cased_friction` applies to cased sections.
+fn read_hole_from(s: &Section, dir: &Path, rel: &str) -> InputResult<(Vec<HoleSection>, PathBuf)> {
+    let file = dir.join(rel);
+    if !file.is_file() {
+        return Err(s.error(
+            "hole_from",
+            format!("WITSML wbGeometry file `{}` not found", file.display()),
+        ));
+    }
+    let cased = s.number("cased_friction")?;
+    if let Some(f) = cased {
+        if !(0.0..=1.5).contains(&f) {
+            return Err(s.error("cased_friction", format!("friction coefficient {f} outside [0, 1.5]")));
+        }
+    }
+    let text = crate::io::witsml::read_text(&file)?;
+    let chosen = s.string("hole_from_geometry")?;
+    let sections = parse_geometry(&text, &file, chosen.as_deref())?;
+    Ok((hole_sections(&sections, cased), file))
+}
+
+fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<WellParts> {
     s.check_known(WELL_KEYS)?;
     let rel = s
         .string("survey")?
@@ -264,51 +348,31 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
         .or(survey.origin)
         .map(|o| Vec3::new(o[0], o[1], o[2]))
         .unwrap_or_else(Vec3::zeros);
-    let secs = s.tables("hole")?.ok_or_else(|| {
-        s.error(
-            "hole",
-            "missing the hole sections, e.g. hole = [{ to_md = \"3000 m\", diameter = \"8.5 in\" }]",
-        )
-    })?;
-    if secs.is_empty() {
-        return Err(s.error("hole", "needs at least one section"));
-    }
-    let mut sections = Vec::new();
-    for h in &secs {
-        h.check_known(HOLE_KEYS)?;
-        let to_md = h.req_quantity("to_md", D::Length, "m")?;
-        let diameter = h
-            .positive("diameter", D::Length, "in", false)?
-            .ok_or_else(|| h.error("diameter", "missing hole diameter"))?;
-        if diameter > 2.0 {
-            return Err(h.error(
-                "diameter",
-                format!("hole diameter {diameter:.3} m is not plausible (bare numbers are inches)"),
+    let (sections, hole_from) = match (s.string("hole_from")?, s.has("hole")) {
+        (Some(_), true) => {
+            return Err(s.error(
+                "hole_from",
+                "the case has both `hole` and `hole_from`: give one of them",
             ));
         }
-        let friction = h.number("friction")?;
-        if let Some(f) = friction {
-            if !(0.0..=1.5).contains(&f) {
-                return Err(h.error("friction", format!("friction coefficient {f} outside [0, 1.5]")));
-            }
+        (Some(rel), false) => {
+            let (sections, file) = read_hole_from(s, dir, &rel)?;
+            (sections, Some(file))
         }
-        if let Some(prev) = sections.last() {
-            let prev: &HoleSection = prev;
-            if to_md <= prev.to_md_m {
-                return Err(h.error("to_md", "hole sections must be listed top down with increasing to_md"));
+        (None, _) => {
+            for key in ["hole_from_geometry", "cased_friction"] {
+                if s.has(key) {
+                    return Err(s.error(key, "applies only with `hole_from`"));
+                }
             }
+            (read_hole_list(s)?, None)
         }
-        sections.push(HoleSection {
-            to_md_m: to_md,
-            diameter_m: diameter,
-            friction,
-        });
-    }
+    };
     let caliper = match s.string("caliper")? {
         Some(rel) => read_caliper(&dir.join(rel), s)?,
         None => vec![],
     };
-    Ok((survey, survey_path, origin, HoleSize::new(sections, caliper)))
+    Ok((survey, survey_path, origin, HoleSize::new(sections, caliper), hole_from))
 }
 
 fn read_caliper(path: &Path, s: &Section) -> InputResult<Vec<(f64, f64)>> {
@@ -463,6 +527,9 @@ const WELL_KEYS: &[&str] = &[
     "azimuth_reference",
     "origin",
     "hole",
+    "hole_from",
+    "hole_from_geometry",
+    "cased_friction",
     "caliper",
 ];
 /// Keys accepted in the hole table (checked before any is read, so a typo is named).

@@ -172,7 +172,11 @@ fn a_tubular_string_solves_like_the_case_written_by_hand() {
     let r = run_in(xml.path(), &["solve", "case.toml", "--report", "bha.xml"]);
     assert_eq!(r.code(), Some(2), "{}", r.describe());
     let last = r.stderr.lines().last().unwrap();
-    assert!(last.starts_with("error: option `--report`: bha.xml is an input of this run"), "{}", r.stderr);
+    assert!(
+        last.starts_with("error: option `--report`: bha.xml is an input of this run"),
+        "{}",
+        r.stderr
+    );
     assert_eq!(std::fs::read(xml.path().join("bha.xml")).unwrap(), before);
 }
 

@@ -355,3 +355,74 @@ fn a_file_over_the_size_limit_is_refused_before_it_is_read() {
         "{e}"
     );
 }
+
+/// A case in a temporary directory reading the F-9 A trajectory, wbGeometry and tubular of the
+/// Volve data set (`extra` added to `[well]`).
+fn f9a_case(extra: &str) -> Option<(tempfile::TempDir, PathBuf)> {
+    let traj = volve("volve-witsml/15_9-F-9A_2016_trajectory_bhi.xml")?;
+    let geo = volve("volve-witsml/15_9-F-9A_2016_wbGeometry.xml")?;
+    let tub = volve("volve-witsml/15_9-F-9A_2016_tubular_dp.xml")?;
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case.toml");
+    std::fs::write(
+        &case,
+        format!(
+            "string_from = \"{}\"\n[well]\nsurvey = \"{}\"\nhole_from = \"{}\"\n{extra}\n[operation]\nmode = \"trip_out\"\nbit_md = \"886 m\"\n",
+            tub.display(),
+            traj.display(),
+            geo.display()
+        ),
+    )
+    .unwrap();
+    Some((dir, case))
+}
+
+#[test]
+fn f9a_wbgeometry_is_the_hole_and_its_tubular_the_string() {
+    // Reference: the file's five sections (listed out of order), by hand: riser 0-20 and
+    // 20-139 m (ID 0.31242 m), casing 139-397 m (0.31496 m) and 397-941 m (0.216789 m), open
+    // hole 941-1206 m (0.168275 m); cased sections with the case's cased_friction.
+    let Some((_dir, case)) = f9a_case("cased_friction = 0.2") else {
+        return;
+    };
+    let c = drillpath::io::case_toml::load_case(&case, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
+    let got: Vec<(f64, f64, Option<f64>)> = c.well.hole.sections().iter().map(|s| (s.to_md_m, s.diameter_m, s.friction)).collect();
+    let expected = [
+        (20.0, 0.312420000000456, Some(0.2)),
+        (139.0, 0.312420000000456, Some(0.2)),
+        (397.0, 0.31496000000046, Some(0.2)),
+        (941.0, 0.216789000000317, Some(0.2)),
+        (1206.0, 0.168275000000246, None),
+    ];
+    assert_eq!(got, expected);
+    assert_eq!(c.string.components.len(), 1);
+    assert!((c.string.components[0].length_m - 886.0).abs() < 1e-9);
+    assert!((c.string.components[0].body_od_m - 0.1397).abs() < 1e-9);
+    assert!(c.input_files().iter().any(|p| p.ends_with("15_9-F-9A_2016_wbGeometry.xml")));
+    assert!(c.input_files().iter().any(|p| p.ends_with("15_9-F-9A_2016_tubular_dp.xml")));
+    let Some((_dir, case)) = f9a_case("hole = [{ to_md = 1206, diameter = 8.5 }]") else {
+        return;
+    };
+    let e = drillpath::io::case_toml::load_case(&case, &Default::default()).unwrap_err().to_string();
+    assert!(e.contains("key `well.hole_from`") && e.contains("give one of them"), "{e}");
+}
+
+#[test]
+fn wbgeometry_gaps_and_missing_diameters_are_refused() {
+    let sec = |uid: &str, kind: &str, top: f64, bottom: f64, id: &str| {
+        format!("<wbGeometrySection uid=\"{uid}\"><typeHoleCasing>{kind}</typeHoleCasing><mdTop uom=\"m\">{top}</mdTop><mdBottom uom=\"m\">{bottom}</mdBottom>{id}</wbGeometrySection>\n")
+    };
+    let doc = |body: String| {
+        format!("<?xml version=\"1.0\"?>\n<wbGeometrys xmlns=\"http://www.witsml.org/schemas/1series\" version=\"1.4.1.1\">\n<wbGeometry uid=\"G\"><name>g</name>\n{body}</wbGeometry>\n</wbGeometrys>\n")
+    };
+    let parse = |t: &str| drillpath::io::witsml::geometry::parse_geometry(t, Path::new("g.xml"), None).map_err(|e| e.to_string());
+    let id = |v: f64| format!("<idSection uom=\"in\">{v}</idSection>");
+    let ok = doc([sec("b", "open hole", 500.0, 900.0, &id(8.5)), sec("a", "casing", 0.0, 500.0, &id(8.835))].concat());
+    let s = parse(&ok).unwrap();
+    assert_eq!((s[0].uid.as_str(), s[1].uid.as_str()), ("a", "b"));
+    assert!((s[1].id_m - 8.5 * 0.0254).abs() < 1e-15);
+    let e = parse(&doc([sec("a", "casing", 0.0, 500.0, &id(8.835)), sec("b", "open hole", 520.0, 900.0, &id(8.5))].concat())).unwrap_err();
+    assert!(e.contains("section `b` (open hole): a gap between it (mdTop 520 m) and section `a`"), "{e}");
+    let e = parse(&doc([sec("a", "casing", 0.0, 500.0, ""), sec("b", "open hole", 500.0, 900.0, &id(8.5))].concat())).unwrap_err();
+    assert!(e.contains("g.xml: line 4, section `a` (casing): has no `idSection` element"), "{e}");
+}

@@ -14,6 +14,7 @@
 //! The XML parser is `roxmltree`; no XML is parsed by hand.
 
 pub mod example;
+pub mod geometry;
 pub mod trajectory;
 pub mod tubular;
 

@@ -13,8 +13,8 @@
 //!   `lenBlade` (blade length) map to the component keys; the blades are centred on the
 //!   stabilizer in drillpath, so a `distBladeBot` is noted, not used;
 //! - a `bend` sub-element with a non-zero `angle` is refused: bends are not yet modelled;
-//! - the topmost component fills the string to the surface (its `len`, if any, is replaced and
-//!   a note gives both).
+//! - the topmost component fills the string to the surface (its `len`, if any, is replaced;
+//!   [`Tubular::top_len_m`] keeps it for a note when it differs).
 
 use std::path::Path;
 
@@ -47,6 +47,9 @@ pub struct Tubular {
     pub components: Vec<TubularComponent>,
     /// What was assumed or left out.
     pub notes: Vec<String>,
+    /// The `len` of the topmost component as the file gives it, m (the string fills to the
+    /// surface instead: see [`parse_tubular`]).
+    pub top_len_m: Option<f64>,
 }
 
 /// The drillpath component type of WITSML `typeTubularComp` `t` (case-insensitive), with the
@@ -129,18 +132,15 @@ pub fn parse_tubular(text: &str, path: &Path, wanted: Option<&str>, other_as_tub
         );
     }
     let mut components: Vec<TubularComponent> = comps.into_iter().map(|(_, c)| c).collect();
-    if let Some(top) = components.last_mut() {
-        if let Some(Value::String(len)) = top.table.remove("length") {
-            notes.push(format!(
-                "the topmost component `{}` ({}) fills the string to the surface: its `len` ({len}) is replaced by the length that reaches the bit depth",
-                top.uid, top.kind
-            ));
-        }
-    }
+    let top_len_m = components.last_mut().and_then(|top| match top.table.remove("length") {
+        Some(Value::String(len)) => len.trim_end_matches(" m").parse().ok(),
+        _ => None,
+    });
     Ok(Tubular {
         name,
         components,
         notes,
+        top_len_m,
     })
 }
 
