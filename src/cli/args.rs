@@ -45,10 +45,40 @@ pub enum Command {
     ///
     /// Example: drillpath loads wells/j-shape/case.toml --every "30 m" --out results/
     Loads(LoadsArgs),
+    /// Write an editable, commented case from WITSML 1.4.1.1 trajectory, wbGeometry and tubular files.
+    ///
+    /// Example: drillpath import traj.xml geometry.xml bha.xml --out case.toml
+    Import(ImportArgs),
     /// Write a commented starter case (well, BHA, mud, operation) and its survey CSV to edit.
     ///
     /// Example: drillpath init mywell/case.toml && drillpath solve mywell/case.toml
     Init(InitArgs),
+}
+
+/// Arguments of `drillpath import`.
+#[derive(Debug, Args)]
+pub struct ImportArgs {
+    /// WITSML 1.4.1.1 files: at most one each of trajectory, wbGeometry and tubular.
+    #[arg(required = true, num_args = 1..)]
+    pub files: Vec<PathBuf>,
+    /// The case file to write.
+    #[arg(long, value_name = "FILE")]
+    pub out: PathBuf,
+    /// Overwrite an existing case file.
+    #[arg(long)]
+    pub force: bool,
+    /// The trajectory to use, by name or uid, when the file holds several [default: the only one].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub trajectory: Option<String>,
+    /// The wbGeometry to use, by name or uid [default: the only one].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub geometry: Option<String>,
+    /// The tubular to use, by name or uid [default: the only one].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub tubular: Option<String>,
+    /// Read tubular components of no mechanical meaning to drillpath as plain tubes (`sub`).
+    #[arg(long)]
+    pub other_as_tube: bool,
 }
 
 /// Arguments of `drillpath init`.

@@ -185,7 +185,7 @@ fn read_case_string(
                 ));
             }
             let text = crate::io::witsml::read_text(&xml)?;
-            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube)?;
+            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube, false)?;
             let secs: Vec<Section> = tub
                 .components
                 .iter()

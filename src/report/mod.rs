@@ -1,5 +1,6 @@
 //! Outputs: CSV and JSON files with the interface's names, written atomically.
 
+pub mod case_writer;
 pub mod display_units;
 pub mod fitted_case;
 pub mod html;

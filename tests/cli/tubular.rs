@@ -288,3 +288,43 @@ fn an_unknown_component_may_be_read_as_a_tube_on_request() {
         r.stderr
     );
 }
+
+#[test]
+fn import_writes_an_editable_case_that_solves_like_string_from() {
+    let d = tempfile::tempdir().unwrap();
+    let bent = comp("m1", "mud motor", 8, "<id uom=\"in\">3</id><od uom=\"in\">6.75</od><len uom=\"m\">8</len><bend uid=\"b\"><angle uom=\"dega\">1.5</angle><distBendBot uom=\"m\">2</distBendBot></bend>");
+    std::fs::write(d.path().join("bent.xml"), tubular(&bent)).unwrap();
+    std::fs::write(d.path().join("bha.xml"), tubular("")).unwrap();
+    // the bent motor: written as the motor's bend keys, 2 m above the motor's bottom
+    let r = run_ok(d.path(), &["import", "bent.xml", "--out", "bent.toml"]);
+    assert!(r.stdout.contains("wrote bent.toml"), "{}", r.stdout);
+    let text = std::fs::read_to_string(d.path().join("bent.toml")).unwrap();
+    assert!(text.contains("[[string]]   # component `m1` (mud motor)\ntype = \"motor\""), "{text}");
+    assert!(text.contains("bend_angle = \"1.5 deg\""), "{text}");
+    // below the motor: bit 0.3, stabs 1.6 + 1.6, collars 27.6 + 27.6, HWDP 140, DP (its len 2000 m)
+    assert!(text.contains("bend_to_bit = \"2200.7 m\""), "{text}");
+    // the straight string: the imported tables in the j-shape case solve like string_from
+    let r = run_ok(d.path(), &["import", "bha.xml", "--out", "case.toml"]);
+    assert!(r.success());
+    let imported = std::fs::read_to_string(d.path().join("case.toml")).unwrap();
+    assert!(imported.contains("# The string from the bit upward") && imported.contains("# no length: fills the string to the surface (the file's len is 2000 m)"), "{imported}");
+    let tables = &imported[imported.find("[[string]]").unwrap()..];
+    let hand = tempfile::tempdir().unwrap();
+    write_case(hand.path(), BY_HAND);
+    let imp = tempfile::tempdir().unwrap();
+    write_case(imp.path(), tables);
+    let a = run_ok(hand.path(), &["solve", "case.toml", "--json"]);
+    let b = run_ok(imp.path(), &["solve", "case.toml", "--json"]);
+    for ((k, x), (_, y)) in numbers(&a.stdout).iter().zip(numbers(&b.stdout)) {
+        assert!((x - y).abs() <= 1e-3 * x.abs().max(1e-9), "{k}: {x} against {y}");
+    }
+    // refusals: an existing case, an input as the output, a file of another object
+    let r = run_in(d.path(), &["import", "bha.xml", "--out", "case.toml"]);
+    assert_error_names(&r, &["option `--out`: case.toml exists", "--force"]);
+    let r = run_in(d.path(), &["import", "bha.xml", "--out", "bha.xml", "--force"]);
+    assert_error_names(&r, &["is an input of this run"]);
+    std::fs::write(d.path().join("wells.xml"), "<wells xmlns=\"http://www.witsml.org/schemas/1series\"/>").unwrap();
+    let r = run_in(d.path(), &["import", "wells.xml", "--out", "w.toml"]);
+    assert_error_names(&r, &["wells.xml: root element `wells`"]);
+    assert!(!d.path().join("w.toml").exists());
+}

@@ -386,7 +386,13 @@ fn f9a_wbgeometry_is_the_hole_and_its_tubular_the_string() {
         return;
     };
     let c = drillpath::io::case_toml::load_case(&case, &Default::default()).unwrap_or_else(|e| panic!("{e}"));
-    let got: Vec<(f64, f64, Option<f64>)> = c.well.hole.sections().iter().map(|s| (s.to_md_m, s.diameter_m, s.friction)).collect();
+    let got: Vec<(f64, f64, Option<f64>)> = c
+        .well
+        .hole
+        .sections()
+        .iter()
+        .map(|s| (s.to_md_m, s.diameter_m, s.friction))
+        .collect();
     let expected = [
         (20.0, 0.312420000000456, Some(0.2)),
         (139.0, 0.312420000000456, Some(0.2)),
@@ -398,13 +404,24 @@ fn f9a_wbgeometry_is_the_hole_and_its_tubular_the_string() {
     assert_eq!(c.string.components.len(), 1);
     assert!((c.string.components[0].length_m - 886.0).abs() < 1e-9);
     assert!((c.string.components[0].body_od_m - 0.1397).abs() < 1e-9);
-    assert!(c.input_files().iter().any(|p| p.ends_with("15_9-F-9A_2016_wbGeometry.xml")));
-    assert!(c.input_files().iter().any(|p| p.ends_with("15_9-F-9A_2016_tubular_dp.xml")));
+    assert!(c
+        .input_files()
+        .iter()
+        .any(|p| p.ends_with("15_9-F-9A_2016_wbGeometry.xml")));
+    assert!(c
+        .input_files()
+        .iter()
+        .any(|p| p.ends_with("15_9-F-9A_2016_tubular_dp.xml")));
     let Some((_dir, case)) = f9a_case("hole = [{ to_md = 1206, diameter = 8.5 }]") else {
         return;
     };
-    let e = drillpath::io::case_toml::load_case(&case, &Default::default()).unwrap_err().to_string();
-    assert!(e.contains("key `well.hole_from`") && e.contains("give one of them"), "{e}");
+    let e = drillpath::io::case_toml::load_case(&case, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("key `well.hole_from`") && e.contains("give one of them"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -415,14 +432,36 @@ fn wbgeometry_gaps_and_missing_diameters_are_refused() {
     let doc = |body: String| {
         format!("<?xml version=\"1.0\"?>\n<wbGeometrys xmlns=\"http://www.witsml.org/schemas/1series\" version=\"1.4.1.1\">\n<wbGeometry uid=\"G\"><name>g</name>\n{body}</wbGeometry>\n</wbGeometrys>\n")
     };
-    let parse = |t: &str| drillpath::io::witsml::geometry::parse_geometry(t, Path::new("g.xml"), None).map_err(|e| e.to_string());
+    let parse = |t: &str| {
+        drillpath::io::witsml::geometry::parse_geometry(t, Path::new("g.xml"), None).map_err(|e| e.to_string())
+    };
     let id = |v: f64| format!("<idSection uom=\"in\">{v}</idSection>");
-    let ok = doc([sec("b", "open hole", 500.0, 900.0, &id(8.5)), sec("a", "casing", 0.0, 500.0, &id(8.835))].concat());
+    let ok = doc([
+        sec("b", "open hole", 500.0, 900.0, &id(8.5)),
+        sec("a", "casing", 0.0, 500.0, &id(8.835)),
+    ]
+    .concat());
     let s = parse(&ok).unwrap();
     assert_eq!((s[0].uid.as_str(), s[1].uid.as_str()), ("a", "b"));
     assert!((s[1].id_m - 8.5 * 0.0254).abs() < 1e-15);
-    let e = parse(&doc([sec("a", "casing", 0.0, 500.0, &id(8.835)), sec("b", "open hole", 520.0, 900.0, &id(8.5))].concat())).unwrap_err();
-    assert!(e.contains("section `b` (open hole): a gap between it (mdTop 520 m) and section `a`"), "{e}");
-    let e = parse(&doc([sec("a", "casing", 0.0, 500.0, ""), sec("b", "open hole", 500.0, 900.0, &id(8.5))].concat())).unwrap_err();
-    assert!(e.contains("g.xml: line 4, section `a` (casing): has no `idSection` element"), "{e}");
+    let e = parse(&doc([
+        sec("a", "casing", 0.0, 500.0, &id(8.835)),
+        sec("b", "open hole", 520.0, 900.0, &id(8.5)),
+    ]
+    .concat()))
+    .unwrap_err();
+    assert!(
+        e.contains("section `b` (open hole): a gap between it (mdTop 520 m) and section `a`"),
+        "{e}"
+    );
+    let e = parse(&doc([
+        sec("a", "casing", 0.0, 500.0, ""),
+        sec("b", "open hole", 500.0, 900.0, &id(8.5)),
+    ]
+    .concat()))
+    .unwrap_err();
+    assert!(
+        e.contains("g.xml: line 4, section `a` (casing): has no `idSection` element"),
+        "{e}"
+    );
 }

@@ -295,6 +295,11 @@ pub fn choose<'a, 'input>(
     }
 }
 
+/// The name of the root element of the WITSML text `text` (file `path`), e.g. `trajectorys`.
+pub fn root_name(text: &str, path: &Path) -> InputResult<String> {
+    Ok(parse(text, path)?.root_element().tag_name().name().to_string())
+}
+
 /// True if `bytes` look like XML: after an optional BOM and white space, a `<`.
 pub fn looks_like_xml(bytes: &[u8]) -> bool {
     let b = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);

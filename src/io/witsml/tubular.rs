@@ -93,7 +93,15 @@ fn si(value: f64, unit: &str) -> Value {
 
 /// Parse the WITSML text `text` (file `path`) and read its tubular named or with uid `wanted`
 /// (the only one when `None`); `other_as_tube` reads unknown component types as plain tubes.
-pub fn parse_tubular(text: &str, path: &Path, wanted: Option<&str>, other_as_tube: bool) -> InputResult<Tubular> {
+/// A non-zero motor bend is refused unless `keep_bends` (for `drillpath import`, which writes
+/// it as the motor keys `bend_angle` and `bend_to_bit`, the distance from the bit face).
+pub fn parse_tubular(
+    text: &str,
+    path: &Path,
+    wanted: Option<&str>,
+    other_as_tube: bool,
+    keep_bends: bool,
+) -> InputResult<Tubular> {
     let doc = parse(text, path)?;
     let lines = LineIndex::new(text);
     let root = root(&doc, "tubulars", path)?;
@@ -105,7 +113,7 @@ pub fn parse_tubular(text: &str, path: &Path, wanted: Option<&str>, other_as_tub
         .children()
         .filter(|c| c.is_element() && c.tag_name().name() == "tubularComponent")
     {
-        let (seq, comp) = component(c, path, &lines, other_as_tube, &mut notes)?;
+        let (seq, comp) = component(c, path, &lines, other_as_tube, keep_bends, &mut notes)?;
         if let Some((_, prev)) = comps.iter().find(|(s, _)| *s == seq) {
             return Err(InputError::element(
                 path,
@@ -132,6 +140,20 @@ pub fn parse_tubular(text: &str, path: &Path, wanted: Option<&str>, other_as_tub
         );
     }
     let mut components: Vec<TubularComponent> = comps.into_iter().map(|(_, c)| c).collect();
+    // a bend's distance from the component's bottom, made a distance from the bit face
+    let mut below = 0.0;
+    for c in &mut components {
+        if let Some(Value::String(d)) = c.table.remove("bend_from_bottom") {
+            let d: f64 = d.trim_end_matches(" m").parse().unwrap_or(0.0);
+            c.table.insert("bend_to_bit".into(), si(below + d, "m"));
+        }
+        below += c
+            .table
+            .get("length")
+            .and_then(Value::as_str)
+            .and_then(|l| l.trim_end_matches(" m").parse::<f64>().ok())
+            .unwrap_or(0.0);
+    }
     let top_len_m = components.last_mut().and_then(|top| match top.table.remove("length") {
         Some(Value::String(len)) => len.trim_end_matches(" m").parse().ok(),
         _ => None,
@@ -150,6 +172,7 @@ fn component(
     path: &Path,
     lines: &LineIndex,
     other_as_tube: bool,
+    keep_bends: bool,
     notes: &mut Vec<String>,
 ) -> InputResult<(i64, TubularComponent)> {
     let line = lines.line(c);
@@ -226,7 +249,10 @@ fn component(
         }
     }
     stabilizer(c, dp_kind, &mut t, &what, path, lines, notes)?;
-    bend(c, &what, path, lines)?;
+    if let Some((angle, from_bottom)) = bend(c, &what, path, lines, keep_bends)? {
+        t.insert("bend_angle".into(), si(angle, "rad"));
+        t.insert("bend_from_bottom".into(), si(from_bottom, "m"));
+    }
     Ok((
         seq,
         TubularComponent {
@@ -287,23 +313,36 @@ fn stabilizer(
     Ok(())
 }
 
-/// Refuse a `bend` with a non-zero `angle`: bends are not yet modelled.
-fn bend(c: Node, what: &str, path: &Path, lines: &LineIndex) -> InputResult<()> {
+/// A `bend` with a non-zero `angle`: refused (bends are not yet modelled by the solver), or
+/// with `keep` its angle (rad) and distance from the component's bottom (`distBendBot`, m).
+fn bend(c: Node, what: &str, path: &Path, lines: &LineIndex, keep: bool) -> InputResult<Option<(f64, f64)>> {
     let Some(b) = child(c, "bend") else {
-        return Ok(());
+        return Ok(None);
     };
-    if let Some(a) = measure(b, "angle", Dimension::Angle, what, path, lines)? {
-        if a.si != 0.0 {
-            return Err(InputError::element(
-                path,
-                a.line,
-                format!("element `bend` of {what}"),
-                format!(
-                    "a bend of {} deg: motor bends are not yet modelled by drillpath, and a bent motor read as straight would predict a wrong hole; model it straight on purpose by removing the bend",
-                    message_number(a.si.to_degrees())
-                ),
-            ));
-        }
+    let Some(a) = measure(b, "angle", Dimension::Angle, what, path, lines)? else {
+        return Ok(None);
+    };
+    if a.si == 0.0 {
+        return Ok(None);
     }
-    Ok(())
+    if !keep {
+        return Err(InputError::element(
+            path,
+            a.line,
+            format!("element `bend` of {what}"),
+            format!(
+                "a bend of {} deg: motor bends are not yet modelled by drillpath, and a bent motor read as straight would predict a wrong hole; model it straight on purpose by removing the bend",
+                message_number(a.si.to_degrees())
+            ),
+        ));
+    }
+    let d = measure(b, "distBendBot", Dimension::Length, what, path, lines)?.ok_or_else(|| {
+        InputError::element(
+            path,
+            lines.line(b),
+            format!("element `bend` of {what}"),
+            "has no `distBendBot`: the bend's distance from the component's bottom is needed",
+        )
+    })?;
+    Ok(Some((a.si, d.si)))
 }
