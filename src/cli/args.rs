@@ -62,7 +62,7 @@ pub struct ImportArgs {
     #[arg(required = true, num_args = 1..)]
     pub files: Vec<PathBuf>,
     /// The case file to write.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", default_value = "case.toml")]
     pub out: PathBuf,
     /// Overwrite an existing case file.
     #[arg(long)]
