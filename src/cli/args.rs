@@ -133,6 +133,10 @@ pub struct PredictArgs {
     /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Write the predicted path as a WITSML 1.4.1.1 trajectory (one per case; stations typed
+    /// as computed, not measured) [default: no file].
+    #[arg(long, value_name = "FILE.xml")]
+    pub witsml: Option<PathBuf>,
     /// --json, --report, --units.
     #[command(flatten)]
     pub view: ViewArgs,
@@ -182,6 +186,10 @@ pub struct BackanalyzeArgs {
     /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml, case_fitted.toml with --calibrate) [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Write the predicted interval ends as a WITSML 1.4.1.1 trajectory (tied in at the first
+    /// interval's start; stations typed as computed, not measured) [default: no file].
+    #[arg(long, value_name = "FILE.xml")]
+    pub witsml: Option<PathBuf>,
     /// --json, --report, --units.
     #[command(flatten)]
     pub view: ViewArgs,

@@ -17,6 +17,7 @@ pub mod solve_report;
 pub mod solve_text;
 pub mod survey_table;
 pub mod tracking_output;
+pub mod witsml_out;
 
 use std::path::Path;
 

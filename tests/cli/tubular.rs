@@ -299,7 +299,10 @@ fn import_writes_an_editable_case_that_solves_like_string_from() {
     let r = run_ok(d.path(), &["import", "bent.xml", "--out", "bent.toml"]);
     assert!(r.stdout.contains("wrote bent.toml"), "{}", r.stdout);
     let text = std::fs::read_to_string(d.path().join("bent.toml")).unwrap();
-    assert!(text.contains("[[string]]   # component `m1` (mud motor)\ntype = \"motor\""), "{text}");
+    assert!(
+        text.contains("[[string]]   # component `m1` (mud motor)\ntype = \"motor\""),
+        "{text}"
+    );
     assert!(text.contains("bend_angle = \"1.5 deg\""), "{text}");
     // below the motor: bit 0.3, stabs 1.6 + 1.6, collars 27.6 + 27.6, HWDP 140, DP (its len 2000 m)
     assert!(text.contains("bend_to_bit = \"2200.7 m\""), "{text}");
@@ -307,7 +310,11 @@ fn import_writes_an_editable_case_that_solves_like_string_from() {
     let r = run_ok(d.path(), &["import", "bha.xml", "--out", "case.toml"]);
     assert!(r.success());
     let imported = std::fs::read_to_string(d.path().join("case.toml")).unwrap();
-    assert!(imported.contains("# The string from the bit upward") && imported.contains("# no length: fills the string to the surface (the file's len is 2000 m)"), "{imported}");
+    assert!(
+        imported.contains("# The string from the bit upward")
+            && imported.contains("# no length: fills the string to the surface (the file's len is 2000 m)"),
+        "{imported}"
+    );
     let tables = &imported[imported.find("[[string]]").unwrap()..];
     let hand = tempfile::tempdir().unwrap();
     write_case(hand.path(), BY_HAND);
@@ -323,7 +330,11 @@ fn import_writes_an_editable_case_that_solves_like_string_from() {
     assert_error_names(&r, &["option `--out`: case.toml exists", "--force"]);
     let r = run_in(d.path(), &["import", "bha.xml", "--out", "bha.xml", "--force"]);
     assert_error_names(&r, &["is an input of this run"]);
-    std::fs::write(d.path().join("wells.xml"), "<wells xmlns=\"http://www.witsml.org/schemas/1series\"/>").unwrap();
+    std::fs::write(
+        d.path().join("wells.xml"),
+        "<wells xmlns=\"http://www.witsml.org/schemas/1series\"/>",
+    )
+    .unwrap();
     let r = run_in(d.path(), &["import", "wells.xml", "--out", "w.toml"]);
     assert_error_names(&r, &["wells.xml: root element `wells`"]);
     assert!(!d.path().join("w.toml").exists());
