@@ -24,6 +24,7 @@ use drillpath::case::Case;
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::bha::{bha_model, default_cut_m};
 use drillpath::models::fem::model::{Model, TopCondition};
+use drillpath::models::fem::refine;
 use drillpath::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 use drillpath::models::fem::warm::transport_state;
 use drillpath::models::softstring;
@@ -193,6 +194,7 @@ fn bench_solve(c: &mut Criterion) {
             })
         });
         if *name == "bha_100m" {
+            bench_refined(&mut group, "bha_100m_refined", &model, &ctl, case);
             // warm start: the converged state of the solve above, WOB changed by 5%
             let mut warm = model.clone();
             warm.consistent_tangent = true;
@@ -266,6 +268,9 @@ fn bench_bha_cut(group: &mut criterion::BenchmarkGroup<criterion::measurement::W
             sol.stats.iterations
         })
     });
+    let mut cold = model.clone();
+    cold.consistent_tangent = false;
+    bench_refined(group, "bha_cut_refined", &cold, &ctl, &case);
     let prev = solve(&before, &ctl).expect("solves");
     assert!(prev.converged, "cut BHA model 1 m shallower converges");
     let start = transport_state(&before, &prev.state, &model);
@@ -280,6 +285,35 @@ fn bench_bha_cut(group: &mut criterion::BenchmarkGroup<criterion::measurement::W
     group.bench_function("bha_cut_warm", |b| {
         b.iter(|| {
             let s = solve_interior_point_from(&model, start.clone(), &ctl).expect("solves");
+            assert!(s.converged);
+            s.stats.iterations
+        })
+    });
+}
+
+/// The cold solve of `model` followed by the contact-aware refinement and its warm solve
+/// (`refine::solve_refined`, what `solve` runs by default), as bench `name`.
+fn bench_refined(
+    group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    name: &str,
+    model: &Model,
+    ctl: &SolveControls,
+    case: &Case,
+) {
+    let bha_top = case.string.bha_length_m();
+    let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
+    let (fine, sol) = refine::solve_refined(model.clone(), ctl, bha_top, h).expect("solves");
+    assert!(sol.converged, "{name} converges");
+    println!(
+        "{name}: {} -> {} DOF, {} Newton iterations, {} factorizations in all",
+        model.dofs(),
+        fine.dofs(),
+        sol.stats.iterations,
+        sol.stats.factorizations
+    );
+    group.bench_function(name, |b| {
+        b.iter(|| {
+            let (_, s) = refine::solve_refined(model.clone(), ctl, bha_top, h).expect("solves");
             assert!(s.converged);
             s.stats.iterations
         })

@@ -69,6 +69,9 @@ pub struct SolverSettings {
     pub max_iterations: usize,
     /// How stabilizers and bits touch the wall.
     pub stabilizer_contact: StabilizerContact,
+    /// Whether a stiff solve refines the assembly's mesh where a collar comes onto the wall and
+    /// solves again (`refine_contacts`; [`crate::models::fem::refine`]).
+    pub refine_contacts: bool,
     /// Paper scheme's gradient-update factor alpha in (0, 1).
     pub alpha: f64,
     /// Wall-clock limit of one solve, s (`time_limit`).
@@ -88,6 +91,7 @@ impl Default for SolverSettings {
             method: Method::Newton,
             max_iterations: 300,
             stabilizer_contact: StabilizerContact::Point,
+            refine_contacts: true,
             alpha: 0.7,
             time_limit_s: DEFAULT_TIME_LIMIT_S,
             accuracy: None,

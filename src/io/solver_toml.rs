@@ -48,6 +48,7 @@ pub const SOLVER_KEYS: &[&str] = &[
     "max_iterations",
     "alpha",
     "stabilizer_contact",
+    "refine_contacts",
 ];
 
 /// The `[solver]` table `s`, every value checked and named on error.
@@ -113,6 +114,7 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
             )
         })?,
     };
+    let refine_contacts = s.boolean("refine_contacts")?.unwrap_or(d.refine_contacts);
     Ok(SolverSettings {
         element_length_m: el,
         bha_element_length_m: bha,
@@ -121,6 +123,7 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         method,
         max_iterations: max_it as usize,
         stabilizer_contact,
+        refine_contacts,
         alpha,
         time_limit_s: time_limit,
         accuracy,

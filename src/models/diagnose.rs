@@ -71,13 +71,20 @@ pub fn stop_phrase(
 ) -> String {
     let n = stats.iterations;
     let its = if n == 1 { "iteration" } else { "iterations" };
-    if stats.timed_out {
-        format!("in {n} {its}: it {}", time_limit_phrase(ctl))
-    } else {
-        format!(
-            "in {n} {its} (the limit, `[solver] max_iterations` = {})",
+    let path = match stats.wob_continuation_n {
+        Some((reached, target)) => format!(
+            ", with a WOB continuation from {:.0}% of the WOB that reached {:.1} of {:.1} kN (each stage limited by `[solver] max_iterations` = {})",
+            100.0 * crate::models::fem::solve::continuation::START_FRACTION,
+            reached / 1e3,
+            target / 1e3,
             ctl.max_iterations
-        )
+        ),
+        None => format!(" (the limit, `[solver] max_iterations` = {})", ctl.max_iterations),
+    };
+    if stats.timed_out {
+        format!("in {n} {its}{path}: it {}", time_limit_phrase(ctl))
+    } else {
+        format!("in {n} {its}{path}")
     }
 }
 

@@ -22,6 +22,7 @@ use crate::models::buckling::{soft_marks, stiff_marks, Mark};
 use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
+use crate::models::fem::refine;
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
@@ -192,7 +193,13 @@ fn nearest_node(model: &Model, s_m: f64) -> usize {
 }
 
 fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
-    let sol = solve(&model, ctl)?;
+    let (model, sol) = if case.solver.refine_contacts {
+        let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
+        refine::solve_refined(model, ctl, case.string.bha_length_m(), h)?
+    } else {
+        let sol = solve(&model, ctl)?;
+        (model, sol)
+    };
     let results = extract(&model, &sol, case.mud.density_kg_m3);
     let coupling = coupling_m.map(|s| nearest_node(&model, s));
     Ok(FemPart {

@@ -238,13 +238,24 @@ pub fn write_backanalysis(out: &mut impl Write, run: &BackanalysisRun, units: Un
         let [inc, azi, _] = a.coverage();
         writeln!(
             out,
-            "  assimilation: model trust {}% (the likelihood's share on the variants following the model's changing tendency); measured end stations within one standard deviation: {}% of inclinations, {}% of azimuths",
+            "  assimilation: model trust {}% (the likelihood's share on the variants following the model's changing tendency); naive members {}; measured end stations within one standard deviation: {}% of inclinations, {}% of azimuths",
             fixed(100.0 * a.filter.model_trust(), 0),
+            naive_shares(&a.filter),
             fixed(100.0 * inc, 0),
             fixed(100.0 * azi, 0)
         )?;
     }
     writeln!(out, "  {:.2} s", b.seconds)
+}
+
+/// The naive members' shares of the mixture's weight, e.g. `no_correction 12%, statistic 30%,
+/// hold 0%`.
+fn naive_shares(bank: &crate::predict::tracking::bank::FilterBank) -> String {
+    bank.naive_weights()
+        .iter()
+        .map(|(m, w)| format!("{} {}%", m.name(), fixed(100.0 * w, 0)))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The model's mean direction error against the naive projections, the statistic and (when

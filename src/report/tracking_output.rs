@@ -127,11 +127,30 @@ pub struct VariantJson {
     weight: Finite,
 }
 
+/// One naive member of the mixture with its weight at the end.
+#[derive(Serialize)]
+pub struct NaiveJson {
+    /// `no_correction`, `statistic` or `hold`.
+    name: String,
+    weight: Finite,
+}
+
+/// The scales of the stated standard deviations (toward the high side, toward the right).
+#[derive(Serialize)]
+pub struct SdScaleJson {
+    high_side: Finite,
+    right: Finite,
+}
+
 /// The `assimilation` key.
 #[derive(Serialize)]
 pub struct AssimilationJson {
-    /// The bank's filters and their weights at the end.
+    /// The bank's filters and their weights at the end (in the whole mixture).
     variants: Vec<VariantJson>,
+    /// The naive members and their weights at the end (with the filters' summing to 1).
+    naive_members: Vec<NaiveJson>,
+    /// The factors on the predicted standard deviations from the mixture's past errors.
+    sd_scale: SdScaleJson,
     /// Survey stations within one standard deviation (back-analysis only).
     #[serde(skip_serializing_if = "Option::is_none")]
     coverage: Option<CoverageJson>,
@@ -194,6 +213,21 @@ impl AssimilationJson {
                     weight: Finite(w),
                 })
                 .collect(),
+            naive_members: bank
+                .naive_weights()
+                .into_iter()
+                .map(|(m, w)| NaiveJson {
+                    name: m.name(),
+                    weight: Finite(w),
+                })
+                .collect(),
+            sd_scale: {
+                let s = bank.sd_scales();
+                SdScaleJson {
+                    high_side: Finite(s[0]),
+                    right: Finite(s[1]),
+                }
+            },
             coverage: None,
             tendency_offset_deg_per_30m: TurnJson::per_30m(offset),
             tendency_offset_sd_deg_per_30m: TurnJson::per_30m(offset_sd),

@@ -129,8 +129,8 @@ fn errors(b: &Backanalysis) -> (f64, f64, f64, f64, f64) {
 /// standard deviations. Without a hidden tendency, the
 /// assimilated model is no worse than the plain one by more than the survey noise's share (0.5
 /// deg/100 m: 0.1 deg of inclination noise at both ends of a 30 m interval). Over the four
-/// wells, the share of the measured end directions within one standard deviation: the issue
-/// asks 55-80%, measured 83%, asserted 55-86% (not met; see the assertion).
+/// wells, the share of the measured end directions within one standard deviation lies within
+/// the issue's 55-80% (measured 67%).
 #[test]
 fn assimilation_recovers_the_hidden_tendency() {
     let mut coverage = Vec::new();
@@ -187,11 +187,8 @@ fn assimilation_recovers_the_hidden_tendency() {
     }
     let mean = coverage.iter().sum::<f64>() / coverage.len() as f64;
     println!("coverage {mean:.2} ({coverage:.2?})");
-    // the issue's bar is 0.55-0.80; measured 0.83 (the bounds are too wide on the anisotropy
-    // well, 0.94: the parameter's drift over the forgetting length): not met, and this bound
-    // catches the calibration getting worse
     check(
-        (0.55..=0.86).contains(&mean),
+        (0.55..=0.80).contains(&mean),
         format!("coverage {mean:.2} ({coverage:.2?})"),
     );
     assert!(failures.is_empty(), "{failures:#?}");

@@ -9,7 +9,8 @@
 //! - [`solve`]: the contact Newton solvers;
 //! - [`bha`]: the bottom-hole assembly cut where it lies on the wall;
 //! - [`results`]: bit forces, contacts, forces and stresses along the string;
-//! - [`warm`]: carrying a solved state onto a moved or lengthened model.
+//! - [`warm`]: carrying a solved state onto a moved or lengthened model;
+//! - [`refine`]: the assembly's mesh refined where a collar comes onto the wall.
 
 pub mod bha;
 pub mod contact;
@@ -17,6 +18,7 @@ pub mod element;
 pub mod linalg;
 pub mod mesh;
 pub mod model;
+pub mod refine;
 pub mod results;
 pub mod solve;
 pub mod warm;

@@ -4,8 +4,9 @@
 //! The frozen assimilation runs the same filter on the model's tendency held at its value on
 //! the first interval: pure statistics through the filter.
 
-use super::bank::{FilterBank, REVERSION_M};
-use super::references::Direction;
+use super::bank::{FilterBank, Situation, REVERSION_M};
+use super::experts::{Naive, MEMBERS};
+use super::references::{self, Direction};
 use crate::case::bit_rock::LawParameter;
 use crate::case::{BitRock, Case, TrackingSettings};
 use crate::geometry::frame::{inc_azi, tangent};
@@ -105,6 +106,19 @@ pub fn turn_between(from: &Direction, d: &Direction) -> [f64; 2] {
     let f = Frame::from_tangent(&tangent(from.inc_rad, from.azi_rad), from.azi_rad);
     let (h, r) = deviation(&f, &tangent(d.inc_rad, d.azi_rad));
     [h, r]
+}
+
+/// The naive members' corrections (toward the high side, toward the right, rad, in the order of
+/// [`MEMBERS`]) of the prediction `base` at `to_md`, the members projecting from the measured
+/// `path` at and behind `from_md` (m) only.
+pub fn naive_corrections(path: &WellPath, from_md: f64, to_md: f64, base: &Direction) -> Vec<[f64; 2]> {
+    MEMBERS
+        .iter()
+        .map(|m| match m {
+            Naive::NoCorrection => [0.0; 2],
+            Naive::Reference(r) => turn_between(base, &references::project(path, from_md, to_md, *r)),
+        })
+        .collect()
 }
 
 /// Survey noise covariance of one station's direction at inclination `inc_rad` (toward the
@@ -357,10 +371,15 @@ fn score_behind(case: &Case, md: f64, kappa: [f64; 2], w: WarmUpScoring, trackin
     let z = [t[0] - kappa[0] * w.horizon_m, t[1] - kappa[1] * w.horizon_m];
     let r = survey_covariance(tracking, b.inc_rad);
     let np = f.filter.parameter_count();
-    let dev = deviation_from_recent(case, md);
-    f.filter
-        .score(z, w.horizon_m, &DMatrix::zeros(2, np), &r, dev, [0.0; 2]);
-    f.frozen.score(z, w.horizon_m, &DMatrix::zeros(2, 0), &r, dev, [0.0; 2]);
+    let held = turned(&a, [kappa[0] * w.horizon_m, kappa[1] * w.horizon_m]);
+    let naive = naive_corrections(path, md, end, &held);
+    let at = Situation {
+        deviation: deviation_from_recent(case, md),
+        excess: [0.0; 2],
+        naive: &naive,
+    };
+    f.filter.score(z, w.horizon_m, &DMatrix::zeros(2, np), &r, &at);
+    f.frozen.score(z, w.horizon_m, &DMatrix::zeros(2, 0), &r, &at);
 }
 
 /// Assimilate the survey of the well drilled by the BHA runs `runs` (see
@@ -501,7 +520,13 @@ fn assimilate_interval(
     let dev = deviation_from_recent(case, iv.from_md_m);
     let march_turn = turn_between(&start, &march_end);
     let excess = [march_turn[0] - kappa[0] * len, march_turn[1] - kappa[1] * len];
-    let correction = f.filter.predicted_turn(len, dev, excess);
+    let naive = naive_corrections(&case.well.path, iv.from_md_m, iv.to_md_m, &march_end);
+    let at = Situation {
+        deviation: dev,
+        excess,
+        naive: &naive,
+    };
+    let correction = f.filter.predicted_turn(len, &at);
     tracing::debug!(
         from = iv.from_md_m,
         correction_deg = ?correction.map(f64::to_degrees),
@@ -510,18 +535,27 @@ fn assimilate_interval(
         fluctuation_sd = ?f.filter.fluctuation_sd().map(|x| (x * 30.0).to_degrees()),
         offset_sd = ?f.filter.offset().1.map(|x| (x * 30.0).to_degrees()),
         weights = ?f.filter.weights().iter().map(|w| (w * 100.0).round() / 100.0).collect::<Vec<_>>(),
+        naive = ?f.filter.naive_weights().iter().map(|(m, w)| (m.name(), (w * 100.0).round() / 100.0)).collect::<Vec<_>>(),
         parameters = ?f.filter.parameters().iter().map(|&(p, u, sd, _)| (p.natural(u), sd * p.slope(u).abs())).collect::<Vec<_>>(),
         "assimilated interval"
     );
     let assimilated = turned(&march_end, correction);
-    let offset = f.filter.predicted_offset(len, dev, excess);
+    let offset = f.filter.predicted_offset(len, &at);
     let s = case.well.path.point_at(iv.from_md_m);
     let sf = Frame::from_tangent(&s.tangent, s.azi_rad);
     let position = plain.position + sf.h * offset[0] + sf.r * offset[1];
-    let ft = f.frozen.predicted_turn(len, dev, [0.0; 2]);
-    let frozen = turned(&start, [kappa[0] * len + ft[0], kappa[1] * len + ft[1]]);
+    let frozen_model = turned(&start, [kappa[0] * len, kappa[1] * len]);
+    let frozen_naive = naive_corrections(&case.well.path, iv.from_md_m, iv.to_md_m, &frozen_model);
+    let frozen_at = Situation {
+        deviation: dev,
+        excess: [0.0; 2],
+        naive: &frozen_naive,
+    };
+    let frozen = turned(&frozen_model, f.frozen.predicted_turn(len, &frozen_at));
     let j_end = turn_sensitivity(&pred.path, &stepped, iv.from_md_m, iv.to_md_m);
-    let cov = f.filter.turn_covariance(len, &j_end, dev, excess) + survey_covariance(tracking, assimilated.inc_rad);
+    let cov = f
+        .filter
+        .calibrated(&(f.filter.turn_covariance(len, &j_end, &at) + survey_covariance(tracking, assimilated.inc_rad)));
     let out = AssimilatedInterval {
         plain,
         assimilated,
@@ -538,15 +572,13 @@ fn assimilate_interval(
     };
     let r_end = survey_covariance(tracking, iv.measured.0);
     f.filter
-        .score(turn_between(&march_end, &measured), len, &j_end, &r_end, dev, excess);
-    let frozen_model = turned(&start, [kappa[0] * len, kappa[1] * len]);
+        .score(turn_between(&march_end, &measured), len, &j_end, &r_end, &at);
     f.frozen.score(
         turn_between(&frozen_model, &measured),
         len,
         &DMatrix::zeros(2, 0),
         &r_end,
-        dev,
-        [0.0; 2],
+        &frozen_at,
     );
     let model_path = &pred.path;
     let turn = |a: f64, b: f64| turn_between(&direction_at(model_path, a), &direction_at(model_path, b));

@@ -5,8 +5,10 @@
 //!   statistic; the direction error;
 //! - [`estimator`]: the tendency filter (a Kalman filter on the turn the model does not
 //!   explain);
-//! - [`bank`]: filters that differ in how the unexplained turn behaves, weighted by how well
-//!   each predicted the hole so far;
+//! - [`bank`]: filters that differ in how the unexplained turn behaves, and naive projections,
+//!   weighted by how well each predicted the hole so far;
+//! - [`experts`]: the naive members of that mixture (no correction, the statistic, hold);
+//! - [`calibration`]: the stated covariance scaled by the mixture's past errors;
 //! - [`assimilate`]: the filter run over consecutive intervals, with the frozen assimilation;
 //! - [`project`]: the projection to the bit and ahead, with its bounds;
 //! - [`skill`]: mean errors per predictor over the same intervals, the best naive projection,
@@ -14,7 +16,9 @@
 
 pub mod assimilate;
 pub mod bank;
+pub mod calibration;
 pub mod estimator;
+pub mod experts;
 pub mod project;
 pub mod references;
 pub mod skill;

@@ -2,8 +2,10 @@
 //! from the last station, corrected by the tendency banks warmed up on the measured hole behind
 //! it, with one-standard-deviation bounds on the direction and the position.
 
-use super::assimilate::{banks_behind, deviation_from_recent, survey_covariance, turn_between, turned};
-use super::bank::FilterBank;
+use super::assimilate::{
+    banks_behind, deviation_from_recent, naive_corrections, survey_covariance, turn_between, turned,
+};
+use super::bank::{FilterBank, Situation};
 use super::references::Direction;
 use crate::case::{Case, TrackingSettings};
 use crate::geometry::{Frame, Vec3};
@@ -87,14 +89,27 @@ pub fn project(case: &Case, pred: &Prediction, mds: &[f64], tracking: &TrackingS
         };
         let mt = turn_between(&start, &march);
         let excess = [mt[0] - kappa[0] * u, mt[1] - kappa[1] * u];
-        let c = bank.predicted_turn(u.max(1e-6), dev, excess);
+        let naive = naive_corrections(&case.well.path, from, md, &march);
+        let at = Situation {
+            deviation: dev,
+            excess,
+            naive: &naive,
+        };
+        let c = bank.predicted_turn(u.max(1e-6), &at);
         let direction = turned(&march, c);
-        let off = bank.predicted_offset(u, dev, excess);
+        let off = bank.predicted_offset(u, &at);
         let position = p.position + sf.h * off[0] + sf.r * off[1];
-        let ft = frozen.predicted_turn(u.max(1e-6), dev, [0.0; 2]);
-        let frozen_dir = turned(&start, [kappa[0] * u + ft[0], kappa[1] * u + ft[1]]);
-        let cov =
-            bank.turn_covariance(u.max(1e-6), &none, dev, excess) + survey_covariance(tracking, direction.inc_rad);
+        let held = turned(&start, [kappa[0] * u, kappa[1] * u]);
+        let frozen_naive = naive_corrections(&case.well.path, from, md, &held);
+        let frozen_at = Situation {
+            deviation: dev,
+            excess: [0.0; 2],
+            naive: &frozen_naive,
+        };
+        let frozen_dir = turned(&held, frozen.predicted_turn(u.max(1e-6), &frozen_at));
+        let cov = bank.calibrated(
+            &(bank.turn_covariance(u.max(1e-6), &none, &at) + survey_covariance(tracking, direction.inc_rad)),
+        );
         let sd = [cov[(0, 0)].sqrt(), cov[(1, 1)].sqrt()];
         // the position's bound: the direction's standard deviation integrated along the way
         let du = md - last.0;

@@ -24,6 +24,7 @@
 //! translations, m; 3 rotations, rad) in DOF order (surface first), node bases.
 
 pub mod contacts;
+pub mod continuation;
 pub mod controls;
 pub mod convergence;
 pub mod gap_springs;
@@ -45,11 +46,79 @@ pub use solution::{Solution, SolveError, SolveStats};
 use crate::case::Method;
 use crate::models::fem::model::Model;
 
+/// Iterations of the direct interior-point solve before a WOB-driven model that has not
+/// converged turns to the WOB continuation (cases that converge directly take 5-40).
+pub const DIRECT_BEFORE_CONTINUATION: usize = 60;
+
 /// Solve the static problem of `model` from its start with the contact scheme of `ctl`
-/// ([`solve_interior_point`] or [`solve_modified_newton`]).
+/// ([`solve_interior_point`] or [`solve_modified_newton`]). A WOB-driven interior-point solve
+/// that has not converged in [`DIRECT_BEFORE_CONTINUATION`] iterations turns to the WOB
+/// continuation ([`continuation::solve_by_wob_continuation`], its own `max_iterations`, the
+/// time left); if that does not reach the model's WOB, the direct solve resumes for the rest
+/// of its iterations. [`SolveStats::wob_continuation_n`] says how far the path got.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
     match ctl.method {
         Method::Paper => solve_modified_newton(model, ctl),
-        Method::Newton => solve_interior_point(model, ctl),
+        Method::Newton if !continuation::applies(model) => solve_interior_point(model, ctl),
+        Method::Newton => {
+            let first = SolveControls {
+                max_iterations: ctl.max_iterations.min(DIRECT_BEFORE_CONTINUATION),
+                ..*ctl
+            };
+            let direct = solve_interior_point(model, &first)?;
+            if direct.converged || direct.stats.timed_out {
+                return Ok(direct);
+            }
+            continued(model, ctl, direct)
+        }
     }
+}
+
+/// The WOB continuation after the first iterations `direct` of `model`'s direct solve did not
+/// converge, then the rest of the direct solve if the path does not reach the WOB.
+fn continued(model: &Model, ctl: &SolveControls, direct: Solution) -> Result<Solution, SolveError> {
+    let target = model.loads.wob_n;
+    let left = |spent: f64| SolveControls {
+        time_limit_s: ctl.time_limit_s - spent,
+        ..*ctl
+    };
+    let path = continuation::solve_by_wob_continuation(model, &left(direct.stats.seconds)).unwrap_or(None);
+    let (path_its, path_factors, path_s, reached) = match &path {
+        Some((sol, wob)) => (
+            sol.stats.iterations,
+            sol.stats.factorizations,
+            sol.stats.seconds,
+            Some(*wob),
+        ),
+        None => (0, 0, 0.0, None),
+    };
+    if let Some((mut sol, wob)) = path.filter(|(sol, _)| sol.converged) {
+        sol.stats.iterations += direct.stats.iterations;
+        sol.stats.factorizations += direct.stats.factorizations;
+        sol.stats.seconds += direct.stats.seconds;
+        sol.stats.wob_continuation_n = Some((wob, target));
+        return Ok(sol);
+    }
+    let spent = direct.stats.seconds + path_s;
+    let rest = ctl.max_iterations.saturating_sub(direct.stats.iterations);
+    let mut out = if rest > 0 && spent < ctl.time_limit_s {
+        let mut consistent = model.clone();
+        consistent.consistent_tangent = true;
+        let resume_ctl = SolveControls {
+            max_iterations: rest,
+            ..left(spent)
+        };
+        let mut again = solve_interior_point_from(&consistent, direct.state, &resume_ctl)?;
+        again.stats.iterations += direct.stats.iterations;
+        again.stats.factorizations += direct.stats.factorizations;
+        again.stats.seconds += direct.stats.seconds;
+        again
+    } else {
+        direct
+    };
+    out.stats.iterations += path_its;
+    out.stats.factorizations += path_factors;
+    out.stats.seconds += path_s;
+    out.stats.wob_continuation_n = reached.map(|wob| (wob, target));
+    Ok(out)
 }

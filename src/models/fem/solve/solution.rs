@@ -20,6 +20,10 @@ pub struct SolveStats {
     pub chattering_nodes: Vec<usize>,
     /// The solve stopped at its time limit ([`super::SolveControls::time_limit_s`]).
     pub timed_out: bool,
+    /// The WOB continuation that followed a direct solve that did not converge
+    /// ([`super::continuation`]): the WOB it reached and the model's WOB, N (equal when it
+    /// converged); None when none ran.
+    pub wob_continuation_n: Option<(f64, f64)>,
 }
 
 /// A converged (or flagged unconverged) solution.

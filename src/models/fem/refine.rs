@@ -1,0 +1,228 @@
+//! Contact-aware refinement of the bottom-hole assembly's mesh.
+//!
+//! The wall is touched only at nodes, so where a collar's body comes onto the wall (a
+//! tangency point) or leaves it, the contact snaps to the nearest node: on a 0.5 m mesh the
+//! pendulum's bit force and tilt move by up to 0.3% with where the nodes fall
+//! (docs/performance.md, "Fine BHA meshes"). After a solve, each end of a run of body contacts
+//! in the assembly (a contact node next to a free one) marks the element between them; those
+//! elements are split into pieces of at most [`REFINED_FRACTION`] of the BHA element length,
+//! the solved state is carried onto the new nodes (on the cubic of each split element), and the
+//! model is solved again from there: two more Newton iterations, usually. Stabilizer and
+//! tool-joint contacts (a node wider than the bodies beside it) and pins are where the string
+//! really touches and are left as they are. `[solver] refine_contacts = false` turns it off.
+
+use super::element::rotation::skew;
+use super::mesh::{Mesh, MeshNode};
+use super::model::{Model, State};
+use super::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError};
+use super::warm::{source_by_distance, transport_mapped};
+use crate::case::Method;
+use crate::geometry::Vec3;
+use nalgebra::Matrix3;
+
+/// Refined element length as a fraction of the BHA element length.
+pub const REFINED_FRACTION: f64 = 0.2;
+
+/// Normal force above which a node counts as touching the wall, N (as in the reported
+/// contacts).
+pub const CONTACT_FORCE_N: f64 = 1.0;
+
+/// Whether node `i` of `model` is a body contact candidate: a gap node no wider than the
+/// bodies of the elements beside it (not a stabilizer, blade or tool joint), within the first
+/// `bha_top_m` above the bit.
+fn body_node(model: &Model, i: usize, bha_top_m: f64) -> bool {
+    let nodes = &model.mesh.nodes;
+    let n = &nodes[i];
+    if !n.has_gap || n.s_m > bha_top_m + 1e-9 || i == 0 || i + 1 >= nodes.len() {
+        return false;
+    }
+    let widest = model.mesh.elements[i - 1].od_m.max(model.mesh.elements[i].od_m);
+    n.contact_od_m <= widest + 1e-9
+}
+
+/// The elements (by index) beside the ends of the runs of body contacts of `state` in the first
+/// `bha_top_m` of `model` whose length exceeds `h_m`: both elements of a touching body node
+/// with a free gap node beside it (a short run, a collar touching at a point between two
+/// nodes, has its point inside the run; a long one lifts off at either side of its end node).
+pub fn tangency_elements(model: &Model, state: &State, bha_top_m: f64, h_m: f64) -> Vec<usize> {
+    let nodes = &model.mesh.nodes;
+    let touching = |i: usize| state.multipliers[i] > CONTACT_FORCE_N;
+    let free = |i: usize| nodes[i].has_gap && !touching(i);
+    let mut out = Vec::new();
+    for i in 1..nodes.len().saturating_sub(1) {
+        let run_end = body_node(model, i, bha_top_m) && touching(i) && (free(i - 1) || free(i + 1));
+        if !run_end {
+            continue;
+        }
+        for e in [i - 1, i] {
+            let len = nodes[e + 1].s_m - nodes[e].s_m;
+            if len > h_m * (1.0 + 1e-6) && !out.contains(&e) {
+                out.push(e);
+            }
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+/// The mesh of `model` with each element of `split` divided evenly into pieces of at most
+/// `h_m`; the new nodes carry the element's body as their contact diameter, and a gap where
+/// both end nodes have one.
+fn split_mesh(mesh: &Mesh, split: &[usize], h_m: f64) -> Mesh {
+    let mut nodes: Vec<MeshNode> = vec![mesh.nodes[0]];
+    let mut elements = Vec::new();
+    for (e, el) in mesh.elements.iter().enumerate() {
+        let (a, b) = (mesh.nodes[e], mesh.nodes[e + 1]);
+        let pieces = if split.contains(&e) {
+            (((b.s_m - a.s_m) / h_m) - 1e-9).ceil().max(1.0) as usize
+        } else {
+            1
+        };
+        for k in 1..pieces {
+            nodes.push(MeshNode {
+                s_m: a.s_m + (b.s_m - a.s_m) * k as f64 / pieces as f64,
+                contact_od_m: el.od_m,
+                has_gap: a.has_gap && b.has_gap,
+                on_bit_gauge: false,
+                component: el.component,
+            });
+            elements.push(*el);
+        }
+        nodes.push(b);
+        elements.push(*el);
+    }
+    Mesh { nodes, elements }
+}
+
+/// `model` with the elements `split` divided into pieces of at most `h_m` (same hole, loads,
+/// friction by node, top condition and tangent options).
+pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
+    let mesh = split_mesh(&model.mesh, split, h_m);
+    let friction_of = |md: f64| -> f64 {
+        // the friction of the nearest old node (the friction changes only at hole sections,
+        // which carry no refined element)
+        let k = model
+            .md_ref
+            .iter()
+            .enumerate()
+            .min_by(|x, y| (x.1 - md).abs().total_cmp(&(y.1 - md).abs()))
+            .map_or(0, |(k, _)| k);
+        model.friction[k]
+    };
+    let mut out = Model::new(
+        model.path.translated(model.origin_m),
+        model.hole.clone(),
+        mesh,
+        model.bit_md_m,
+        model.loads,
+        friction_of,
+    );
+    out.top = model.top;
+    out.geometric_stiffness = model.geometric_stiffness;
+    out.consistent_tangent = model.consistent_tangent;
+    out
+}
+
+/// The state of `prev` on `model` (a refinement of `prev_model`): an old node keeps its state;
+/// a new node lies on the cubic (Hermite) curve of its element through the end nodes'
+/// positions and section axes, its triad interpolated and turned onto that curve, with no
+/// contact force (the end nodes keep theirs, so the total wall force is unchanged).
+pub fn carried_state(prev_model: &Model, prev: &State, model: &Model) -> State {
+    let mut st = transport_mapped(prev_model, prev, model, |i| {
+        source_by_distance(prev_model, model.mesh.nodes[i].s_m)
+    });
+    for i in 0..model.nodes() {
+        let Some(src) = source_by_distance(prev_model, model.mesh.nodes[i].s_m) else {
+            continue;
+        };
+        if src.weight <= 0.0 {
+            continue;
+        }
+        let (x, tangent) = hermite_point(prev, src.node, src.weight);
+        if !(x.iter().chain(tangent.iter()).all(|v| v.is_finite())) {
+            continue;
+        }
+        st.x[i] = x;
+        st.triads[i] = turned_onto(&st.triads[i], &tangent);
+        st.multipliers[i] = 0.0;
+    }
+    st
+}
+
+/// Position and unit tangent at fraction `w` along the cubic through nodes `a` and `a + 1` of
+/// `state` with their section axes as end tangents (oriented from `a` to `a + 1`).
+fn hermite_point(state: &State, a: usize, w: f64) -> (Vec3, Vec3) {
+    let (xa, xb) = (state.x[a], state.x[a + 1]);
+    let d = xb - xa;
+    let len = d.norm();
+    let oriented = |t: Vec3| if t.dot(&d) < 0.0 { -t } else { t };
+    let ta = oriented(state.triads[a].column(0).into_owned()) * len;
+    let tb = oriented(state.triads[a + 1].column(0).into_owned()) * len;
+    let (w2, w3) = (w * w, w * w * w);
+    let x = xa * (2.0 * w3 - 3.0 * w2 + 1.0) + ta * (w3 - 2.0 * w2 + w) + xb * (-2.0 * w3 + 3.0 * w2) + tb * (w3 - w2);
+    let dx = xa * (6.0 * w2 - 6.0 * w)
+        + ta * (3.0 * w2 - 4.0 * w + 1.0)
+        + xb * (-6.0 * w2 + 6.0 * w)
+        + tb * (3.0 * w2 - 2.0 * w);
+    let t = dx.normalize();
+    let axis = state.triads[a].column(0).into_owned();
+    (x, if axis.dot(&t) < 0.0 { -t } else { t })
+}
+
+/// `triad` turned by the smallest rotation that takes its first column (the section axis) onto
+/// the unit vector `t`.
+fn turned_onto(triad: &Matrix3<f64>, t: &Vec3) -> Matrix3<f64> {
+    let a = triad.column(0).into_owned();
+    let (v, c) = (a.cross(t), a.dot(t));
+    if c <= -0.5 {
+        // never for a section axis and a tangent of the same element; keep the triad
+        return *triad;
+    }
+    // Rodrigues' formula for the rotation about a x t taking a onto t: I + [v] + [v]^2 / (1 + c)
+    let k = skew(&v);
+    (Matrix3::identity() + k + k * k / (1.0 + c)) * triad
+}
+
+/// Solve `model` cold with `ctl`, then, for the default contact scheme, refine its mesh at the
+/// ends of the body contact runs in its first `bha_top_m` (`h_m`: the refined element length)
+/// and solve again from the carried state. Returns the model solved last and its solution (the
+/// statistics of both solves summed); if the refined solve does not converge, the first model
+/// and solution (one pass is enough: docs/performance.md, "Fine BHA meshes").
+pub fn solve_refined(
+    model: Model,
+    ctl: &SolveControls,
+    bha_top_m: f64,
+    h_m: f64,
+) -> Result<(Model, Solution), SolveError> {
+    let sol = solve(&model, ctl)?;
+    if !sol.converged || ctl.method != Method::Newton {
+        return Ok((model, sol));
+    }
+    let split = tangency_elements(&model, &sol.state, bha_top_m, h_m);
+    if split.is_empty() {
+        return Ok((model, sol));
+    }
+    let mut fine = refined_model(&model, &split, h_m);
+    let state = carried_state(&model, &sol.state, &fine);
+    // a warm start near the solution converges with the full tangent (as the predictor's steps
+    // and the loads rows do)
+    fine.consistent_tangent = true;
+    let rest = SolveControls {
+        time_limit_s: ctl.time_limit_s - sol.stats.seconds,
+        ..*ctl
+    };
+    match solve_interior_point_from(&fine, state, &rest) {
+        Ok(mut again) if again.converged => {
+            again.stats.iterations += sol.stats.iterations;
+            again.stats.factorizations += sol.stats.factorizations;
+            again.stats.seconds += sol.stats.seconds;
+            again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
+            Ok((fine, again))
+        }
+        other => {
+            let why = other.map_or_else(|e| e.to_string(), |_| "not converged".to_string());
+            tracing::info!(%why, "refined solve failed; the unrefined solution stands");
+            Ok((model, sol))
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Weight-on-bit continuation: the loading path of a string that the direct solve cannot
+//! reach from its start.
+//!
+//! A compressed string with wall friction (a lateral slid with a high WOB, pipe buckled
+//! against the wall) has an equilibrium that depends on how it was reached, and the Newton
+//! iteration from the string lying on the hole axis can stall far from it (the residual flat
+//! at 1e-4 to 1e-3 of the load scale for hundreds of iterations). The rig reaches it by
+//! slacking off: the string hangs in tension, then the driller lowers it and the WOB rises.
+//! The continuation does the same: it solves the string at a tenth of the WOB (bit torque in
+//! proportion), then raises the WOB in steps, each solved from the previous equilibrium with
+//! the operation's friction against the motion; a step that does not converge within
+//! [`STEP_ITERATIONS`] is halved, one that does lets the next grow by [`STEP_GROWTH`].
+
+use super::interior_point_newton::{solve_interior_point, solve_interior_point_from};
+use super::{Solution, SolveControls, SolveError};
+use crate::models::fem::model::Model;
+use std::time::Instant;
+
+/// The first WOB of the path, as a fraction of the target.
+pub const START_FRACTION: f64 = 0.1;
+
+/// Newton iterations allowed to one step of the path.
+pub const STEP_ITERATIONS: usize = 20;
+
+/// Factor on the WOB step after a converged step.
+pub const STEP_GROWTH: f64 = 1.5;
+
+/// Smallest WOB step, as a fraction of the target: below it the path has met a limit (a
+/// string that cannot take more WOB, or a jump to another buckled shape) and stops.
+pub const MIN_STEP_FRACTION: f64 = 1e-3;
+
+/// Whether the continuation applies to `model`: a WOB-driven model with a positive WOB.
+pub fn applies(model: &Model) -> bool {
+    model.loads.hook_load_n.is_none() && model.loads.wob_n > 0.0
+}
+
+/// `model` with its WOB at `wob_n` and its bit torque in proportion (N, N.m).
+fn at_wob(model: &Model, wob_n: f64) -> Model {
+    let mut m = model.clone();
+    let share = wob_n / model.loads.wob_n;
+    m.loads.wob_n = wob_n;
+    m.loads.bit_torque_nm = model.loads.bit_torque_nm * share;
+    m
+}
+
+/// Solve `model` along the WOB path from [`START_FRACTION`] of its WOB, within `ctl`'s
+/// iteration limit (all steps together) and time limit. Returns the last converged solution
+/// and the WOB it carries (N): the model's WOB if the path reached it, less if it stopped
+/// (then the solution is flagged not converged); `Ok(None)` if even the first step failed
+/// (its iterations are then not counted: a path that never started is not reported).
+pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<Option<(Solution, f64)>, SolveError> {
+    let t0 = Instant::now();
+    let target = model.loads.wob_n;
+    let mut wob = START_FRACTION * target;
+    let first_ctl = SolveControls {
+        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
+        ..*ctl
+    };
+    let mut sol = solve_interior_point(&at_wob(model, wob), &first_ctl)?;
+    let mut iterations = sol.stats.iterations;
+    let mut factorizations = sol.stats.factorizations;
+    if !sol.converged {
+        return Ok(None);
+    }
+    let mut step = START_FRACTION * target;
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    while wob < target && step >= MIN_STEP_FRACTION * target {
+        let elapsed = t0.elapsed().as_secs_f64();
+        if iterations >= ctl.max_iterations || elapsed > ctl.time_limit_s {
+            break;
+        }
+        let next = (wob + step).min(target);
+        let step_ctl = SolveControls {
+            max_iterations: STEP_ITERATIONS.min(ctl.max_iterations - iterations),
+            time_limit_s: ctl.time_limit_s - elapsed,
+            ..*ctl
+        };
+        let attempt = solve_interior_point_from(&at_wob(&consistent, next), sol.state.clone(), &step_ctl);
+        match attempt {
+            Ok(s) if s.converged => {
+                iterations += s.stats.iterations;
+                factorizations += s.stats.factorizations;
+                sol = s;
+                wob = next;
+                step *= STEP_GROWTH;
+            }
+            Ok(s) => {
+                iterations += s.stats.iterations;
+                factorizations += s.stats.factorizations;
+                step *= 0.5;
+            }
+            Err(e) => {
+                tracing::debug!(wob_n = next, error = %e, "WOB continuation step failed");
+                step *= 0.5;
+            }
+        }
+    }
+    sol.converged = wob >= target;
+    sol.stats.iterations = iterations;
+    sol.stats.factorizations = factorizations;
+    sol.stats.seconds = t0.elapsed().as_secs_f64();
+    sol.stats.timed_out = t0.elapsed().as_secs_f64() > ctl.time_limit_s;
+    Ok(Some((sol, wob)))
+}
