@@ -186,6 +186,12 @@ fn write_string(t: &mut String, tub: &Tubular, file: &str) {
         ];
         let mut keys: Vec<&String> = c.table.keys().collect();
         keys.sort_by_key(|k| ORDER.iter().position(|o| o == k).unwrap_or(ORDER.len()));
+        if c.table.contains_key("bend_angle") {
+            let _ = writeln!(
+                t,
+                "# the motor's bend: `bend_angle` and `bend_to_bit` are read by a drillpath that models motor\n# bends; one that does not refuses them (unknown key): remove them to model the motor straight"
+            );
+        }
         for key in keys {
             let v = &c.table[key];
             let text = match key.as_str() {

@@ -216,7 +216,10 @@ fn printed_and_read_back(csv: &Path, xml: &Path) -> (Vec<[f64; 3]>, Vec<[f64; 3]
 
 fn same_to_printed_digits(printed: &[[f64; 3]], back: &[[f64; 3]]) {
     for (p, b) in printed.iter().zip(back) {
-        assert!((p[0] - b[0]).abs() < 1e-9 && (p[1] - b[1]).abs() < 1e-9, "{p:?} against {b:?}");
+        assert!(
+            (p[0] - b[0]).abs() < 1e-9 && (p[1] - b[1]).abs() < 1e-9,
+            "{p:?} against {b:?}"
+        );
         let d = (p[2] - b[2] + 540.0).rem_euclid(360.0) - 180.0;
         assert!(d.abs() < 1e-9, "{p:?} against {b:?}");
     }
@@ -227,22 +230,39 @@ fn predict_and_backanalyze_write_witsml_that_reads_back_to_the_printed_stations(
     let d = tempfile::tempdir().unwrap();
     let case = example_dir("seed-daqing").join("case.toml");
     let case = case.to_str().unwrap();
-    run_ok(d.path(), &["predict", case, "--from", "292", "--to", "413", "--out", "p", "--witsml", "p.xml"]);
+    run_ok(
+        d.path(),
+        &[
+            "predict", case, "--from", "292", "--to", "413", "--out", "p", "--witsml", "p.xml",
+        ],
+    );
     let (printed, back) = printed_and_read_back(&d.path().join("p/trajectory.csv"), &d.path().join("p.xml"));
     let mut unique = printed.clone();
     unique.dedup_by(|a, b| a[0] == b[0]);
     assert_eq!(unique.len(), back.len());
     same_to_printed_digits(&unique, &back);
     let text = std::fs::read_to_string(d.path().join("p.xml")).unwrap();
-    assert!(text.contains("<typeSurveyTool>drillpath prediction</typeSurveyTool><md uom=\"m\">293.000</md>"), "{text}");
+    assert!(
+        text.contains("<typeSurveyTool>drillpath prediction</typeSurveyTool><md uom=\"m\">293.000</md>"),
+        "{text}"
+    );
 
     run_ok(d.path(), &["backanalyze", case, "--out", "b", "--witsml", "b.xml"]);
     let (printed, back) = printed_and_read_back(&d.path().join("b/trajectory.csv"), &d.path().join("b.xml"));
-    assert_eq!(printed.len() + 1, back.len(), "the tie-in, then one station per interval");
+    assert_eq!(
+        printed.len() + 1,
+        back.len(),
+        "the tie-in, then one station per interval"
+    );
     same_to_printed_digits(&printed, &back[1..]);
 
     // an output on an input is refused, and nothing is written
-    let r = run_in(d.path(), &["predict", case, "--from", "292", "--to", "300", "--witsml", case, "--out", "q"]);
+    let r = run_in(
+        d.path(),
+        &[
+            "predict", case, "--from", "292", "--to", "300", "--witsml", case, "--out", "q",
+        ],
+    );
     assert_error_names(&r, &["option `--witsml`", "is an input of this run"]);
     assert!(!d.path().join("q").exists());
 }
