@@ -300,12 +300,19 @@ fn import_writes_an_editable_case_that_solves_like_string_from() {
     assert!(r.stdout.contains("wrote bent.toml"), "{}", r.stdout);
     let text = std::fs::read_to_string(d.path().join("bent.toml")).unwrap();
     assert!(
-        text.contains("[[string]]   # component `m1` (mud motor)\ntype = \"motor\""),
+        text.contains("[[string]]   # component `m1` (mud motor)\n# the motor's bend")
+            && text.contains("remove them to model the motor straight\ntype = \"motor\""),
         "{text}"
     );
     assert!(text.contains("bend_angle = \"1.5 deg\""), "{text}");
     // below the motor: bit 0.3, stabs 1.6 + 1.6, collars 27.6 + 27.6, HWDP 140, DP (its len 2000 m)
     assert!(text.contains("bend_to_bit = \"2200.7 m\""), "{text}");
+    // this drillpath does not model bends: the imported bent case is refused, naming the key
+    let bent_tables = &text[text.find("[[string]]").unwrap()..];
+    let bent_case = tempfile::tempdir().unwrap();
+    write_case(bent_case.path(), bent_tables);
+    let r = run_in(bent_case.path(), &["solve", "case.toml"]);
+    assert_error_names(&r, &["case.toml: key `string[7].bend_angle`", "unknown key"]);
     // the straight string: the imported tables in the j-shape case solve like string_from
     let r = run_ok(d.path(), &["import", "bha.xml", "--out", "case.toml"]);
     assert!(r.success());
