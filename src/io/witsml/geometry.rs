@@ -21,7 +21,7 @@ pub struct GeometrySection {
     pub uid: String,
     /// `typeHoleCasing` as written (`casing`, `riser`, `open hole`, ...).
     pub kind: String,
-    /// Top and bottom MD, m.
+    /// Top MD, m.
     pub md_top_m: f64,
     /// Bottom MD, m.
     pub md_bottom_m: f64,
