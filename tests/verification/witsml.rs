@@ -465,3 +465,33 @@ fn wbgeometry_gaps_and_missing_diameters_are_refused() {
         "{e}"
     );
 }
+
+#[test]
+fn roxmltree_itself_neither_fetches_nor_expands_without_bound() {
+    // drillpath refuses any DTD before roxmltree expands anything; this checks the second line of
+    // defence, roxmltree with DTDs allowed: an external entity is not fetched and nested
+    // entities stop at its expansion limits, at once.
+    let opts = || roxmltree::ParsingOptions {
+        allow_dtd: true,
+        ..Default::default()
+    };
+    let secret = std::env::temp_dir().join("drillpath-witsml-secret-2.txt");
+    std::fs::write(&secret, "TOPSECRET").unwrap();
+    let xxe = format!(
+        "<!DOCTYPE r [<!ENTITY x SYSTEM \"file://{}\">]><r>&x;</r>",
+        secret.display()
+    );
+    match roxmltree::Document::parse_with_options(&xxe, opts()) {
+        Ok(d) => assert!(!d.root_element().text().unwrap_or("").contains("TOPSECRET")),
+        Err(e) => assert!(!e.to_string().contains("TOPSECRET")),
+    }
+    let mut lol = String::from("<!DOCTYPE r [<!ENTITY l0 \"lol\">");
+    for k in 1..10 {
+        lol += &format!("<!ENTITY l{k} \"{}\">", format!("&l{};", k - 1).repeat(10));
+    }
+    lol += "]><r>&l9;</r>";
+    let t0 = Instant::now();
+    let r = roxmltree::Document::parse_with_options(&lol, opts());
+    assert!(t0.elapsed() < Duration::from_secs(1));
+    assert!(r.is_err(), "10^9 expansions must not be built");
+}
