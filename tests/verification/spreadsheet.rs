@@ -128,3 +128,27 @@ fn the_sheet_is_chosen_by_name_and_errors_name_row_and_column() {
         "{e}"
     );
 }
+
+#[test]
+fn a_decompression_bomb_is_refused_before_it_is_read() {
+    // a zip named .xlsx whose sheet part decompresses to 260 MiB of zeros (a 260 kB file): the
+    // guard reads the sizes the zip declares and refuses it before any part is inflated
+    use std::io::Write;
+    let dir = tempfile::tempdir().unwrap();
+    let bomb = dir.path().join("bomb.xlsx");
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(&bomb).unwrap());
+    let options = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    zip.start_file("xl/worksheets/sheet1.xml", options).unwrap();
+    let zeros = vec![0u8; 1 << 20];
+    for _ in 0..260 {
+        zip.write_all(&zeros).unwrap();
+    }
+    zip.finish().unwrap();
+    let t0 = std::time::Instant::now();
+    let e = read_survey(&bomb, &SurveyUnits::default()).unwrap_err().to_string();
+    assert!(t0.elapsed() < std::time::Duration::from_secs(1));
+    assert!(
+        e.contains("decompress to 260 MiB") && e.contains("more than the 256 MiB"),
+        "{e}"
+    );
+}

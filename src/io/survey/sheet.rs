@@ -4,6 +4,9 @@
 //! row is the header, an optional units row follows, then one row per station. Line numbers in
 //! messages are the sheet's row numbers (1-based, as the spreadsheet shows them).
 //!
+//! A file over 16 MiB, or a zip-based one whose parts declare more than 256 MiB once
+//! decompressed, is refused before it is read.
+//!
 //! The sheet is the one named (`[well] survey_sheet`, `--sheet`), else the first whose first
 //! row (after empty and comment rows) names the MD, inclination and azimuth columns.
 
@@ -19,6 +22,42 @@ use crate::error::{InputError, InputResult};
 
 /// Largest spreadsheet file read, bytes (16 MiB, as WITSML files).
 const MAX_SHEET_BYTES: u64 = 16 * 1024 * 1024;
+
+/// Largest total of the sizes a zip-based spreadsheet (`.xlsx`, `.xlsm`, `.xlsb`, `.ods`)
+/// declares for its parts once decompressed, bytes (256 MiB): a guard against decompression
+/// bombs, checked before the parts are read.
+const MAX_UNZIPPED_BYTES: u128 = 256 * 1024 * 1024;
+
+/// Refuse a zip-based spreadsheet whose parts declare more than [`MAX_UNZIPPED_BYTES`]
+/// decompressed (parts that do not declare their size are not counted: the guard cannot see
+/// them).
+fn check_unzipped_size(path: &Path) -> InputResult<()> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    if !matches!(ext.as_str(), "xlsx" | "xlsm" | "xlsb" | "ods") {
+        return Ok(());
+    }
+    let Ok(file) = std::fs::File::open(path) else {
+        return Ok(()); // the reader says why
+    };
+    let Ok(archive) = zip::ZipArchive::new(file) else {
+        return Ok(()); // not a zip: the reader says so
+    };
+    match archive.decompressed_size() {
+        Some(n) if n > MAX_UNZIPPED_BYTES => Err(InputError::file(
+            path,
+            format!(
+                "the spreadsheet's parts decompress to {} MiB, more than the {} MiB drillpath reads (a decompression bomb?); save the survey sheet alone",
+                n / (1024 * 1024),
+                MAX_UNZIPPED_BYTES / (1024 * 1024)
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
 
 /// A cell as text: numbers in Rust's shortest round-trip form (so the value read back is the
 /// cell's, bit for bit), text trimmed, empty cells empty; an error cell as its code (`#N/A`).
@@ -69,6 +108,7 @@ pub(super) fn read_sheet(path: &Path, units: &SurveyUnits) -> InputResult<Survey
             ),
         ));
     }
+    check_unzipped_size(path)?;
     let mut book =
         open_workbook_auto(path).map_err(|e| InputError::file(path, format!("cannot read the spreadsheet: {e}")))?;
     let names = book.sheet_names();
