@@ -67,6 +67,24 @@ fn the_f5_witsml_case_equals_the_csv_case() {
         (j["bit"].clone(), j["surface"].clone())
     };
     assert_eq!(bit(&a.stdout), bit(&b.stdout));
+    // the prediction's WITSML carries the survey's north, declination and convergence
+    run_ok(
+        dir.path(),
+        &[
+            "predict",
+            "case.toml",
+            "--from",
+            "1300",
+            "--ahead",
+            "10 m",
+            "--witsml",
+            "p.xml",
+        ],
+    );
+    let back = drillpath::io::survey::read_survey(&dir.path().join("p.xml"), &Default::default()).unwrap();
+    assert_eq!(back.azimuth_reference, drillpath::case::AzimuthReference::Grid);
+    assert!((back.magnetic_declination_rad.unwrap().to_degrees() + 2.21).abs() < 1e-9);
+    assert!((back.grid_convergence_rad.unwrap().to_degrees() + 0.95).abs() < 1e-9);
 }
 
 #[test]
