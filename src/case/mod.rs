@@ -9,6 +9,7 @@ pub mod fidelity;
 pub mod fit;
 pub mod operation;
 pub mod solver;
+pub mod steering;
 pub mod tracking;
 pub mod well;
 
@@ -17,6 +18,7 @@ pub use bit_rock::{BitRock, Formation};
 pub use fidelity::{choose, Choice, Fidelity, Level, Purpose};
 pub use operation::{FrictionSplit, Mode, Motion, Mud, Operation};
 pub use solver::{Method, SolverSettings, StabilizerContact};
+pub use steering::{SteeringInterval, SteeringPlan};
 pub use tracking::TrackingSettings;
 pub use well::{AzimuthReference, StationInfo, SurveyFile, Well};
 
@@ -48,7 +50,13 @@ pub struct Case {
     pub solver: SolverSettings,
     /// Survey assimilation settings (`[tracking]`).
     pub tracking: TrackingSettings,
+    /// Where a bent housing slides and where it rotates (`[[steering]]`, `slide_sheet`).
+    pub steering: SteeringPlan,
 }
+
+/// Rotary speed of a rotating steering interval (and of the rotating tendency) when the case
+/// gives none, rev/min.
+pub const DEFAULT_ROTATING_RPM: f64 = 60.0;
 
 /// How far the string may reach above the first survey station before the straight
 /// extrapolation there is worth a warning, m.
@@ -62,7 +70,24 @@ impl Case {
         files.extend(self.well.caliper_path.clone());
         files.extend(self.well.hole_from.clone());
         files.extend(self.string_from.clone());
+        files.extend(self.steering.sheet_path.clone());
         files
+    }
+
+    /// This case drilling as the steering interval `iv` says: sliding at its toolface, or
+    /// rotating (drilling at the case's rpm, 60 rpm when it gives none).
+    pub fn steered(&self, iv: &SteeringInterval) -> Case {
+        let mut c = self.clone();
+        c.operation.toolface_rad = iv.toolface_rad;
+        if iv.rotating {
+            c.operation.mode = Mode::Drilling;
+            if c.operation.rpm <= 0.0 {
+                c.operation.rpm = DEFAULT_ROTATING_RPM;
+            }
+        } else {
+            c.operation.mode = Mode::Sliding;
+        }
+        c
     }
 
     /// The assumption made when the string reaches above the first survey station (a survey

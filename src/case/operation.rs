@@ -77,6 +77,12 @@ pub struct Operation {
     pub bit_torque_nm: Option<f64>,
     /// Mud drag torque on the rotating string on/off.
     pub viscous_torque: bool,
+    /// Toolface of a bent motor, rad in [0, 2 pi): gravity toolface (from the high side,
+    /// positive to the right looking down the hole), magnetic (from north) where the hole is
+    /// within [`crate::geometry::frame::MAGNETIC_TOOLFACE_BELOW_RAD`] of vertical
+    /// ([`crate::geometry::frame::toolface_direction`]). Fixed when sliding; a rotating string
+    /// turns it (docs/theory.md, "Bent motors").
+    pub toolface_rad: f64,
 }
 
 impl Operation {
@@ -113,6 +119,11 @@ impl Operation {
             axial_speed_m_s: direction * speed,
             omega_rad_s: omega,
         }
+    }
+    /// True when the string turns (rotary speed above 0): a bent housing then turns with it
+    /// and its tendency is the average over a revolution; otherwise its toolface is fixed.
+    pub fn rotates(&self) -> bool {
+        self.omega_rad_s() > 0.0
     }
     /// Rotary speed in rad/s used by the mechanics (0 when sliding or tripping).
     pub fn omega_rad_s(&self) -> f64 {
@@ -209,6 +220,7 @@ mod tests {
             friction: 0.25,
             bit_torque_nm: None,
             viscous_torque: false,
+            toolface_rad: 0.0,
         }
     }
 

@@ -75,6 +75,30 @@ impl Frame {
     }
 }
 
+/// Inclination below which a toolface is read as magnetic toolface (from north) instead of
+/// gravity toolface (from the high side), rad: 5 deg, where the high side of a survey tool
+/// becomes poorly defined (MWD tools switch near there).
+pub const MAGNETIC_TOOLFACE_BELOW_RAD: f64 = 5.0 * std::f64::consts::PI / 180.0;
+
+/// Unit direction perpendicular to the hole tangent `t` that toolface `toolface_rad` (rad)
+/// points to, global: `cos(tf) h + sin(tf) r` (gravity toolface, from the high side `h`,
+/// positive toward the right side `r = t x h`) when the inclination is at least
+/// [`MAGNETIC_TOOLFACE_BELOW_RAD`]; below it `cos(tf) n + sin(tf) t x n` with `n` north made
+/// perpendicular to `t` (magnetic toolface, from the survey's north).
+pub fn toolface_direction(t: &Vec3, toolface_rad: f64) -> Vec3 {
+    let t = t.normalize();
+    let (s, c) = toolface_rad.sin_cos();
+    let inc = (t.x * t.x + t.y * t.y).sqrt().atan2(t.z);
+    if inc >= MAGNETIC_TOOLFACE_BELOW_RAD {
+        let f = Frame::from_tangent(&t, 0.0);
+        f.h * c + f.r * s
+    } else {
+        let north = Vec3::new(1.0, 0.0, 0.0);
+        let n = (north - t * t.dot(&north)).normalize();
+        n * c + t.cross(&n) * s
+    }
+}
+
 /// Rotate `v` about the unit axis `a` by `angle` rad (Rodrigues).
 pub fn rotate_about(v: &Vec3, a: &Vec3, angle: f64) -> Vec3 {
     let (s, c) = angle.sin_cos();
@@ -92,6 +116,25 @@ mod tests {
         assert!(f.t.dot(&f.h).abs() < 1e-12);
         assert!(f.t.dot(&f.r).abs() < 1e-12);
         assert!((f.t.cross(&f.h) - f.r).norm() < 1e-12);
+    }
+
+    /// Gravity toolface from the high side toward the right; magnetic (from north, toward
+    /// east) within 5 deg of vertical.
+    #[test]
+    fn toolface_directions() {
+        let t = tangent(30f64.to_radians(), 45f64.to_radians());
+        let f = Frame::from_tangent(&t, 0.0);
+        let hp = std::f64::consts::FRAC_PI_2;
+        assert!((toolface_direction(&t, 0.0) - f.h).norm() < 1e-12);
+        assert!((toolface_direction(&t, hp) - f.r).norm() < 1e-12);
+        assert!((toolface_direction(&t, std::f64::consts::PI) + f.h).norm() < 1e-12);
+        let v = tangent(2f64.to_radians(), 200f64.to_radians());
+        let n = toolface_direction(&v, 0.0);
+        let e = toolface_direction(&v, hp);
+        assert!(n.x > 0.999 && n.dot(&v).abs() < 1e-12, "{n:?}");
+        assert!(e.y > 0.999 && e.dot(&v).abs() < 1e-12, "{e:?}");
+        let down = Vec3::new(0.0, 0.0, 1.0);
+        assert!((toolface_direction(&down, 0.0) - Vec3::new(1.0, 0.0, 0.0)).norm() < 1e-12);
     }
 
     #[test]

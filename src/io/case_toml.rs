@@ -128,6 +128,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         .table("tracking")?
         .unwrap_or_else(|| Section::new(path, "tracking", &empty));
     let tracking = read_tracking(&tr_sec, wellpath.md_end() - wellpath.md_start())?;
+    let steering = super::steering_toml::read_steering(&top, &dir, operation.toolface_rad)?;
 
     let case = Case {
         name,
@@ -148,6 +149,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         bit_rock,
         solver,
         tracking,
+        steering,
     };
     if let Some(note) = case.string_above_survey_note() {
         tracing::warn!("{}: {note}", path.display());
@@ -185,7 +187,7 @@ fn read_case_string(
                 ));
             }
             let text = crate::io::witsml::read_text(&xml)?;
-            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube, false)?;
+            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube, true)?;
             let secs: Vec<Section> = tub
                 .components
                 .iter()
@@ -482,6 +484,7 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
         friction,
         bit_torque_nm: bit_torque,
         viscous_torque: viscous,
+        toolface_rad: super::motor_toml::read_toolface(s)?,
     })
 }
 
@@ -499,6 +502,7 @@ pub fn known_keys() -> Vec<&'static str> {
         super::string_toml::COMPONENT_KEYS,
         super::solver_toml::SOLVER_KEYS,
         super::tracking_toml::TRACKING_KEYS,
+        super::steering_toml::STEERING_KEYS,
     ]
     .concat()
 }
@@ -517,6 +521,8 @@ const TOP_KEYS: &[&str] = &[
     "bit_rock",
     "solver",
     "tracking",
+    "steering",
+    "slide_sheet",
 ];
 /// Keys accepted in the well table (checked before any is read, so a typo is named).
 const WELL_KEYS: &[&str] = &[
@@ -548,6 +554,7 @@ const OPERATION_KEYS: &[&str] = &[
     "friction",
     "bit_torque",
     "viscous_torque",
+    "toolface",
 ];
 /// Keys accepted in the formation table (checked before any is read, so a typo is named).
 const FORMATION_KEYS: &[&str] = &["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"];

@@ -3,8 +3,10 @@
 
 pub mod case_toml;
 pub mod measured_csv;
+pub mod motor_toml;
 pub mod paths;
 pub mod solver_toml;
+pub mod steering_toml;
 pub mod string_toml;
 pub mod survey;
 pub mod toml_reader;

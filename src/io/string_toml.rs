@@ -36,6 +36,8 @@ pub(crate) const COMPONENT_KEYS: &[&str] = &[
     "blade_od",
     "blade_length",
     "gauge_length",
+    "bend_angle",
+    "bend_to_bit",
 ];
 
 /// The string of the `[[string]]` tables `secs` (`top`: the case's top table, for errors about
@@ -56,6 +58,9 @@ pub fn read_string(
     for (k, c) in secs.iter().enumerate() {
         let bottom = comps.last().map(|p: &Component| p.top_m()).unwrap_or(0.0);
         let (component, has_length) = read_component(c, k, k + 1 == secs.len(), mud, bottom)?;
+        if component.bend.is_some() && comps.iter().any(|p| p.bend.is_some()) {
+            return Err(c.error("bend_angle", "a string may have one bent housing"));
+        }
         if !has_length {
             missing_length = Some(k);
         }
@@ -137,6 +142,7 @@ fn read_component(c: &Section, k: usize, last: bool, mud: &Mud, bottom_m: f64) -
         material,
         weight_air_n_per_m: weight,
         sensor_to_bit_m: read_sensor(c, kind, bottom_m, length)?,
+        bend: super::motor_toml::read_bend(c, kind, bottom_m, length)?,
     };
     Ok((component, length.is_some()))
 }

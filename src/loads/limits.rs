@@ -187,6 +187,7 @@ mod tests {
             material: m,
             weight_air_n_per_m: 29.0 * G,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 

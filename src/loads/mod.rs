@@ -140,6 +140,7 @@ mod tests {
             material: steel(),
             weight_air_n_per_m: 300.0,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 

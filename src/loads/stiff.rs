@@ -39,6 +39,7 @@ use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, SolveResults};
+use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::levels::run as run_level;
@@ -171,8 +172,13 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             max_iterations: ctl.max_iterations.min(WARM_MAX_ITERATIONS),
             ..ctl
         };
-        match solve_interior_point_from(&consistent, state, &warm_ctl) {
+        // a bent housing is held at its toolface against the string's twist
+        match solve_holding_toolface(&mut consistent, &warm_ctl, |m| {
+            solve_interior_point_from(m, state, &warm_ctl)
+        }) {
             Ok(sol) if sol.converged => {
+                let mut model = model;
+                model.kink = consistent.kink;
                 let out = converged(
                     case,
                     &model,
@@ -190,7 +196,8 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
-    match solve(&model, &ctl) {
+    let mut model = model;
+    match solve_holding_toolface(&mut model, &ctl, |m| solve(m, &ctl)) {
         Ok(sol) if sol.converged => {
             let out = converged(
                 case,

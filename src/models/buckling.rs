@@ -421,6 +421,7 @@ mod tests {
             material: m,
             weight_air_n_per_m: 29.0 * crate::units::G,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 
@@ -530,6 +531,7 @@ mod tests {
             material: steel(),
             weight_air_n_per_m: area * 7850.0 * crate::units::G,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 

@@ -90,13 +90,25 @@ pub struct LockUp {
     pub wob_n: f64,
     /// The largest WOB the string can deliver (soft string, hook load zero), N.
     pub max_wob_n: f64,
+    /// The WOB the results are at when the whole string found no equilibrium at the WOB asked
+    /// for and was solved at the largest WOB it delivers (its hook load zero), N; None when
+    /// the results are at the WOB asked for.
+    pub results_at_wob_n: Option<f64>,
 }
 
 impl LockUp {
     /// The warning to print.
     pub fn warning(&self, mode: &str) -> String {
+        let at = match self.results_at_wob_n {
+            Some(w) => format!(
+                "; the whole string finds no equilibrium at {:.0} kN: the results are at the largest WOB it delivers, {:.1} kN (its hook load zero)",
+                self.wob_n / 1e3,
+                w / 1e3
+            ),
+            None => String::new(),
+        };
         format!(
-            "lock-up: hook load {:.0} kN below zero, the surface would have to push the string down to put {:.0} kN on the bit while {mode}; the string can deliver at most about {:.0} kN WOB (soft string, hook load zero): less WOB or friction, rotation, or heavier pipe above the compressed part",
+            "lock-up: hook load {:.0} kN below zero, the surface would have to push the string down to put {:.0} kN on the bit while {mode}; the string can deliver at most about {:.0} kN WOB (soft string, hook load zero): less WOB or friction, rotation, or heavier pipe above the compressed part{at}",
             self.hook_load_n / 1e3,
             self.wob_n / 1e3,
             self.max_wob_n / 1e3
@@ -117,6 +129,7 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
         hook_load_n: h,
         wob_n,
         max_wob_n,
+        results_at_wob_n: None,
     })
 }
 

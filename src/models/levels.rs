@@ -24,6 +24,8 @@ use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
+use crate::models::fem::solve::continuation;
+use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
@@ -192,12 +194,19 @@ fn nearest_node(model: &Model, s_m: f64) -> usize {
         .unwrap_or(model.nodes() - 1)
 }
 
-fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
+fn fem_part(
+    mut model: Model,
+    case: &Case,
+    ctl: &SolveControls,
+    coupling_m: Option<f64>,
+) -> Result<FemPart, SolveError> {
+    // a bent housing is held at its toolface against the string's twist (a straight string is
+    // solved once)
     let (model, sol) = if case.solver.refine_contacts {
         let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
         refine::solve_refined(model, ctl, case.string.bha_length_m(), h)?
     } else {
-        let sol = solve(&model, ctl)?;
+        let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
         (model, sol)
     };
     let results = extract(&model, &sol, case.mud.density_kg_m3);
@@ -399,7 +408,14 @@ pub fn solve_string(
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<StringSolve, FidelityError> {
-    let level = run_with_progress(case, choice, ctl, on_stage)?;
+    let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
+    let mut delivered = None;
+    if !level.converged && choice.level == Level::Whole {
+        if let Some((wob, r)) = whole_at_lock_up(case, choice, ctl, on_stage) {
+            delivered = Some((case.operation.wob_n, wob));
+            level = r;
+        }
+    }
     let coupling = level.fem.as_ref().and_then(|part| part.coupling);
     let last_reported_node = level
         .fem
@@ -422,7 +438,13 @@ pub fn solve_string(
         .as_ref()
         .zip(last_reported_node)
         .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
-    let lock_up = lock_up(case, level.hook_load_n, level.wob_n);
+    let lock_up = match delivered {
+        Some((asked, wob)) => soft_lock_up_at(case, asked).map(|l| LockUp {
+            results_at_wob_n: Some(wob),
+            ..l
+        }),
+        None => lock_up(case, level.hook_load_n, level.wob_n),
+    };
     let sensors = level
         .fem
         .as_ref()
@@ -439,4 +461,40 @@ pub fn solve_string(
         lock_up,
         sensors,
     })
+}
+
+/// The lock-up of `case` at the WOB `wob_n` (N) by the soft string's hook load there.
+fn soft_lock_up_at(case: &Case, wob_n: f64) -> Option<LockUp> {
+    let mut c = case.clone();
+    c.operation.wob_n = wob_n;
+    let hook = softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n;
+    lock_up(&c, Some(hook), wob_n)
+}
+
+/// Lock-up as an answer: when the whole string found no equilibrium at `case`'s WOB and the
+/// soft string is locked up there (its hook load below zero), the whole string solved at the
+/// largest WOB it delivers, its hook load zero: found by the WOB path
+/// ([`crate::models::fem::solve::continuation::wob_at_zero_hook_load`], the hook load within 1%
+/// of the soft string's lock-up WOB or 0.5 kN), then solved there as any case. Returns that WOB (N) and the result;
+/// None when the case is not locked up, the path finds no such WOB or the solve there does not
+/// converge.
+fn whole_at_lock_up(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Option<(f64, LevelResult)> {
+    let soft = soft_lock_up_at(case, case.operation.wob_n)?;
+    let model = Model::from_case(case);
+    let tolerance = (0.01 * soft.max_wob_n).max(500.0);
+    let (wob, hook) = continuation::wob_at_zero_hook_load(&model, ctl, tolerance)?;
+    tracing::info!(
+        wob_n = wob,
+        hook_n = hook,
+        "lock-up: the largest WOB with a non-negative hook load"
+    );
+    let mut c = case.clone();
+    c.operation.wob_n = wob;
+    let r = run_with_progress(&c, choice, ctl, on_stage).ok()?;
+    r.converged.then_some((wob, r))
 }

@@ -358,6 +358,7 @@ mod tests {
             material: steel(),
             weight_air_n_per_m: w_air,
             sensor_to_bit_m: None,
+            bend: None,
         }
     }
 

@@ -93,6 +93,7 @@ pub fn richardson(
                 bit,
                 direction: p.tangent,
                 iterations: r.iterations,
+                steer: r.steer,
             }
         })
         .collect();

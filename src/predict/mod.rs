@@ -9,5 +9,7 @@ pub mod forecast;
 pub mod intervals;
 pub mod law;
 pub mod march;
+pub mod revolution;
+pub mod steer;
 pub mod track;
 pub mod tracking;

@@ -1,7 +1,7 @@
 //! Tracking: a prediction compared with measured stations, rates over the interval, and the
 //! output rows of `trajectory.csv` (docs/guide.md).
 
-use super::march::{Prediction, StepRecord};
+use super::march::{Prediction, StepRecord, StepSteer};
 use crate::geometry::survey::wrap_pi;
 use crate::geometry::{Vec3, WellPath};
 use crate::models::fem::results::BitResult;
@@ -21,6 +21,8 @@ pub struct TrajectoryRow {
     pub measured: Option<(f64, f64)>,
     /// Bit forces and tilt with the bit here (linear between solved steps).
     pub bit: BitResult,
+    /// How a bent housing drilled the step ending here or next (None: a straight string).
+    pub steer: Option<StepSteer>,
 }
 
 impl TrajectoryRow {
@@ -59,6 +61,12 @@ pub fn bit_at(steps: &[StepRecord], md_m: f64) -> BitResult {
     }
 }
 
+/// How the step ending at or next after `md_m` was drilled (the last step's beyond the end).
+pub fn steer_at(steps: &[StepRecord], md_m: f64) -> Option<StepSteer> {
+    let k = steps.partition_point(|r| r.md_m < md_m - 1e-9);
+    steps.get(k).or(steps.last()).and_then(|r| r.steer)
+}
+
 /// Output rows: every solved step, plus every measured station of `measured` within the
 /// prediction's interval (predicted values interpolated on the predicted hole), sorted by MD.
 pub fn trajectory_rows(pred: &Prediction, measured: Option<&WellPath>) -> Vec<TrajectoryRow> {
@@ -86,6 +94,7 @@ pub fn trajectory_rows(pred: &Prediction, measured: Option<&WellPath>) -> Vec<Tr
                 position: p.position,
                 measured: meas,
                 bit: bit_at(&pred.steps, md),
+                steer: steer_at(&pred.steps, md),
             }
         })
         .collect()

@@ -189,7 +189,7 @@ fn write_string(t: &mut String, tub: &Tubular, file: &str) {
         if c.table.contains_key("bend_angle") {
             let _ = writeln!(
                 t,
-                "# the motor's bend: `bend_angle` and `bend_to_bit` are read by a drillpath that models motor\n# bends; one that does not refuses them (unknown key): remove them to model the motor straight"
+                "# the motor's bent housing: bend_to_bit is from the bit face (the components below + distBendBot)"
             );
         }
         for key in keys {

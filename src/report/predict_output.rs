@@ -71,9 +71,40 @@ pub fn trajectory_csv(rows: &[TrajectoryRow]) -> Result<String, String> {
 }
 
 /// `trajectory.csv` of a forecast: [`trajectory_csv`], with an assimilation its bounds and the
-/// plain march ([`PROJECTION_COLUMNS`]), and when the string has a survey sensor the sag angle
-/// there (`sensor_sag_deg`, the last column).
+/// plain march ([`PROJECTION_COLUMNS`]), when the string has a survey sensor the sag angle
+/// there (`sensor_sag_deg`), and with a bent housing how each step was drilled
+/// ([`STEERING_COLUMNS`], the last columns).
 pub fn forecast_csv(f: &Forecast) -> Result<String, String> {
+    let text = with_sensor_column(f)?;
+    if f.rows.iter().all(|r| r.steer.is_none()) {
+        return Ok(text);
+    }
+    let mut out = String::with_capacity(text.len() + 16 * f.rows.len());
+    let mut lines = text.lines();
+    out.push_str(lines.next().unwrap_or_default());
+    out.push(',');
+    out.push_str(STEERING_COLUMNS);
+    out.push('\n');
+    for (line, r) in lines.zip(&f.rows) {
+        let cells = match r.steer {
+            Some(st) => format!("{},{}", st.mode_name(), num(st.toolface_rad.to_degrees(), 2)?),
+            None => ",".to_string(),
+        };
+        out.push_str(line);
+        out.push(',');
+        out.push_str(&cells);
+        out.push('\n');
+    }
+    Ok(out)
+}
+
+/// Columns `trajectory.csv` of `predict` ends with for a string with a bent housing: how the
+/// step ending at the row (or next) was drilled, `slide` or `rotate`, and the toolface set, deg
+/// (gravity, or magnetic near vertical; the first of the revolution when rotating).
+pub const STEERING_COLUMNS: &str = "mode,toolface_deg";
+
+/// [`forecast_columns`] with `sensor_sag_deg` after them when the string has a survey sensor.
+fn with_sensor_column(f: &Forecast) -> Result<String, String> {
     let text = forecast_columns(f)?;
     if f.rows.iter().all(|r| r.bit.sensor_sag_rad.is_none()) {
         return Ok(text);

@@ -8,6 +8,7 @@ use crate::models::buckling::{summarize, Mark};
 use crate::models::fem::results::NodeResult;
 use crate::models::levels::{LevelResult, StringSolve};
 use crate::models::softstring::SoftStringResult;
+use crate::predict::steer::{SteadyTurn, Steering};
 use serde::Serialize;
 
 /// Header of `string.csv`: the interface's columns.
@@ -140,6 +141,7 @@ struct LockUpJson {
     hook_load_kN: Finite,
     wob_kN: Finite,
     max_wob_kN: Finite,
+    results_at_wob_kN: Option<Finite>,
 }
 
 /// One entry of the `sensors` key: a survey sensor's sag angle.
@@ -168,6 +170,38 @@ pub struct SolveSummary {
     lock_up: Option<LockUpJson>,
     warnings: Vec<String>,
     sensors: Vec<SensorJson>,
+    motor_yield_deg_per_30m: Option<Finite>,
+    rotating_tendency_deg_per_30m: Option<TurnRateJson>,
+    steering: Option<SteeringJson>,
+}
+
+/// A dogleg rate split into build and right turn, deg/30 m.
+#[derive(Serialize)]
+struct TurnRateJson {
+    build: Finite,
+    right: Finite,
+}
+
+impl TurnRateJson {
+    fn of(t: &SteadyTurn) -> TurnRateJson {
+        TurnRateJson {
+            build: Finite(t.build_rad_per_m.to_degrees() * 30.0),
+            right: Finite(t.right_rad_per_m.to_degrees() * 30.0),
+        }
+    }
+}
+
+/// The `steering` key: the bent housing and how its tendencies were computed.
+#[derive(Serialize)]
+struct SteeringJson {
+    bend_angle_deg: Finite,
+    bend_to_bit_m: Finite,
+    toolface_deg: Finite,
+    toolface_reference: &'static str,
+    motor_yield_toolface_deg: Option<Finite>,
+    motor_yield_rate_deg_per_30m: Option<TurnRateJson>,
+    rotating_toolfaces: usize,
+    not_computed: Option<String>,
 }
 
 /// The `buckling` key of `marks`, whose axial force comes from `model`.
@@ -321,8 +355,12 @@ impl SolveSummary {
                 hook_load_kN: Finite(l.hook_load_n / 1e3),
                 wob_kN: Finite(l.wob_n / 1e3),
                 max_wob_kN: Finite(l.max_wob_n / 1e3),
+                results_at_wob_kN: l.results_at_wob_n.map(|w| Finite(w / 1e3)),
             }),
             warnings: s.warnings(case),
+            motor_yield_deg_per_30m: None,
+            rotating_tendency_deg_per_30m: None,
+            steering: None,
             sensors: s
                 .sensors
                 .iter()
@@ -335,6 +373,30 @@ impl SolveSummary {
                 })
                 .collect(),
         }
+    }
+}
+
+impl SolveSummary {
+    /// The summary with the bent housing's tendencies `steering` (None: a straight string,
+    /// whose `motor_yield_deg_per_30m`, `rotating_tendency_deg_per_30m` and `steering` are null).
+    pub fn with_steering(mut self, steering: Option<&Steering>) -> SolveSummary {
+        let Some(st) = steering else {
+            return self;
+        };
+        let ok = st.tendencies.as_ref().ok();
+        self.motor_yield_deg_per_30m = ok.map(|(y, _)| Finite(y.dogleg_rad_per_m().to_degrees() * 30.0));
+        self.rotating_tendency_deg_per_30m = ok.map(|(_, r)| TurnRateJson::of(r));
+        self.steering = Some(SteeringJson {
+            bend_angle_deg: Finite(st.bend.angle_rad.to_degrees()),
+            bend_to_bit_m: Finite(st.bend.to_bit_m),
+            toolface_deg: Finite(st.toolface_rad.to_degrees()),
+            toolface_reference: if st.magnetic { "magnetic" } else { "gravity" },
+            motor_yield_toolface_deg: ok.map(|(y, _)| Finite(y.toolface_rad().to_degrees())),
+            motor_yield_rate_deg_per_30m: ok.map(|(y, _)| TurnRateJson::of(y)),
+            rotating_toolfaces: st.rotating_toolfaces,
+            not_computed: st.tendencies.as_ref().err().cloned(),
+        });
+        self
     }
 }
 

@@ -6,11 +6,13 @@ use super::inputs::echo_inputs;
 use super::plots::{render, Band, Chart, Series, Style};
 use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
+use super::solve_text::steering_line;
 use crate::case::{Case, Level};
 use crate::models::buckling::{spans, BuckleState, Mark};
 use crate::models::fem::results::{NodeResult, SolveResults};
 use crate::models::fem::solve::SolveStats;
 use crate::models::levels::StringSolve;
+use crate::predict::steer::Steering;
 
 /// Ids of the solve report's figures (the tests look for each).
 pub const SOLVE_FIGURES: &[&str] = &[
@@ -415,11 +417,17 @@ fn html(
         .map_err(|e| anyhow::anyhow!("internal error in the report: {e}"))
 }
 
-/// The HTML report of the solve `s` of `case`, in `units`: the
+/// The HTML report of the solve `s` of `case`, in `units` (with a bent housing's tendencies
+/// `steering` in the note at the top): the
 /// whole string, or the stiff part of a `bha` or `hybrid` result from the bit to the coupling
 /// point with the level's hook load and surface torque (hybrid) or none (bha). A `soft`
 /// result has nothing stiff to draw: an error.
-pub fn solve_html(case: &Case, s: &StringSolve, units: UnitSystem) -> anyhow::Result<String> {
+pub fn solve_html(
+    case: &Case,
+    s: &StringSolve,
+    units: UnitSystem,
+    steering: Option<&Steering>,
+) -> anyhow::Result<String> {
     let lr = &s.level;
     let Some(part) = &lr.fem else {
         anyhow::bail!(
@@ -427,7 +435,18 @@ pub fn solve_html(case: &Case, s: &StringSolve, units: UnitSystem) -> anyhow::Re
             lr.choice.level.name()
         );
     };
-    let warnings: String = s.warnings(case).iter().map(|w| format!(" WARNING: {w}.")).collect();
+    // the bent housing's tendencies, as on stdout, then the warnings
+    let mut warnings: String = steering
+        .map(|st| {
+            format!(
+                " {}.",
+                steering_line(st, units)
+                    .trim()
+                    .replacen("bent motor:", "Bent motor:", 1)
+            )
+        })
+        .unwrap_or_default();
+    warnings.extend(s.warnings(case).iter().map(|w| format!(" WARNING: {w}.")));
     if lr.choice.level == Level::Whole {
         let options = ReportOptions {
             units,

@@ -6,6 +6,7 @@ use crate::case::{Case, Level};
 use crate::models::buckling::summarize;
 use crate::models::fem::results::BitResult;
 use crate::models::levels::StringSolve;
+use crate::predict::steer::Steering;
 use std::io::Write;
 use std::path::Path;
 
@@ -19,6 +20,8 @@ pub struct SolveView<'a> {
     pub out_dir: Option<&'a Path>,
     /// The HTML report written, if any.
     pub report: Option<&'a Path>,
+    /// The bent housing's tendencies (None: a straight string).
+    pub steering: Option<&'a Steering>,
 }
 
 /// The lines every level prints about the operation and the bit: mode, bit MD, WOB, rpm; bit
@@ -95,10 +98,37 @@ pub fn write_summary(out: &mut impl Write, case: &Case, s: &StringSolve, view: &
             signed(-x.sag_rad.to_degrees(), 4)
         )?;
     }
+    if let Some(st) = view.steering {
+        writeln!(out, "{}", steering_line(st, view.units))?;
+    }
     if lr.choice.level == Level::Whole {
         write_whole(out, case, s, view)
     } else {
         write_level(out, case, s, view)
+    }
+}
+
+/// The stdout line of a bent housing's tendencies, in `units`.
+pub fn steering_line(st: &Steering, units: UnitSystem) -> String {
+    let dl = units.dogleg();
+    let head = format!(
+        "  bent motor: {} deg at {} from the bit, toolface {} deg ({})",
+        fixed(st.bend.angle_rad.to_degrees(), 2),
+        units.depth().fmt(st.bend.to_bit_m, 2),
+        fixed(st.toolface_rad.to_degrees(), 1),
+        if st.magnetic { "magnetic" } else { "gravity" }
+    );
+    match &st.tendencies {
+        Ok((y, r)) => format!(
+            "{head}; motor yield sliding {} (build {}, right {}); rotating tendency build {}, right {} ({} toolfaces)",
+            dl.fmt(y.dogleg_rad_per_m(), 2),
+            dl.fmt_signed(y.build_rad_per_m, 2),
+            dl.fmt_signed(y.right_rad_per_m, 2),
+            dl.fmt_signed(r.build_rad_per_m, 2),
+            dl.fmt_signed(r.right_rad_per_m, 2),
+            st.rotating_toolfaces
+        ),
+        Err(why) => format!("{head}; motor yield not computed: {why}"),
     }
 }
 

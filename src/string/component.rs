@@ -19,7 +19,7 @@ pub enum ComponentKind {
     Pipe,
     /// Heavy-weight drill pipe.
     Hwdp,
-    /// Downhole motor (straight model).
+    /// Downhole motor (straight, or with a bent housing: [`Component::bend`]).
     Motor,
     /// MWD tool.
     Mwd,
@@ -108,7 +108,23 @@ pub struct Component {
     /// Distance from the bit face to the survey sensor of an `mwd` component, m (None: no
     /// sensor given).
     pub sensor_to_bit_m: Option<f64>,
+    /// Bent housing of a `motor` component (None: straight; also for a zero bend angle).
+    pub bend: Option<MotorBend>,
 }
+
+/// The bent housing of a motor: a kink of the unloaded string axis (docs/theory.md, "Bent
+/// motors"), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotorBend {
+    /// Bend angle between the axes below and above the bend, rad (positive, at most
+    /// [`MAX_BEND_ANGLE_RAD`]).
+    pub angle_rad: f64,
+    /// Distance from the bit face to the bend, m (on the motor component).
+    pub to_bit_m: f64,
+}
+
+/// Largest bend angle accepted, rad (4 deg: adjustable housings go to about 3 deg).
+pub const MAX_BEND_ANGLE_RAD: f64 = 4.0 * std::f64::consts::PI / 180.0;
 
 impl Component {
     /// Distance from the bit face to the component's top, m.

@@ -3,7 +3,7 @@
 pub mod component;
 pub mod material;
 
-pub use component::{Component, ComponentKind};
+pub use component::{Component, ComponentKind, MotorBend, MAX_BEND_ANGLE_RAD};
 pub use material::Material;
 
 /// Components from the bit upward, contiguous (`components[k+1].bottom_m == components[k].top_m()`).
@@ -81,6 +81,10 @@ impl DrillString {
             components.push(c);
         }
         DrillString { components }
+    }
+    /// The bent housing of the string (the first motor with a bend), if any.
+    pub fn bend(&self) -> Option<MotorBend> {
+        self.components.iter().find_map(|c| c.bend)
     }
     /// Distances from the bit of stabilizer contact points (mid-length), m.
     pub fn stabilizer_contacts_m(&self) -> Vec<f64> {

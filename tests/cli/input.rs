@@ -990,3 +990,83 @@ fn tracking_unknown_parameter_and_key() {
         &["case.toml", "tracking", "forgeting_length", "forgetting_length"],
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Bent motors (docs/guide.md, `[[string]]` `bend_angle`, `bend_to_bit`; `[operation] toolface`).
+
+#[test]
+fn a_valid_bent_motor_is_accepted() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "type = \"collar\"",
+        "type = \"motor\"\nbend_angle = \"1.5 deg\"\nbend_to_bit = \"3 m\"",
+    );
+    let r = fx.run(&["survey", "case.toml"]);
+    assert!(r.success(), "{}", r.describe());
+}
+
+#[test]
+fn bend_angle_above_4_deg() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "type = \"collar\"",
+        "type = \"motor\"\nbend_angle = 4.5\nbend_to_bit = \"3 m\"",
+    );
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[2].bend_angle`", "outside [0, 4] deg"],
+    );
+}
+
+#[test]
+fn negative_bend_angle() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "type = \"collar\"",
+        "type = \"motor\"\nbend_angle = -1\nbend_to_bit = \"3 m\"",
+    );
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`string[2].bend_angle`"]);
+}
+
+#[test]
+fn bend_outside_its_motor() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "type = \"collar\"",
+        "type = \"motor\"\nbend_angle = 1.5\nbend_to_bit = \"0.5 m\"",
+    );
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[2].bend_to_bit`", "not on this motor"],
+    );
+}
+
+#[test]
+fn bend_on_a_component_that_is_not_a_motor() {
+    let fx = Fixture::new();
+    fx.edit_case(
+        "type = \"collar\"",
+        "type = \"collar\"\nbend_angle = 1.5\nbend_to_bit = \"3 m\"",
+    );
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[2].bend_angle`", "only a `motor`"],
+    );
+}
+
+#[test]
+fn bend_angle_without_bend_to_bit() {
+    let fx = Fixture::new();
+    fx.edit_case("type = \"collar\"", "type = \"motor\"\nbend_angle = 1.5");
+    fx.expect_error(
+        &["survey", "case.toml"],
+        &["case.toml", "`string[2].bend_to_bit`", "missing"],
+    );
+}
+
+#[test]
+fn toolface_that_is_not_an_angle() {
+    let fx = Fixture::new();
+    fx.edit_case("rpm = 60", "rpm = 60\ntoolface = \"90 m\"");
+    fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.toolface`"]);
+}

@@ -589,3 +589,36 @@ fn hostile_witsml_is_refused_and_nothing_is_written() {
     assert!(r.success(), "{}", r.describe());
     assert_eq!(r.stdout.lines().count(), 4, "{}", r.stdout);
 }
+
+#[test]
+fn a_whole_string_locked_up_answers_at_the_wob_it_delivers() {
+    // 300 m of horizontal hole after a 6 deg/30 m build, slid with 114 kN asked for: about
+    // twice what the string delivers (soft string 57 kN at hook load zero). The whole-string
+    // solve finds no equilibrium at 114 kN; it answers with the whole string at the largest
+    // WOB it delivers (its hook load zero), exit 0, the warning naming both WOBs
+    // (tests/verification/slack_off.rs checks the mechanics).
+    let mut survey = String::from("md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n");
+    for k in 1..=45 {
+        survey += &format!("{},{},0\n", 300.0 + 10.0 * k as f64, 2.0 * k as f64);
+    }
+    survey += "1050,90,0\n";
+    let stab = "[[string]]\ntype = \"stabilizer\"\nod = \"8.4375 in\"\nbody_od = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"1.5 m\"\n";
+    let collars = "[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"54 m\"\n";
+    let text = format!(
+        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"1050 m\", diameter = \"8.5 in\" }}]\n[mud]\ndensity = \"1.2 sg\"\n[operation]\nmode = \"sliding\"\nbit_md = \"1050 m\"\nwob = \"114 kN\"\nrop = \"12 m/h\"\nfriction = 0.25\n{BIT}{stab}{collars}{DRILL_PIPE}[solver]\nelement_length = \"1 m\"\n"
+    );
+    let dir = case_dir(&survey, &text);
+    let r = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "whole", "--json"]);
+    assert!(r.success(), "{}", r.describe());
+    let j: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+    let l = &j["lock_up"];
+    let at = l["results_at_wob_kN"].as_f64().expect("results_at_wob_kN");
+    assert!((l["wob_kN"].as_f64().unwrap() - 114.0).abs() < 1e-6);
+    assert!(at > 40.0 && at < l["max_wob_kN"].as_f64().unwrap(), "{at}");
+    assert!((j["bit"]["wob_kN"].as_f64().unwrap() - at).abs() < 1e-6, "{}", j["bit"]);
+    let warning = j["warnings"][0].as_str().unwrap();
+    assert!(
+        warning.contains("lock-up") && warning.contains("largest WOB it delivers"),
+        "{warning}"
+    );
+}

@@ -234,3 +234,37 @@ bha_element_length = "0.25 m"
         assert_error_names(&r, &["string[1].sensor_to_bit"]);
     }
 }
+
+/// A bent motor's outputs (docs/guide.md "Bent motors", "Outputs of solve"): the example
+/// `wells/horizontal/steered.toml` at `bha` prints the `bent motor:` line and writes the motor
+/// yield in the published range for a 1.5 deg bend (8-18 deg/30 m), the rotating tendency
+/// (build and right, below a quarter of the yield) and the `steering` key; the straight
+/// `case.toml` writes them `null`.
+#[test]
+fn a_bent_motor_reports_its_yield_and_rotating_tendency() {
+    let json = |file: &str| -> serde_json::Value {
+        let out = run_in(root(), &["solve", file, "--fidelity", "bha", "--json"]);
+        assert!(out.success(), "{file}: {}", out.stderr);
+        serde_json::from_str(&out.stdout).unwrap()
+    };
+    let bent = json("wells/horizontal/steered.toml");
+    let y = bent["motor_yield_deg_per_30m"].as_f64().unwrap();
+    assert!((8.0..=18.0).contains(&y), "{y}");
+    let rot = &bent["rotating_tendency_deg_per_30m"];
+    let (b, r) = (rot["build"].as_f64().unwrap(), rot["right"].as_f64().unwrap());
+    assert!(b.hypot(r) < 0.25 * y, "{b} {r} against {y}");
+    assert_eq!(bent["steering"]["toolface_reference"], "gravity");
+    assert_eq!(bent["steering"]["rotating_toolfaces"], 24);
+    assert!(bent["steering"]["not_computed"].is_null());
+    let straight = json("wells/horizontal/case.toml");
+    for key in ["motor_yield_deg_per_30m", "rotating_tendency_deg_per_30m", "steering"] {
+        assert!(straight[key].is_null(), "{key}");
+    }
+    let text = run_in(root(), &["solve", "wells/horizontal/steered.toml", "--fidelity", "bha"]);
+    assert!(
+        text.stdout
+            .contains("bent motor: 1.50 deg at 2.00 m from the bit, toolface 0.0 deg (gravity); motor yield sliding"),
+        "{}",
+        text.stdout
+    );
+}

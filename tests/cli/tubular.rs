@@ -198,16 +198,23 @@ fn refused(xml: &str, keys: &str, must: &[&str]) {
 
 #[test]
 fn what_drillpath_cannot_model_is_refused_by_uid() {
-    let bent = comp("m1", "mud motor", 8, "<id uom=\"in\">3</id><od uom=\"in\">6.75</od><len uom=\"m\">8</len><bend uid=\"b\"><angle uom=\"dega\">1.5</angle><distBendBot uom=\"m\">2</distBendBot></bend>");
+    // a bend on a component that is not a motor
+    let bent_sub = tubular("").replace(
+        "<len uom=\"m\">27.6</len>",
+        "<len uom=\"m\">27.6</len><bend uid=\"b\"><angle uom=\"dega\">1</angle><distBendBot uom=\"m\">1</distBendBot></bend>",
+    );
+    refused(&bent_sub, "", &["bha.xml: key `tubularComponent[dc2].bend_angle`"]);
+    // a bend without its distance from the bottom
+    let no_dist = tubular("")
+        .replace("near bit stabilizer</typeTubularComp>", "mud motor</typeTubularComp>")
+        .replace(
+            "<stabilizer uid=\"b2\"><lenBlade uom=\"m\">0.4</lenBlade><odBladeMx uom=\"in\">8.5</odBladeMx></stabilizer>",
+            "<bend uid=\"b\"><angle uom=\"dega\">1.5</angle></bend>",
+        );
     refused(
-        &tubular(&bent),
+        &no_dist,
         "",
-        &[
-            "bha.xml: line",
-            "element `bend` of component `m1` (mud motor)",
-            "a bend of 1.5 deg",
-            "not yet modelled",
-        ],
+        &["element `bend` of component `nbs` (mud motor)", "has no `distBendBot`"],
     );
     let spear = comp(
         "f1",
@@ -300,19 +307,13 @@ fn import_writes_an_editable_case_that_solves_like_string_from() {
     assert!(r.stdout.contains("wrote bent.toml"), "{}", r.stdout);
     let text = std::fs::read_to_string(d.path().join("bent.toml")).unwrap();
     assert!(
-        text.contains("[[string]]   # component `m1` (mud motor)\n# the motor's bend")
-            && text.contains("remove them to model the motor straight\ntype = \"motor\""),
+        text.contains("[[string]]   # component `m1` (mud motor)\n# the motor's bent housing")
+            && text.contains("(the components below + distBendBot)\ntype = \"motor\""),
         "{text}"
     );
     assert!(text.contains("bend_angle = \"1.5 deg\""), "{text}");
     // below the motor: bit 0.3, stabs 1.6 + 1.6, collars 27.6 + 27.6, HWDP 140, DP (its len 2000 m)
     assert!(text.contains("bend_to_bit = \"2200.7 m\""), "{text}");
-    // this drillpath does not model bends: the imported bent case is refused, naming the key
-    let bent_tables = &text[text.find("[[string]]").unwrap()..];
-    let bent_case = tempfile::tempdir().unwrap();
-    write_case(bent_case.path(), bent_tables);
-    let r = run_in(bent_case.path(), &["solve", "case.toml"]);
-    assert_error_names(&r, &["case.toml: key `string[7].bend_angle`", "unknown key"]);
     // the straight string: the imported tables in the j-shape case solve like string_from
     let r = run_ok(d.path(), &["import", "bha.xml", "--out", "case.toml"]);
     assert!(r.success());
@@ -345,4 +346,53 @@ fn import_writes_an_editable_case_that_solves_like_string_from() {
     let r = run_in(d.path(), &["import", "wells.xml", "--out", "w.toml"]);
     assert_error_names(&r, &["wells.xml: root element `wells`"]);
     assert!(!d.path().join("w.toml").exists());
+}
+
+/// The tubular with a bent motor in place of the near-bit stabilizer (1.5 deg, 1 m above the
+/// motor's bottom), and the same string by hand.
+fn bent_motor() -> (String, String) {
+    let xml = tubular("")
+        .replace("near bit stabilizer</typeTubularComp>", "mud motor</typeTubularComp>")
+        .replace(
+            "<stabilizer uid=\"b2\"><lenBlade uom=\"m\">0.4</lenBlade><odBladeMx uom=\"in\">8.5</odBladeMx></stabilizer>",
+            "<bend uid=\"b\"><angle uom=\"dega\">1.5</angle><distBendBot uom=\"m\">1</distBendBot></bend>",
+        );
+    let first_stab = "[[string]]\ntype = \"stabilizer\"\nod = \"6.5 in\"\nblade_od = \"8.5 in\"\nblade_length = \"0.4 m\"\nid = \"2.8125 in\"\nlength = \"1.6 m\"\n";
+    assert!(BY_HAND.contains(first_stab));
+    let motor = "[[string]]\ntype = \"motor\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"1.6 m\"\nbend_angle = \"1.5 deg\"\nbend_to_bit = \"1.3 m\"\n";
+    (xml, BY_HAND.replacen(first_stab, motor, 1))
+}
+
+#[test]
+fn a_bent_motor_in_a_tubular_solves_like_the_case_written_by_hand() {
+    let (xml, by_hand) = bent_motor();
+    let hand = tempfile::tempdir().unwrap();
+    write_case(hand.path(), &by_hand);
+    let x = tempfile::tempdir().unwrap();
+    write_case(x.path(), "");
+    let case = std::fs::read_to_string(x.path().join("case.toml")).unwrap();
+    std::fs::write(x.path().join("case.toml"), format!("string_from = \"bha.xml\"\n{case}")).unwrap();
+    std::fs::write(x.path().join("bha.xml"), xml).unwrap();
+    for dir in [hand.path(), x.path()] {
+        let c = std::fs::read_to_string(dir.join("case.toml")).unwrap();
+        std::fs::write(
+            dir.join("case.toml"),
+            c.replace("mode = \"drilling\"", "mode = \"sliding\""),
+        )
+        .unwrap();
+    }
+    let a = run_ok(hand.path(), &["solve", "case.toml", "--json", "--fidelity", "bha"]);
+    let b = run_ok(x.path(), &["solve", "case.toml", "--json", "--fidelity", "bha"]);
+    let j = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap();
+    let (ja, jb) = (j(&a.stdout), j(&b.stdout));
+    assert_eq!(
+        jb["steering"]["bend_to_bit_m"].as_f64(),
+        Some(1.3),
+        "{}",
+        jb["steering"]
+    );
+    for k in ["build_force_kN", "walk_force_kN"] {
+        let (x, y) = (ja["bit"][k].as_f64().unwrap(), jb["bit"][k].as_f64().unwrap());
+        assert!((x - y).abs() <= 1e-3 * x.abs().max(1e-6), "{k}: {x} against {y}");
+    }
 }

@@ -27,5 +27,6 @@ mod sliding;
 mod softstring;
 mod solver;
 mod spreadsheet;
+mod steering;
 mod tracking;
 mod witsml;

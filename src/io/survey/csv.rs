@@ -128,7 +128,7 @@ fn read(
     )
 }
 
-fn detect_delimiter(header: &str) -> char {
+pub(crate) fn detect_delimiter(header: &str) -> char {
     if header.contains(',') {
         ','
     } else if header.contains(';') {
@@ -142,7 +142,7 @@ fn detect_delimiter(header: &str) -> char {
 
 /// Split a line on `delim`, honouring double quotes (`""` inside quotes is a quote); fields are
 /// trimmed.
-fn split_fields(line: &str, delim: char) -> Vec<String> {
+pub(crate) fn split_fields(line: &str, delim: char) -> Vec<String> {
     let mut fields = Vec::new();
     let mut cur = String::new();
     let mut in_quotes = false;

@@ -105,7 +105,7 @@ pub(super) struct Column {
 }
 
 /// Split a header into (name, unit text): `MD [ft]`, `md ( ft )`, `md_ft`, `inc_deg`, `azi_rad`.
-fn split_header_unit(header: &str) -> (&str, Option<&str>) {
+pub(crate) fn split_header_unit(header: &str) -> (&str, Option<&str>) {
     let t = header.trim();
     for (open, close) in [('[', ']'), ('(', ')')] {
         if let Some(inner) = t.strip_suffix(close) {
@@ -126,7 +126,7 @@ fn split_header_unit(header: &str) -> (&str, Option<&str>) {
 }
 
 /// Lower case, without spaces, underscores, hyphens, dots and brackets.
-fn normalize_name(name: &str) -> String {
+pub(crate) fn normalize_name(name: &str) -> String {
     name.chars()
         .filter(|c| !c.is_whitespace() && !matches!(c, '_' | '-' | '.' | '(' | ')' | '[' | ']'))
         .flat_map(char::to_lowercase)

@@ -37,6 +37,9 @@ use crate::geometry::survey::{Station, Survey, SurveyProblem};
 use crate::units::Unit;
 use header::{Column, Role};
 
+pub(crate) use csv::{detect_delimiter, split_fields};
+pub(crate) use header::{normalize_name, split_header_unit};
+
 /// Units to assume for columns whose header carries no unit (from the case file or command line).
 #[derive(Debug, Clone, Default)]
 pub struct SurveyUnits {

@@ -12,7 +12,8 @@
 //!   and for stabilizers the `stabilizer` sub-element's `odBladeMx` (blade diameter) and
 //!   `lenBlade` (blade length) map to the component keys; the blades are centred on the
 //!   stabilizer in drillpath, so a `distBladeBot` is noted, not used;
-//! - a `bend` sub-element with a non-zero `angle` is refused: bends are not yet modelled;
+//! - a `bend` sub-element with a non-zero `angle` becomes the motor's `bend_angle` and
+//!   `bend_to_bit` (the components below plus `distBendBot`, from the bit face);
 //! - the topmost component fills the string to the surface (its `len`, if any, is replaced;
 //!   [`Tubular::top_len_m`] keeps it for a note when it differs).
 
@@ -93,8 +94,8 @@ fn si(value: f64, unit: &str) -> Value {
 
 /// Parse the WITSML text `text` (file `path`) and read its tubular named or with uid `wanted`
 /// (the only one when `None`); `other_as_tube` reads unknown component types as plain tubes.
-/// A non-zero motor bend is refused unless `keep_bends` (for `drillpath import`, which writes
-/// it as the motor keys `bend_angle` and `bend_to_bit`, the distance from the bit face).
+/// A non-zero `bend` becomes the motor keys `bend_angle` and `bend_to_bit` (the distance from
+/// the bit face) with `keep_bends`; without it, it is refused naming the component.
 pub fn parse_tubular(
     text: &str,
     path: &Path,

@@ -1,7 +1,7 @@
 //! Mesh of the string along the hole axis, from the bit (node 0) to the surface.
 //!
-//! Nodes sit at component boundaries, along stabilizer blades and bit gauges, and at tool
-//! joints; elements are at most `bha_element_length` in the bottom-hole assembly and
+//! Nodes sit at component boundaries, along stabilizer blades and bit gauges, at tool
+//! joints, survey sensors and the bend of a bent motor housing; elements are at most `bha_element_length` in the bottom-hole assembly and
 //! `element_length` above (docs/theory.md 5.2). Each node knows its contact diameter: blade OD
 //! along a stabilizer's blades, bit OD along the bit's gauge, tool-joint OD at a joint, body
 //! OD elsewhere; the bit node has no gap (it is centred). With `[solver] stabilizer_contact =
@@ -131,6 +131,33 @@ pub struct Mesh {
     pub nodes: Vec<MeshNode>,
     /// Elements, `elements[e]` joins nodes e and e+1.
     pub elements: Vec<MeshElement>,
+    /// The bent housing's node and angle (None: a straight string).
+    pub bend: Option<MeshBend>,
+}
+
+/// Where the unloaded string axis kinks: a bent motor housing on the mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshBend {
+    /// Index of the node at the bend (> 0): the element below it (`node - 1`) is the one whose
+    /// unloaded axis is turned by the bend.
+    pub node: usize,
+    /// Bend angle, rad.
+    pub angle_rad: f64,
+}
+
+/// The node of `nodes` at the bend of `string`'s bent housing (None for a straight string, or
+/// a bend at the first or last node, which has no element on one side).
+fn bend_node(string: &DrillString, nodes: &[MeshNode]) -> Option<MeshBend> {
+    let b = string.bend()?;
+    let node = nodes
+        .iter()
+        .enumerate()
+        .min_by(|a, c| (a.1.s_m - b.to_bit_m).abs().total_cmp(&(c.1.s_m - b.to_bit_m).abs()))
+        .map(|(k, _)| k)?;
+    (node > 0 && node < nodes.len() - 1).then_some(MeshBend {
+        node,
+        angle_rad: b.angle_rad,
+    })
 }
 
 /// Build the mesh of `string` with `settings`' element lengths and contact model and mud
@@ -202,7 +229,8 @@ pub fn build_mesh(
             }
         })
         .collect();
-    Mesh { nodes, elements }
+    let bend = bend_node(string, &nodes);
+    Mesh { nodes, elements, bend }
 }
 
 /// The node marks of `string` (component ends, the contact marks of `touches`, tool joints),
@@ -212,6 +240,10 @@ fn merged_marks(string: &DrillString, touches: &[Option<Touch>], settings: &Solv
     for (c, touch) in string.components.iter().zip(touches) {
         marks.push((c.bottom_m, None));
         marks.push((c.top_m(), None));
+        if let Some(b) = c.bend {
+            // a node at the bent housing, where the unloaded axis kinks
+            marks.push((b.to_bit_m, None));
+        }
         if let Some(x) = c.sensor_to_bit_m {
             // a node at the survey sensor, where its sag angle is read
             marks.push((x, None));

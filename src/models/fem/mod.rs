@@ -5,6 +5,7 @@
 //! - [`element`]: the beam element (section, co-rotational kinematics, rotations);
 //! - [`contact`]: the gap element (normal force, friction force and torque);
 //! - [`mesh`], [`model`]: the mesh along the hole, the model's state and its assembly;
+//! - [`kink`]: the bent housing of a motor, a kink of the unloaded axis;
 //! - [`linalg`]: band matrices and their factorizations;
 //! - [`solve`]: the contact Newton solvers;
 //! - [`bha`]: the bottom-hole assembly cut where it lies on the wall;
@@ -15,6 +16,7 @@
 pub mod bha;
 pub mod contact;
 pub mod element;
+pub mod kink;
 pub mod linalg;
 pub mod mesh;
 pub mod model;

@@ -8,6 +8,7 @@
 
 use super::element::beam::BeamSection;
 use super::element::corotational::{element_forces, element_response_into, ElementForces, ElementState, Mat12};
+use super::kink::Kink;
 use super::linalg::band::BandMatrix;
 use super::linalg::band_lu::GeneralBand;
 use super::mesh::{build_mesh, Mesh};
@@ -86,6 +87,9 @@ pub struct Loads {
     pub axial_speed_m_s: f64,
     /// Mud plastic viscosity for the drag torque, Pa.s (0: off).
     pub mud_viscosity_pa_s: f64,
+    /// Toolface of the bent housing, rad ([`crate::case::Operation::toolface_rad`]; no effect
+    /// on a straight string).
+    pub toolface_rad: f64,
 }
 
 /// How the model's top node is held.
@@ -133,6 +137,7 @@ pub fn loads_from_case(case: &Case) -> Loads {
         } else {
             0.0
         },
+        toolface_rad: op.toolface_rad,
     }
 }
 
@@ -176,6 +181,8 @@ pub struct Model {
     pub consistent_tangent: bool,
     /// How the top node is held.
     pub top: TopCondition,
+    /// The bent housing's kink in the unloaded axis (None: a straight string).
+    pub kink: Option<Kink>,
 }
 
 /// Mechanical state of the string: what a solve finds, what a warm start carries.
@@ -319,6 +326,7 @@ impl Model {
             })
             .collect();
         let friction = md_ref.iter().map(|&m| friction_at(m)).collect();
+        let kink = Kink::of_mesh(&mesh, &basis, loads.toolface_rad);
         Model {
             path,
             origin_m,
@@ -335,6 +343,7 @@ impl Model {
             geometric_stiffness: true,
             consistent_tangent: false,
             top: TopCondition::Surface,
+            kink,
         }
     }
 
@@ -500,10 +509,20 @@ impl Model {
             // Node A is the upper node (e + 1), B the lower (e): the chord points down the hole
             // like the triads' first axis.
             let (a, b) = (e + 1, e);
+            // the section below a bent housing is turned by the kink (the same spin: the
+            // offset is constant in the node's material frame)
+            let kinked;
+            let lam_a = match self.kink {
+                Some(k) if k.element == e => {
+                    kinked = state.triads[a] * k.offset;
+                    &kinked
+                }
+                _ => &state.triads[a],
+            };
             let st = ElementState {
                 x_a: &state.x[a],
                 x_b: &state.x[b],
-                lam_a: &state.triads[a],
+                lam_a,
                 lam_b: &state.triads[b],
                 q_a: &self.basis[a],
                 q_b: &self.basis[b],

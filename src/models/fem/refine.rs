@@ -12,8 +12,9 @@
 //! really touches and are left as they are. `[solver] refine_contacts = false` turns it off.
 
 use super::element::rotation::skew;
-use super::mesh::{Mesh, MeshNode};
+use super::mesh::{Mesh, MeshBend, MeshNode};
 use super::model::{Model, State};
+use super::solve::toolface::solve_holding_toolface;
 use super::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError};
 use super::warm::{source_by_distance, transport_mapped};
 use crate::case::Method;
@@ -71,6 +72,7 @@ pub fn tangency_elements(model: &Model, state: &State, bha_top_m: f64, h_m: f64)
 fn split_mesh(mesh: &Mesh, split: &[usize], h_m: f64) -> Mesh {
     let mut nodes: Vec<MeshNode> = vec![mesh.nodes[0]];
     let mut elements = Vec::new();
+    let mut bend = None;
     for (e, el) in mesh.elements.iter().enumerate() {
         let (a, b) = (mesh.nodes[e], mesh.nodes[e + 1]);
         let pieces = if split.contains(&e) {
@@ -90,8 +92,15 @@ fn split_mesh(mesh: &Mesh, split: &[usize], h_m: f64) -> Mesh {
         }
         nodes.push(b);
         elements.push(*el);
+        // the bent housing's node keeps its kink at its new index
+        if let Some(mb) = mesh.bend.filter(|mb| mb.node == e + 1) {
+            bend = Some(MeshBend {
+                node: nodes.len() - 1,
+                ..mb
+            });
+        }
     }
-    Mesh { nodes, elements }
+    Mesh { nodes, elements, bend }
 }
 
 /// `model` with the elements `split` divided into pieces of at most `h_m` (same hole, loads,
@@ -118,6 +127,10 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
         friction_of,
     );
     out.top = model.top;
+    if let Some(k) = model.kink {
+        // the bent housing turned as in `model` (its toolface held against the twist)
+        out.turn_kink(k.orientation_rad);
+    }
     out.geometric_stiffness = model.geometric_stiffness;
     out.consistent_tangent = model.consistent_tangent;
     out
@@ -194,7 +207,8 @@ pub fn solve_refined(
     bha_top_m: f64,
     h_m: f64,
 ) -> Result<(Model, Solution), SolveError> {
-    let sol = solve(&model, ctl)?;
+    let mut model = model;
+    let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
     if !sol.converged || ctl.method != Method::Newton {
         return Ok((model, sol));
     }
@@ -211,7 +225,7 @@ pub fn solve_refined(
         time_limit_s: ctl.time_limit_s - sol.stats.seconds,
         ..*ctl
     };
-    match solve_interior_point_from(&fine, state, &rest) {
+    match solve_holding_toolface(&mut fine, &rest, |m| solve_interior_point_from(m, state, &rest)) {
         Ok(mut again) if again.converged => {
             again.stats.iterations += sol.stats.iterations;
             again.stats.factorizations += sol.stats.factorizations;

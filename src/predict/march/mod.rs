@@ -16,7 +16,7 @@ pub use step::{
     TURN_TOLERANCE_RAD,
 };
 
-use super::law::{deviation, drilling_direction, LawParams};
+use super::law::deviation;
 use crate::case::{BitRock, Case};
 use crate::geometry::{Frame, HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::default_cut_m;
@@ -27,7 +27,8 @@ use hole::PredictedHole;
 use nalgebra::Matrix2;
 use ripple::RippleWatch;
 use std::time::Instant;
-use step::{implicit_step, solve_at, BitSolve, StepOutcome};
+use step::{backtracking_step, implicit_step, StepOutcome};
+pub(crate) use step::{solve_bit, BitSolve};
 
 pub use crate::case::bit_rock::MIN_STEP_M;
 
@@ -128,6 +129,37 @@ pub struct StepRecord {
     pub direction: Vec3,
     /// Newton iterations of this step's solve.
     pub iterations: usize,
+    /// How a bent housing drilled the step (None: a straight string).
+    pub steer: Option<StepSteer>,
+}
+
+/// How a bent housing drills: sliding at a toolface or rotating.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepSteer {
+    /// The string rotates (the housing turns with it, the drilling direction is the mean over
+    /// a revolution); else it slides.
+    pub rotating: bool,
+    /// The toolface set, rad ([`crate::case::Operation::toolface_rad`]; the first of the
+    /// revolution when rotating).
+    pub toolface_rad: f64,
+}
+
+impl StepSteer {
+    /// How `case`'s string drills (None for a straight string).
+    pub fn of_case(case: &Case) -> Option<StepSteer> {
+        case.string.bend().map(|_| StepSteer {
+            rotating: case.operation.rotates(),
+            toolface_rad: case.operation.toolface_rad,
+        })
+    }
+    /// `slide` or `rotate`.
+    pub fn mode_name(&self) -> &'static str {
+        if self.rotating {
+            "rotate"
+        } else {
+            "slide"
+        }
+    }
 }
 
 /// A prediction from `from_md_m` to `to_md_m`.
@@ -338,15 +370,20 @@ pub fn predict_from(
     let ctl = &settings.controls;
     let tendency = settings.tendency;
     let cut = model_cut_m(case, start, &hole, settings)?;
-    let direction_at = |path: &WellPath, md: f64, bit: &BitResult| -> Vec3 {
-        let frame = path.frame_at(md);
-        drilling_direction(&frame, &bit_action(bit), &LawParams::at(bit_rock, md))
-    };
+    let bent = case.string.bend().is_some();
     let mut s = from;
-    let first = solve_at(case, start, &hole, s, cut, warm, ctl)?;
+    let start_case = steered_at(case, s);
+    let faces = crate::predict::revolution::toolfaces(&start_case);
+    let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
     let mut iterations = first.iterations;
     let dofs = first.model.dofs();
-    let mut records = vec![(s, first.bit, direction_at(start, s, &first.bit), first.iterations)];
+    let mut records = vec![(
+        s,
+        first.bit,
+        first.direction,
+        first.iterations,
+        StepSteer::of_case(&start_case),
+    )];
     *warm = Some((first.model, first.state));
     let start_warm = warm.clone();
     let mut hole_pred = PredictedHole {
@@ -365,14 +402,13 @@ pub fn predict_from(
     // the step in use: halved where the implicit step fails, grown back after a success
     let mut cur_step = step;
     let mut ripple = RippleWatch::new(from, step);
+    let mut last_steer = StepSteer::of_case(&start_case);
     while s < to_md_m - 1e-9 {
-        // the last step ends exactly at the target; a sliver shorter than half the minimum
-        // step is merged into this one
-        let mut ds = cur_step.min(to_md_m - s);
-        if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
-            ds = to_md_m - s;
-        }
+        let ds = step_length(case, s, cur_step, to_md_m);
         let s1 = s + ds;
+        // the step drills as the steering interval at its middle says
+        let step_case = steered_at(case, s + 0.5 * ds);
+        let faces = crate::predict::revolution::toolfaces(&step_case);
         let reference = Frame::from_tangent(&last_chord, path.point_at(s).azi_rad);
         let x0 = path.point_at(s).position;
         let chord_of = |turn: [f64; 2]| -> Vec3 {
@@ -382,8 +418,8 @@ pub fn predict_from(
         // reference frame (rad)
         let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
             let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
-            let sol = solve_at(case, &p, &hole, s1, cut, warm, ctl)?;
-            let d = direction_at(&p, s1, &sol.bit);
+            let sol = solve_bit(&step_case, bit_rock, &p, &hole, s1, cut, warm, ctl, &faces)?;
+            let d = sol.direction;
             let chord = (p.point_at(s1).position - x0).normalize();
             let (dh, dr) = deviation(&reference, &d);
             let (ch, cr) = deviation(&reference, &chord);
@@ -396,7 +432,7 @@ pub fn predict_from(
         } else {
             [0.0f64; 2]
         };
-        let outcome = match implicit_step(&eval, turn, &mut jac, warm, s1) {
+        let outcome = match step_with_retry(&eval, turn, &mut jac, warm, s1, bent) {
             Ok(o) if o.converged => o,
             failed => {
                 // a failed implicit step, or a string solve that failed on the way: a shorter step
@@ -434,11 +470,13 @@ pub fn predict_from(
         } else {
             hole_pred.path_with(None)?
         };
+        let steer = StepSteer::of_case(&step_case);
+        restart_on_steering_change(&mut ripple, &mut last_steer, steer, s, step);
         ripple.after_step(s1, &hole_pred.chords)?;
         check_on_earth(&p1, s1)?;
         path = p1;
         s = s1;
-        records.push((s, sol1.bit, dir, step_iterations));
+        records.push((s, sol1.bit, dir, step_iterations, steer));
         on_step(s);
         *warm = Some((sol1.model, sol1.state));
     }
@@ -456,6 +494,58 @@ pub fn predict_from(
         start_warm,
         ripple_deg: ripple.now.0.to_degrees(),
     })
+}
+
+/// Restart the ripple watch `ripple` at `s` (m MD; step `step`, m) when the steering of the
+/// step `steer` differs from the last step's `last`: a change of the steering plan turns the
+/// hole on purpose, so the ripple is measured from there on.
+fn restart_on_steering_change(
+    ripple: &mut RippleWatch,
+    last: &mut Option<StepSteer>,
+    steer: Option<StepSteer>,
+    s: f64,
+    step: f64,
+) {
+    if steer != *last {
+        (*ripple, *last) = (RippleWatch::new(s, step), steer);
+    }
+}
+
+/// Length of the step from `s` (m MD) at the step in use `cur_step` (m) toward `to_md_m`: the
+/// last step ends exactly at the target (a sliver shorter than half the minimum step is merged
+/// into it), and a step ends at the next end of one of `case`'s steering intervals at least a
+/// minimum step ahead.
+fn step_length(case: &Case, s: f64, cur_step: f64, to_md_m: f64) -> f64 {
+    let mut ds = cur_step.min(to_md_m - s);
+    if to_md_m - (s + ds) < MIN_STEP_M * 0.5 {
+        ds = to_md_m - s;
+    }
+    if let Some(b) = case.steering.next_boundary(s, MIN_STEP_M - 1e-9) {
+        ds = ds.min(b - s);
+    }
+    ds
+}
+
+/// [`implicit_step`] ending at `s1` from `turn`; for a string with a bent housing (`bent`)
+/// retried by [`backtracking_step`] when it fails (the kept Jacobian `jac` then dropped).
+fn step_with_retry(
+    eval: &step::StepResidual,
+    turn: [f64; 2],
+    jac: &mut Option<Matrix2<f64>>,
+    warm: &WarmStart,
+    s1: f64,
+    bent: bool,
+) -> Result<StepOutcome, PredictError> {
+    let result = implicit_step(eval, turn, jac, warm, s1);
+    if bent && !matches!(&result, Ok(o) if o.converged) {
+        // a bent housing's deviation swings steeply with the turn: Newton with backtracking
+        let retry = backtracking_step(eval, turn, warm, s1);
+        if matches!(&retry, Ok(o) if o.converged) {
+            *jac = None;
+            return retry;
+        }
+    }
+    result
 }
 
 /// Cut distance of the string model above the bit at the start of `start` (the settings' or
@@ -508,11 +598,11 @@ fn failed_step_error(failed: Result<StepOutcome, PredictError>, md_m: f64, step_
 }
 
 /// The step records on the final hole `path` from (bit MD, bit results, drilling direction,
-/// iterations) per solved step.
-fn step_records(records: Vec<(f64, BitResult, Vec3, usize)>, path: &WellPath) -> Vec<StepRecord> {
+/// iterations, how a bent housing drilled it) per solved step.
+fn step_records(records: Vec<StepData>, path: &WellPath) -> Vec<StepRecord> {
     records
         .into_iter()
-        .map(|(md, bit, direction, iterations)| {
+        .map(|(md, bit, direction, iterations, steer)| {
             let p = path.point_at(md);
             StepRecord {
                 md_m: md,
@@ -522,9 +612,23 @@ fn step_records(records: Vec<(f64, BitResult, Vec3, usize)>, path: &WellPath) ->
                 bit,
                 direction,
                 iterations,
+                steer,
             }
         })
         .collect()
+}
+
+/// What the march keeps of a solved step: bit MD, bit results, drilling direction, iterations,
+/// how a bent housing drilled it.
+type StepData = (f64, BitResult, Vec3, usize, Option<StepSteer>);
+
+/// `case` drilling as its steering plan says at `md_m` (its own operation where no interval
+/// covers it).
+fn steered_at(case: &Case, md_m: f64) -> std::borrow::Cow<'_, Case> {
+    match case.steering.at(md_m) {
+        Some(iv) => std::borrow::Cow::Owned(case.steered(iv)),
+        None => std::borrow::Cow::Borrowed(case),
+    }
 }
 
 /// Predict `case` from `from_md_m` on its survey (the measured hole behind) to `to_md_m`;

@@ -2,23 +2,22 @@
 //! the implicit step's Newton iteration on the direction of the step's chord.
 
 use super::{PredictError, WarmStart};
-use crate::case::Case;
+use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::bha_model;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, sensor_results, BitResult};
-use crate::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
+use crate::models::fem::solve::toolface::solve_holding_toolface;
+use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::transport_state;
 use crate::predict::law::BitAction;
+use crate::predict::law::{drilling_direction, LawParams};
+use crate::predict::revolution::{mean_bit, mean_direction};
 use nalgebra::{Matrix2, Vector2};
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
 /// full cold [`solve`] (its own start).
-fn solve_step(
-    model: &Model,
-    warm: Option<State>,
-    ctl: &SolveControls,
-) -> Result<crate::models::fem::solve::Solution, PredictError> {
+fn solve_step(model: &Model, warm: Option<State>, ctl: &SolveControls) -> Result<Solution, PredictError> {
     let md = model.bit_md_m;
     let wrap = |source| PredictError::Solve { md_m: md, source };
     if let Some(state) = warm {
@@ -34,6 +33,11 @@ fn solve_step(
     if sol.converged {
         return Ok(sol);
     }
+    Err(not_converged(model, &sol, ctl))
+}
+
+/// The error of the solve `sol` of `model` that did not converge.
+fn not_converged(model: &Model, sol: &Solution, ctl: &SolveControls) -> PredictError {
     let limit = if sol.stats.timed_out {
         format!("; {}", crate::models::diagnose::time_limit_phrase(ctl))
     } else {
@@ -52,13 +56,13 @@ fn solve_step(
                 .collect();
             format!("; contacts changing state at {}", near.join(", "))
         };
-    Err(PredictError::NotConverged {
-        md_m: md,
+    PredictError::NotConverged {
+        md_m: model.bit_md_m,
         iterations: sol.stats.iterations,
         residual: sol.stats.residual_history.last().copied().unwrap_or(f64::NAN),
         penetration: sol.stats.max_penetration,
         detail,
-    })
+    }
 }
 
 /// The bit action seen by the law.
@@ -90,46 +94,90 @@ pub const MAX_TURN_CHANGE_RAD: f64 = 0.05;
 /// Finite-difference perturbation of the turn angles for the direction Jacobian, rad.
 pub const TURN_PERTURBATION_RAD: f64 = 1e-4;
 
-/// One solved bit position: the model, the solution's state and the bit results.
-pub(super) struct BitSolve {
-    /// The model.
-    pub(super) model: Model,
+/// One solved bit position: the model, the solution's state, the bit results and the
+/// drilling direction.
+pub(crate) struct BitSolve {
+    /// The model (at the first toolface solved).
+    pub(crate) model: Model,
     /// Its solved state.
-    pub(super) state: State,
-    /// Bit forces and tilt.
-    pub(super) bit: BitResult,
-    /// Newton iterations of the solve.
-    pub(super) iterations: usize,
+    pub(crate) state: State,
+    /// Bit forces and tilt (the mean over the toolfaces of a rotating bent housing,
+    /// [`crate::predict::revolution::mean_bit`]).
+    pub(crate) bit: BitResult,
+    /// Drilling direction of the bit-rock law (global unit vector; the mean over the
+    /// toolfaces of a rotating bent housing, [`crate::predict::revolution::mean_direction`]).
+    pub(crate) direction: Vec3,
+    /// Newton iterations of the solves.
+    pub(crate) iterations: usize,
 }
 
-/// Solve the string with the bit at `md_m` in `path`, warm-started from `warm`.
-pub(super) fn solve_at(
+/// Solve the string of `case` with the bit at `md_m` in `path` at each of the toolfaces
+/// `faces` (rad; [`crate::predict::revolution::toolfaces`]) and apply the bit-rock law of
+/// `bit_rock` to each: the first toolface's model and state, the mean bit results and the mean
+/// drilling direction. The first toolface is warm-started from `warm`, the others solved from
+/// scratch; a bent housing's kink starts turned by the twist found by the warm start's (or the
+/// previous toolface's) solve and is held at its toolface ([`solve_holding_toolface`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn solve_bit(
     case: &Case,
+    bit_rock: &BitRock,
     path: &WellPath,
     hole: &HoleSize,
     md_m: f64,
     cut_m: f64,
     warm: &WarmStart,
     ctl: &SolveControls,
+    faces: &[f64],
 ) -> Result<BitSolve, PredictError> {
-    let mut model = bha_model(case, path, hole, md_m, cut_m);
-    model.consistent_tangent = true;
-    let warm_state = warm
-        .as_ref()
-        .filter(|(m, _)| m.nodes() == model.nodes())
-        .map(|(m, st)| transport_state(m, st, &model));
-    let sol = solve_step(&model, warm_state, ctl)?;
-    let res = extract(&model, &sol, case.mud.density_kg_m3);
-    let mut bit = res.bit;
-    bit.sensor_sag_rad = sensor_results(&case.string, &model, &res.nodes)
-        .first()
-        .map(|x| x.sag_rad);
-    Ok(BitSolve {
-        model,
-        iterations: sol.stats.iterations,
-        state: sol.state,
-        bit,
-    })
+    let frame = path.frame_at(md_m);
+    let params = LawParams::at(bit_rock, md_m);
+    let mut first: Option<BitSolve> = None;
+    let (mut bits, mut dirs, mut iterations) = (Vec::new(), Vec::new(), 0);
+    let mut correction = warm.as_ref().map(|(m, _)| m.kink_correction_rad()).unwrap_or(0.0);
+    for (k, &tf) in faces.iter().enumerate() {
+        let mut model = bha_model(case, path, hole, md_m, cut_m);
+        model.consistent_tangent = true;
+        model.set_toolface(tf);
+        model.turn_kink(tf + correction);
+        // the other toolfaces from scratch: the state of the toolface before is a poorer start
+        // (measured: twice the iterations of a cold start)
+        let warm_state = warm
+            .as_ref()
+            .filter(|(m, _)| k == 0 && m.nodes() == model.nodes())
+            .map(|(m, st)| transport_state(m, st, &model));
+        let mut sol = solve_step(&model, warm_state, ctl)?;
+        if model.kink.is_some() {
+            // the housing turned back to its toolface against the string's twist
+            sol = solve_holding_toolface(&mut model, ctl, |_| Ok(sol))
+                .map_err(|source| PredictError::Solve { md_m, source })?;
+            if !sol.converged {
+                return Err(not_converged(&model, &sol, ctl));
+            }
+            correction = model.kink_correction_rad();
+        }
+        let res = extract(&model, &sol, case.mud.density_kg_m3);
+        let mut bit = res.bit;
+        bit.sensor_sag_rad = sensor_results(&case.string, &model, &res.nodes)
+            .first()
+            .map(|x| x.sag_rad);
+        iterations += sol.stats.iterations;
+        bits.push(bit);
+        dirs.push(drilling_direction(&frame, &bit_action(&bit), &params));
+        if k == 0 {
+            first = Some(BitSolve {
+                model,
+                state: sol.state,
+                bit,
+                direction: dirs[0],
+                iterations: 0,
+            });
+        }
+    }
+    let mut out = first.expect("at least one toolface");
+    out.bit = mean_bit(&bits);
+    out.direction = mean_direction(&dirs);
+    out.iterations = iterations;
+    Ok(out)
 }
 
 /// Result of one implicit step's Newton iteration on the turn angles.
@@ -237,5 +285,87 @@ pub(super) fn implicit_step(
         residual: res,
         direction: dir,
         iterations: step_iterations,
+    })
+}
+
+/// Newton iterations allowed in [`backtracking_step`].
+pub const MAX_BACKTRACKING_ITERATIONS: usize = 30;
+
+/// Halvings of one Newton update in [`backtracking_step`].
+pub const MAX_BACKTRACKING_HALVINGS: usize = 30;
+
+/// The implicit step of a bent housing when [`implicit_step`] fails: Newton's method on the turn
+/// angles from `turn` with the Jacobian by differences at every iterate and each update halved
+/// until the deviation falls. A bent housing's deviation swings steeply with the turn (its side
+/// force is of the size of the WOB and changes sign within a fraction of a degree), where the
+/// plain iteration, its update capped, jumps across the root back and forth.
+pub(super) fn backtracking_step(
+    eval: &StepResidual,
+    mut turn: [f64; 2],
+    warm: &WarmStart,
+    md_m: f64,
+) -> Result<StepOutcome, PredictError> {
+    let norm = |x: &[f64; 2]| x[0].abs().max(x[1].abs());
+    let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
+    let mut iterations = sol1.iterations;
+    let mut converged = false;
+    let mut last_update = f64::INFINITY;
+    for _ in 0..MAX_BACKTRACKING_ITERATIONS {
+        let r_norm = norm(&res);
+        if r_norm < DIRECTION_TOLERANCE_RAD
+            || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
+        {
+            converged = true;
+            break;
+        }
+        let mut j = Matrix2::zeros();
+        for c in 0..2 {
+            let mut tp = turn;
+            tp[c] += TURN_PERTURBATION_RAD;
+            let (_, sp, rp, _) = eval(tp, warm)?;
+            iterations += sp.iterations;
+            for r in 0..2 {
+                j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
+            }
+        }
+        let Some(jinv) = j.try_inverse() else {
+            break;
+        };
+        let mut dt = -(jinv * Vector2::new(res[0], res[1]));
+        let big = dt.amax();
+        if big > MAX_TURN_CHANGE_RAD {
+            dt *= MAX_TURN_CHANGE_RAD / big;
+        }
+        let mut accepted = false;
+        for _ in 0..MAX_BACKTRACKING_HALVINGS {
+            let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
+            let (p, sol, r, d) = eval(new_turn, warm)?;
+            iterations += sol.iterations;
+            if norm(&r) < r_norm {
+                last_update = dt.amax();
+                (turn, p1, sol1, res, dir) = (new_turn, p, sol, r, d);
+                accepted = true;
+                break;
+            }
+            dt *= 0.5;
+        }
+        if !accepted {
+            break;
+        }
+    }
+    tracing::debug!(
+        md = md_m,
+        converged,
+        residual = norm(&res),
+        "backtracking implicit step"
+    );
+    Ok(StepOutcome {
+        converged,
+        turn,
+        path: p1,
+        solve: sol1,
+        residual: res,
+        direction: dir,
+        iterations,
     })
 }

@@ -103,3 +103,83 @@ pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<O
     sol.stats.timed_out = t0.elapsed().as_secs_f64() > ctl.time_limit_s;
     Ok(Some((sol, wob)))
 }
+
+/// Iteration budget of [`wob_at_zero_hook_load`], in `max_iterations`.
+pub const SEARCH_BUDGET_FACTOR: usize = 3;
+
+/// The largest WOB of `model`'s string with a non-negative hook load, by the same WOB path
+/// (at most [`SEARCH_BUDGET_FACTOR`] x `max_iterations` iterations in all):
+/// from [`START_FRACTION`] of the model's WOB upward until the hook load turns negative (the
+/// surface would have to push: lock-up), then bisected between the last step with a
+/// non-negative hook load and the first without, warm-started, until the hook load lies within
+/// `hook_tolerance_n` or the bracket within [`MIN_STEP_FRACTION`] of the WOB. Returns that WOB
+/// (N) and the hook load there (N); None when the path's first step fails or the hook load
+/// never turns negative below the model's WOB.
+pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_n: f64) -> Option<(f64, f64)> {
+    let t0 = Instant::now();
+    let target = model.loads.wob_n;
+    let first_ctl = SolveControls {
+        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
+        ..*ctl
+    };
+    let mut lo = START_FRACTION * target;
+    let mut state = solve_interior_point(&at_wob(model, lo), &first_ctl)
+        .ok()
+        .filter(|s| s.converged && s.state.hook_load_n >= 0.0)?
+        .state;
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    let mut hi: Option<f64> = None;
+    let mut step = START_FRACTION * target;
+    let mut iterations = 0;
+    loop {
+        let elapsed = t0.elapsed().as_secs_f64();
+        if iterations >= SEARCH_BUDGET_FACTOR * ctl.max_iterations
+            || elapsed > ctl.time_limit_s
+            || step < MIN_STEP_FRACTION * target
+        {
+            break;
+        }
+        let next = match hi {
+            Some(h) => 0.5 * (lo + h),
+            None => (lo + step).min(target),
+        };
+        let step_ctl = SolveControls {
+            max_iterations: STEP_ITERATIONS,
+            time_limit_s: ctl.time_limit_s - elapsed,
+            ..*ctl
+        };
+        match solve_interior_point_from(&at_wob(&consistent, next), state.clone(), &step_ctl) {
+            Ok(s) if s.converged && s.state.hook_load_n >= 0.0 => {
+                iterations += s.stats.iterations;
+                lo = next;
+                let hook = s.state.hook_load_n;
+                state = s.state;
+                if hook < hook_tolerance_n {
+                    return Some((lo, hook));
+                }
+                step *= STEP_GROWTH;
+            }
+            Ok(s) if s.converged => {
+                iterations += s.stats.iterations;
+                hi = Some(next);
+            }
+            other => {
+                iterations += other.map_or(0, |s| s.stats.iterations);
+                match hi {
+                    Some(_) => hi = Some(next),
+                    None => step *= 0.5,
+                }
+            }
+        }
+        if let Some(h) = hi {
+            if h - lo < MIN_STEP_FRACTION * target {
+                break;
+            }
+        }
+        if lo >= target {
+            return None;
+        }
+    }
+    hi.map(|_| (lo, state.hook_load_n))
+}

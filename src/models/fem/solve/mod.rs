@@ -37,6 +37,7 @@ pub mod pins;
 pub mod solution;
 pub mod start;
 pub mod step_caps;
+pub mod toolface;
 
 pub use controls::SolveControls;
 pub use interior_point_newton::{solve_interior_point, solve_interior_point_from};
