@@ -6,6 +6,7 @@
 //! Run: `cargo run --release --example tracking_table -- docs/tracking` (a few minutes). Writes
 //! `table.csv` and `table.md` into the folder. The same settings on every well: the case's
 //! `[tracking]` table is not set in any of them, so the defaults apply.
+//! `WELLS=forge-16b,volve-f5` and `HORIZONS=90` restrict the run (a study, not the table).
 
 use drillpath::case::fidelity::{choose, Fidelity, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
@@ -29,6 +30,14 @@ fn wells() -> Vec<&'static str> {
     }
 }
 const HORIZONS_M: [f64; 2] = [30.0, 90.0];
+
+/// The horizons, or those of `HORIZONS` (e.g. `HORIZONS=90`).
+fn horizons() -> Vec<f64> {
+    match std::env::var("HORIZONS") {
+        Ok(h) => h.split(',').map(|x| x.parse().expect("a horizon, m")).collect(),
+        Err(_) => HORIZONS_M.to_vec(),
+    }
+}
 
 struct Row {
     well: &'static str,
@@ -120,7 +129,7 @@ fn main() {
     let dir = std::env::args().nth(1).unwrap_or_else(|| "docs/tracking".into());
     std::fs::create_dir_all(&dir).expect("output folder");
     let mut rows = Vec::new();
-    for h in HORIZONS_M {
+    for h in horizons() {
         for w in wells() {
             let r = row(w, h);
             eprintln!(
@@ -162,7 +171,7 @@ fn main() {
         )
         .unwrap();
     }
-    for h in HORIZONS_M {
+    for h in horizons() {
         let sel: Vec<&Row> = rows
             .iter()
             .filter(|r| r.horizon == h && r.well != "seed-daqing")

@@ -237,7 +237,11 @@ pub fn parse_quantity(text: &str, dimension: Dimension, default_unit: &str) -> R
     let unit = unit.trim();
     let unit = if unit.is_empty() { default_unit } else { unit };
     let u = lookup_dim(unit, dimension)?;
-    Ok(value * u.to_si)
+    let si = value * u.to_si;
+    if !si.is_finite() {
+        return Err(format!("`{t}` is too large: it is not a finite number in SI units"));
+    }
+    Ok(si)
 }
 
 /// Convert an SI value into `unit` (for output and messages).
@@ -372,6 +376,14 @@ mod tests {
             parse_quantity("60", Dimension::RotarySpeed, "rpm").unwrap(),
             2.0 * std::f64::consts::PI
         );
+    }
+
+    #[test]
+    fn a_value_that_overflows_in_si_units_is_refused() {
+        // 1e308 kN is 1e311 N: beyond f64
+        let e = parse_quantity("1e308 kN", Dimension::Force, "kN").unwrap_err();
+        assert!(e.contains("too large"), "{e}");
+        assert!(parse_quantity("1e300 kN", Dimension::Force, "kN").unwrap().is_finite());
     }
 
     #[test]
