@@ -338,6 +338,16 @@ fn hostile_xml_is_refused() {
     latin1.extend_from_slice(b"<!-- \xe9 -->");
     refused(&latin1, "not UTF-8");
     refused(doc("").as_bytes(), "holds no `trajectory` object");
+    // an error just past the last line end names the last line (found by the fuzz test)
+    let e = refused(b"<?xml version=\"1.0\"\n", "not well-formed XML");
+    assert!(e.starts_with("t.xml: line 1:"), "{e}");
+    // a value that overflows in SI units
+    let t = doc(&trajectory(
+        "t",
+        "T",
+        &three_stations().replace("<md uom=\"ft\">2000</md>", "<md uom=\"km\">1e306</md>"),
+    ));
+    refused(t.as_bytes(), "`1e306` is not a finite number (in SI units)");
     refused(doc(&trajectory("t", "T", "")).as_bytes(), "has no `trajectoryStation`");
 }
 

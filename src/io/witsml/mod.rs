@@ -98,9 +98,10 @@ pub fn parse<'a>(text: &'a str, path: &Path) -> InputResult<Document<'a>> {
                 "the XML ends before its elements are closed: the file is truncated or empty",
                 )
             }
+            // the parser may place an error just past the last line end: name the last line
             e => InputError::line(
                 path,
-                pos.row as usize,
+                (pos.row as usize).clamp(1, text.lines().count().max(1)),
                 None,
                 format!("not well-formed XML: {e} (line:column)"),
             ),
@@ -222,8 +223,8 @@ pub fn measure<'a>(
         return Err(at("empty: no value".into()));
     }
     let v: f64 = raw.parse().map_err(|_| at(format!("`{raw}` is not a number")))?;
-    if !v.is_finite() {
-        return Err(at(format!("`{raw}` is not a finite number")));
+    if !v.is_finite() || !(v * unit.to_si).is_finite() {
+        return Err(at(format!("`{raw}` is not a finite number (in SI units)")));
     }
     Ok(Some(Measure {
         si: v * unit.to_si,
