@@ -92,7 +92,7 @@ pub fn run(a: ImportArgs) -> anyhow::Result<()> {
                 ));
             }
             _ => {
-                let tub = parse_tubular(&text, f, a.tubular.as_deref(), a.other_as_tube, true)?;
+                let tub = parse_tubular(&text, f, a.tubular.as_deref(), a.other_as_tube)?;
                 parts.string = Some((tub, f.display().to_string()));
             }
         }

@@ -187,7 +187,7 @@ fn read_case_string(
                 ));
             }
             let text = crate::io::witsml::read_text(&xml)?;
-            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube, true)?;
+            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube)?;
             let secs: Vec<Section> = tub
                 .components
                 .iter()

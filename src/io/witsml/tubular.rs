@@ -24,7 +24,7 @@ use toml::{Table, Value};
 
 use super::{child, child_text, choose, measure, parse, root, LineIndex};
 use crate::error::{InputError, InputResult};
-use crate::units::{message_number, Dimension};
+use crate::units::Dimension;
 
 /// One component as read: its uid, its type as written and its `[[string]]` table.
 #[derive(Debug, Clone)]
@@ -95,14 +95,8 @@ fn si(value: f64, unit: &str) -> Value {
 /// Parse the WITSML text `text` (file `path`) and read its tubular named or with uid `wanted`
 /// (the only one when `None`); `other_as_tube` reads unknown component types as plain tubes.
 /// A non-zero `bend` becomes the motor keys `bend_angle` and `bend_to_bit` (the distance from
-/// the bit face) with `keep_bends`; without it, it is refused naming the component.
-pub fn parse_tubular(
-    text: &str,
-    path: &Path,
-    wanted: Option<&str>,
-    other_as_tube: bool,
-    keep_bends: bool,
-) -> InputResult<Tubular> {
+/// the bit face).
+pub fn parse_tubular(text: &str, path: &Path, wanted: Option<&str>, other_as_tube: bool) -> InputResult<Tubular> {
     let doc = parse(text, path)?;
     let lines = LineIndex::new(text);
     let root = root(&doc, "tubulars", path)?;
@@ -114,7 +108,7 @@ pub fn parse_tubular(
         .children()
         .filter(|c| c.is_element() && c.tag_name().name() == "tubularComponent")
     {
-        let (seq, comp) = component(c, path, &lines, other_as_tube, keep_bends, &mut notes)?;
+        let (seq, comp) = component(c, path, &lines, other_as_tube, &mut notes)?;
         if let Some((_, prev)) = comps.iter().find(|(s, _)| *s == seq) {
             return Err(InputError::element(
                 path,
@@ -173,7 +167,6 @@ fn component(
     path: &Path,
     lines: &LineIndex,
     other_as_tube: bool,
-    keep_bends: bool,
     notes: &mut Vec<String>,
 ) -> InputResult<(i64, TubularComponent)> {
     let line = lines.line(c);
@@ -250,7 +243,7 @@ fn component(
         }
     }
     stabilizer(c, dp_kind, &mut t, &what, path, lines, notes)?;
-    if let Some((angle, from_bottom)) = bend(c, &what, path, lines, keep_bends)? {
+    if let Some((angle, from_bottom)) = bend(c, &what, path, lines)? {
         t.insert("bend_angle".into(), si(angle, "rad"));
         t.insert("bend_from_bottom".into(), si(from_bottom, "m"));
     }
@@ -314,9 +307,9 @@ fn stabilizer(
     Ok(())
 }
 
-/// A `bend` with a non-zero `angle`: refused (bends are not yet modelled by the solver), or
-/// with `keep` its angle (rad) and distance from the component's bottom (`distBendBot`, m).
-fn bend(c: Node, what: &str, path: &Path, lines: &LineIndex, keep: bool) -> InputResult<Option<(f64, f64)>> {
+/// A `bend` with a non-zero `angle`: its angle (rad) and distance from the component's bottom
+/// (`distBendBot`, m, then required).
+fn bend(c: Node, what: &str, path: &Path, lines: &LineIndex) -> InputResult<Option<(f64, f64)>> {
     let Some(b) = child(c, "bend") else {
         return Ok(None);
     };
@@ -325,17 +318,6 @@ fn bend(c: Node, what: &str, path: &Path, lines: &LineIndex, keep: bool) -> Inpu
     };
     if a.si == 0.0 {
         return Ok(None);
-    }
-    if !keep {
-        return Err(InputError::element(
-            path,
-            a.line,
-            format!("element `bend` of {what}"),
-            format!(
-                "a bend of {} deg: motor bends are not yet modelled by drillpath, and a bent motor read as straight would predict a wrong hole; model it straight on purpose by removing the bend",
-                message_number(a.si.to_degrees())
-            ),
-        ));
     }
     let d = measure(b, "distBendBot", Dimension::Length, what, path, lines)?.ok_or_else(|| {
         InputError::element(
