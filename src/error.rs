@@ -27,6 +27,16 @@ pub enum Location {
         /// Dotted key path.
         key: String,
     },
+    /// An element of an XML file (WITSML), at a line: e.g. element `azi` of the
+    /// `trajectoryStation` with uid `S-12`.
+    Element {
+        /// File path as given by the user (or resolved from the case file).
+        file: PathBuf,
+        /// 1-based line number where the element (or its parent, when it is missing) starts.
+        line: usize,
+        /// The element, in words: e.g. ``element `azi` of station `S-12` (MD 150.66 m)``.
+        element: String,
+    },
     /// A command-line option, e.g. `--to`.
     Option(String),
 }
@@ -48,6 +58,7 @@ impl fmt::Display for Location {
                 column: None,
             } => write!(f, "{}: line {}", file.display(), line),
             Location::Key { file, key } => write!(f, "{}: key `{}`", file.display(), key),
+            Location::Element { file, line, element } => write!(f, "{}: line {}, {}", file.display(), line, element),
             Location::Option(o) => write!(f, "option {o}"),
         }
     }
@@ -92,6 +103,23 @@ impl InputError {
                 file: file.into(),
                 line,
                 column: column.map(str::to_string),
+            },
+            message,
+        )
+    }
+    /// Error at an element of an XML file: `element` describes it in words (see
+    /// [`Location::Element`]).
+    pub fn element(
+        file: impl Into<PathBuf>,
+        line: usize,
+        element: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        Self::new(
+            Location::Element {
+                file: file.into(),
+                line,
+                element: element.into(),
             },
             message,
         )

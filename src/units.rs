@@ -250,6 +250,49 @@ pub fn from_si(value_si: f64, unit: &str) -> f64 {
     value_si / u.to_si
 }
 
+/// WITSML 1.4.1.1 unit symbols (`uom` attributes) that drillpath reads, by dimension: the
+/// symbol as the standard spells it (case-sensitive, as the standard's unit dictionary) and the
+/// unit of this module's table it is. Lengths: `m`, `ft`, `ftUS` (US survey foot), `in`, `cm`,
+/// `mm`, `km`; angles: `dega` (degree), `rad`; mass per length `kg/m`, `lbm/ft`; curvature
+/// `dega/m`, `dega/30m`, `dega/100ft`, `rad/m`.
+#[rustfmt::skip]
+const WITSML_UOMS: &[(&str, &str)] = &[
+    ("m", "m"), ("ft", "ft"), ("ftUS", "usft"), ("in", "in"), ("cm", "cm"), ("mm", "mm"), ("km", "km"),
+    ("dega", "deg"), ("rad", "rad"),
+    ("kg/m", "kg/m"), ("lbm/ft", "lb/ft"),
+    ("dega/m", "deg/m"), ("dega/30m", "deg/30m"), ("dega/100ft", "deg/100ft"), ("rad/m", "rad/m"),
+];
+
+/// The unit of the WITSML `uom` symbol `uom` (`m`, `ft`, `ftUS`, `in`, `cm`, `mm`, `km`, `dega`,
+/// `rad`, `kg/m`, `lbm/ft`, `dega/m`, `dega/30m`, `dega/100ft`, `rad/m`), which must have `dimension`;
+/// the error lists the accepted symbols of that dimension.
+pub fn witsml_uom(uom: &str, dimension: Dimension) -> Result<Unit, String> {
+    let accepted = || {
+        WITSML_UOMS
+            .iter()
+            .filter(|(_, n)| lookup(n).is_some_and(|u| u.dimension == dimension))
+            .map(|(w, _)| format!("`{w}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match WITSML_UOMS
+        .iter()
+        .find(|(w, _)| *w == uom.trim())
+        .and_then(|(_, n)| lookup(n))
+    {
+        Some(u) if u.dimension == dimension => Ok(u),
+        Some(u) => Err(format!(
+            "uom `{uom}` is a {} unit, expected a {dimension} unit ({})",
+            u.dimension,
+            accepted()
+        )),
+        None => Err(format!(
+            "unknown uom `{uom}` (drillpath reads the WITSML {dimension} units {})",
+            accepted()
+        )),
+    }
+}
+
 /// `x` for an error message as a user would write it: six significant digits at most
 /// (rounding noise such as `0.06096000000000001` dropped), plain when short, else in
 /// scientific notation (`1e-300`).
@@ -267,6 +310,17 @@ pub fn message_number(x: f64) -> String {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn witsml_uoms() {
+        assert_eq!(witsml_uom("dega", Dimension::Angle).unwrap().name, "deg");
+        assert_eq!(witsml_uom("ftUS", Dimension::Length).unwrap().to_si, 1200.0 / 3937.0);
+        assert_eq!(witsml_uom("rad", Dimension::Angle).unwrap().to_si, 1.0);
+        let e = witsml_uom("deg", Dimension::Angle).unwrap_err();
+        assert!(e.contains("unknown uom `deg`") && e.contains("`dega`, `rad`"), "{e}");
+        let e = witsml_uom("m", Dimension::Angle).unwrap_err();
+        assert!(e.contains("is a length unit"), "{e}");
+    }
 
     #[test]
     fn factor_table_matches_definitions() {

@@ -20,7 +20,7 @@ pub use operation::{FrictionSplit, Mode, Motion, Mud, Operation};
 pub use solver::{Method, SolverSettings, StabilizerContact};
 pub use steering::{SteeringInterval, SteeringPlan};
 pub use tracking::TrackingSettings;
-pub use well::{AzimuthReference, SurveyFile, Well};
+pub use well::{AzimuthReference, StationInfo, SurveyFile, Well};
 
 use crate::string::DrillString;
 use std::path::PathBuf;
@@ -42,6 +42,8 @@ pub struct Case {
     pub operation: Operation,
     /// The string (empty when only a survey was given).
     pub string: DrillString,
+    /// The WITSML tubular file the string was read from (`string_from`), if any.
+    pub string_from: Option<PathBuf>,
     /// Bit-rock law.
     pub bit_rock: BitRock,
     /// Solver settings.
@@ -61,10 +63,13 @@ pub const DEFAULT_ROTATING_RPM: f64 = 60.0;
 pub const ABOVE_SURVEY_NOTE_M: f64 = 1.0;
 
 impl Case {
-    /// Every file the case was read from: the case file, its survey and its caliper.
+    /// Every file the case was read from: the case file, its survey, its caliper, and the
+    /// WITSML wbGeometry of its hole and tubular of its string.
     pub fn input_files(&self) -> Vec<PathBuf> {
         let mut files = vec![self.path.clone(), self.well.survey_path.clone()];
         files.extend(self.well.caliper_path.clone());
+        files.extend(self.well.hole_from.clone());
+        files.extend(self.string_from.clone());
         files.extend(self.steering.sheet_path.clone());
         files
     }

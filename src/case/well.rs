@@ -1,6 +1,6 @@
 //! The well: survey as read, hole axis by minimum curvature and hole size.
 
-use crate::geometry::{HoleSize, Survey, WellPath};
+use crate::geometry::{HoleSize, Station, Survey, WellPath};
 use std::path::PathBuf;
 
 /// The well: path by minimum curvature and hole size.
@@ -12,6 +12,8 @@ pub struct Well {
     pub survey_path: PathBuf,
     /// Caliper file path, when the case names one.
     pub caliper_path: Option<PathBuf>,
+    /// The WITSML wbGeometry file the hole sections were read from (`hole_from`), if any.
+    pub hole_from: Option<PathBuf>,
     /// Hole axis.
     pub path: WellPath,
     /// Hole diameter by MD.
@@ -40,6 +42,37 @@ pub struct SurveyFile {
     /// Where the file states the azimuth reference, e.g. "column `Azimuth Grid ( deg )`" or
     /// "line 14 `NORTH REF : Grid`"; empty when it does not.
     pub azimuth_reference_source: String,
+    /// Magnetic declination the file says was applied to its azimuths (WITSML `magDeclUsed`),
+    /// rad, east positive; `None` when the file does not say.
+    pub magnetic_declination_rad: Option<f64>,
+    /// Grid convergence the file says was applied (WITSML `gridCorUsed`), rad: the angle from
+    /// true north to grid north, clockwise positive (east of the central meridian in the
+    /// northern hemisphere); `None` when the file does not say.
+    pub grid_convergence_rad: Option<f64>,
+    /// Position of the first station as the file states it (a WITSML tie-in point's `dispNs`,
+    /// `dispEw`, `tvd`): `[north, east, tvd]`, m; `None` when the file does not give it.
+    pub origin: Option<[f64; 3]>,
+    /// Per station of `survey` (same order), what the file says of it beyond MD, inclination
+    /// and azimuth; empty for files that say nothing more (CSV, text reports, spreadsheets).
+    pub station_info: Vec<StationInfo>,
+    /// Stations of the file that are not measurements (WITSML projected, planned or
+    /// interpolated stations): kept here, not in `survey`.
+    pub projected: Vec<(Station, StationInfo)>,
+}
+
+/// What a survey file says of one station beyond its MD, inclination and azimuth (WITSML
+/// `trajectoryStation`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StationInfo {
+    /// The station's identifier in the file (WITSML `uid`), empty when none.
+    pub uid: String,
+    /// The station type as written (WITSML `typeTrajStation`: `tie in point`, `magnetic MWD`,
+    /// `gyro north seeking`, ...), `unknown` when not given.
+    pub kind: String,
+    /// Gravity toolface (WITSML `gtf`), rad; `None` when not given.
+    pub gtf_rad: Option<f64>,
+    /// Magnetic toolface (WITSML `mtf`), rad; `None` when not given.
+    pub mtf_rad: Option<f64>,
 }
 
 /// The north a survey's azimuths are measured from, as stated by the survey file.

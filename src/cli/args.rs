@@ -22,7 +22,7 @@ pub struct Cli {
 /// Subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Positions by minimum curvature from a case file or a survey file (CSV or text report).
+    /// Positions by minimum curvature from a case file or a survey file (CSV, text report, spreadsheet, WITSML).
     ///
     /// Example: drillpath survey wells/j-shape/case.toml --out positions.csv
     Survey(SurveyArgs),
@@ -45,10 +45,40 @@ pub enum Command {
     ///
     /// Example: drillpath loads wells/j-shape/case.toml --every "30 m" --out results/
     Loads(LoadsArgs),
+    /// Write an editable, commented case from WITSML 1.4.1.1 trajectory, wbGeometry and tubular files.
+    ///
+    /// Example: drillpath import traj.xml geometry.xml bha.xml --out case.toml
+    Import(ImportArgs),
     /// Write a commented starter case (well, BHA, mud, operation) and its survey CSV to edit.
     ///
     /// Example: drillpath init mywell/case.toml && drillpath solve mywell/case.toml
     Init(InitArgs),
+}
+
+/// Arguments of `drillpath import`.
+#[derive(Debug, Args)]
+pub struct ImportArgs {
+    /// WITSML 1.4.1.1 files: at most one each of trajectory, wbGeometry and tubular.
+    #[arg(required = true, num_args = 1..)]
+    pub files: Vec<PathBuf>,
+    /// The case file to write.
+    #[arg(long, value_name = "FILE", default_value = "case.toml")]
+    pub out: PathBuf,
+    /// Overwrite an existing case file.
+    #[arg(long)]
+    pub force: bool,
+    /// The trajectory to use, by name or uid, when the file holds several [default: the only one].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub trajectory: Option<String>,
+    /// The wbGeometry to use, by name or uid [default: the only one].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub geometry: Option<String>,
+    /// The tubular to use, by name or uid [default: the only one].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub tubular: Option<String>,
+    /// Read tubular components of no mechanical meaning to drillpath as plain tubes (`sub`).
+    #[arg(long)]
+    pub other_as_tube: bool,
 }
 
 /// Arguments of `drillpath init`.
@@ -103,6 +133,10 @@ pub struct PredictArgs {
     /// [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Write the predicted path as a WITSML 1.4.1.1 trajectory (one per case; stations typed
+    /// as computed, not measured) [default: no file].
+    #[arg(long, value_name = "FILE.xml")]
+    pub witsml: Option<PathBuf>,
     /// --json, --report, --units.
     #[command(flatten)]
     pub view: ViewArgs,
@@ -152,6 +186,10 @@ pub struct BackanalyzeArgs {
     /// Write trajectory.csv, summary.json (and bit_rock_fitted.toml, case_fitted.toml with --calibrate) [default: no files].
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Write the predicted interval ends as a WITSML 1.4.1.1 trajectory (tied in at the first
+    /// interval's start; stations typed as computed, not measured) [default: no file].
+    #[arg(long, value_name = "FILE.xml")]
+    pub witsml: Option<PathBuf>,
     /// --json, --report, --units.
     #[command(flatten)]
     pub view: ViewArgs,
@@ -189,7 +227,8 @@ pub struct SolveArgs {
 /// Arguments of `drillpath survey`.
 #[derive(Debug, Args)]
 pub struct SurveyArgs {
-    /// Case file (.toml) or survey file (CSV or whitespace-separated text report).
+    /// Case file (.toml) or survey file (CSV, whitespace-separated text report, spreadsheet
+    /// .xlsx/.xls/.ods, or WITSML 1.4.1.1 trajectory .xml).
     pub input: PathBuf,
     /// Write the positions CSV to this file (stdout shows the summary) [default: no file].
     #[arg(long)]
@@ -200,6 +239,12 @@ pub struct SurveyArgs {
     /// Print the positions CSV on stdout instead of the summary.
     #[arg(long)]
     pub csv: bool,
+    /// Trajectory of a WITSML file to read, by name or uid [default: the only one; the case's survey_trajectory].
+    #[arg(long, value_name = "NAME_OR_UID")]
+    pub trajectory: Option<String>,
+    /// Sheet of a spreadsheet to read, by name [default: the first with a survey header; the case's survey_sheet].
+    #[arg(long, value_name = "NAME")]
+    pub sheet: Option<String>,
 }
 
 /// Arguments of `drillpath loads`.

@@ -16,6 +16,7 @@ use crate::report::json_text;
 use crate::report::predict_output::{backanalysis_csv, fitted_toml, BackanalysisRun, BackanalysisSummary};
 use crate::report::predict_report::backanalyze_html;
 use crate::report::predict_text::write_backanalysis;
+use crate::report::witsml_out::{trajectories_xml, OutStation, OutTrajectory};
 use anyhow::{anyhow, bail};
 use std::io::Write;
 use std::path::Path;
@@ -64,6 +65,40 @@ fn request(a: &BackanalyzeArgs, unit: &str) -> anyhow::Result<BackanalysisReques
     })
 }
 
+/// The predicted interval ends of `b` as a WITSML trajectory, tied in at the first interval's
+/// start on the measured hole of `case`.
+fn backanalysis_witsml(case: &Case, b: &crate::predict::backanalysis::Backanalysis) -> Result<String, String> {
+    let mut stations = Vec::with_capacity(b.results.len() + 1);
+    if let Some(first) = b.results.first() {
+        let p = case.well.path.point_at(first.interval.from_md_m);
+        stations.push(OutStation {
+            md_m: p.md_m,
+            inc_rad: p.inc_rad,
+            azi_rad: p.azi_rad,
+            position: p.position,
+        });
+    }
+    for r in &b.results {
+        if stations
+            .last()
+            .is_some_and(|s: &OutStation| r.interval.to_md_m <= s.md_m)
+        {
+            continue;
+        }
+        stations.push(OutStation {
+            md_m: r.interval.to_md_m,
+            inc_rad: r.inc_rad,
+            azi_rad: r.azi_rad,
+            position: r.position,
+        });
+    }
+    trajectories_xml(&[OutTrajectory {
+        name: format!("{} (back-analysis)", case.name),
+        stations,
+        survey: &case.well.survey,
+    }])
+}
+
 /// The run's outputs, checked against its inputs before any work.
 fn declared_outputs(a: &BackanalyzeArgs, cases: &[Case]) -> anyhow::Result<Outputs> {
     let mut outputs = Outputs::new();
@@ -79,6 +114,9 @@ fn declared_outputs(a: &BackanalyzeArgs, cases: &[Case]) -> anyhow::Result<Outpu
     }
     if let Some(file) = &a.view.report {
         outputs.file("--report", file)?;
+    }
+    if let Some(file) = &a.witsml {
+        outputs.file("--witsml", file)?;
     }
     Ok(outputs)
 }
@@ -161,6 +199,9 @@ pub fn run(a: BackanalyzeArgs, quiet: bool) -> anyhow::Result<()> {
     }
     if let Some(file) = &a.view.report {
         outputs.stage(file.clone(), backanalyze_html(case, &b, a.view.units)?);
+    }
+    if let Some(file) = &a.witsml {
+        outputs.stage(file.clone(), backanalysis_witsml(case, &b).map_err(internal)?);
     }
     outputs.commit()?;
     let mut out = std::io::stdout().lock();

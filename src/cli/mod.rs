@@ -2,6 +2,7 @@
 
 pub mod args;
 pub mod backanalyze;
+pub mod import;
 pub mod init;
 pub mod loads;
 pub mod outputs;
@@ -22,6 +23,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Predict(a) => predict::run(a, cli.quiet),
         Command::Backanalyze(a) => backanalyze::run(a, cli.quiet),
         Command::Loads(a) => loads::run(a, cli.quiet),
+        Command::Import(a) => import::run(a),
         Command::Init(a) => init::run(a.file, a.force),
     }
 }

@@ -15,6 +15,7 @@ use crate::report::json_text;
 use crate::report::predict_output::{comparison_csv, forecast_csv, ComparisonSummary, PredictSummary};
 use crate::report::predict_report::predict_html;
 use crate::report::predict_text::{comparison_table, write_forecast};
+use crate::report::witsml_out::{trajectories_xml, OutStation, OutTrajectory};
 use anyhow::bail;
 use std::io::Write;
 use std::path::Path;
@@ -238,6 +239,9 @@ fn declared_outputs(a: &PredictArgs, loaded: &[Loaded]) -> anyhow::Result<Output
     if let Some(file) = &a.view.report {
         outputs.file("--report", file)?;
     }
+    if let Some(file) = &a.witsml {
+        outputs.file("--witsml", file)?;
+    }
     Ok(outputs)
 }
 
@@ -288,6 +292,26 @@ pub fn run(a: PredictArgs, quiet: bool) -> anyhow::Result<()> {
     }
     if let Some(file) = &a.view.report {
         outputs.stage(file.clone(), predict_html(&pairs, a.view.units)?);
+    }
+    if let Some(file) = &a.witsml {
+        let trajectories: Vec<OutTrajectory> = pairs
+            .iter()
+            .map(|(c, f)| OutTrajectory {
+                name: c.name.clone(),
+                stations: f
+                    .rows
+                    .iter()
+                    .map(|r| OutStation {
+                        md_m: r.md_m,
+                        inc_rad: r.inc_rad,
+                        azi_rad: r.azi_rad,
+                        position: r.position,
+                    })
+                    .collect(),
+                survey: &c.well.survey,
+            })
+            .collect();
+        outputs.stage(file.clone(), trajectories_xml(&trajectories).map_err(internal)?);
     }
     outputs.commit()?;
     let mut out = std::io::stdout().lock();

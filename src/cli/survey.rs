@@ -5,7 +5,7 @@ use super::outputs::Outputs;
 use super::parse_length_unit;
 use crate::geometry::{Vec3, WellPath};
 use crate::io::case_toml::{load_case, CaseOverrides};
-use crate::io::survey::{read_survey, SurveyUnits};
+use crate::io::survey::{read_survey, survey_format, SurveyFormat, SurveyUnits};
 use crate::report::survey_table::survey_csv;
 use std::io::Write;
 
@@ -17,6 +17,21 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
         .map(|u| parse_length_unit("--md-unit", u))
         .transpose()?;
     let is_toml = a.input.extension().is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let format = survey_format(&a.input);
+    if a.trajectory.is_some() && (is_toml || format != SurveyFormat::Witsml) {
+        return Err(crate::InputError::option(
+            "--trajectory",
+            "applies to a WITSML survey file only (in a case file, choose with `[well] survey_trajectory`)",
+        )
+        .into());
+    }
+    if a.sheet.is_some() && (is_toml || format != SurveyFormat::Spreadsheet) {
+        return Err(crate::InputError::option(
+            "--sheet",
+            "applies to a spreadsheet survey file only (in a case file, choose with `[well] survey_sheet`)",
+        )
+        .into());
+    }
     let mut outputs = Outputs::new();
     let (path, file, label) = if is_toml {
         let case = load_case(
@@ -38,9 +53,12 @@ pub fn run(a: SurveyArgs) -> anyhow::Result<()> {
             &SurveyUnits {
                 md: md_unit,
                 angle: None,
+                trajectory: a.trajectory.clone(),
+                sheet: a.sheet.clone(),
             },
         )?;
-        let wp = WellPath::new(&sf.survey, Vec3::zeros()).map_err(|p| {
+        let origin = sf.origin.map_or_else(Vec3::zeros, |o| Vec3::new(o[0], o[1], o[2]));
+        let wp = WellPath::new(&sf.survey, origin).map_err(|p| {
             let line = sf.station_lines.get(p.index).copied().unwrap_or(0);
             crate::InputError::line(&a.input, line, Some("inc/azi"), p.message)
         })?;

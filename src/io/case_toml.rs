@@ -7,9 +7,11 @@
 
 use super::solver_toml::{check_mesh_size, read_solver};
 use super::string_toml::read_string;
-use super::survey::{read_survey, SurveyUnits};
+use super::survey::{convert_reference, parse_reference, read_survey, survey_format, SurveyFormat, SurveyUnits};
 use super::toml_reader::Section;
 use super::tracking_toml::read_tracking;
+use super::witsml::geometry::{hole_sections, parse_geometry};
+use super::witsml::tubular::parse_tubular;
 use crate::case::SurveyFile;
 use crate::case::*;
 use crate::error::{InputError, InputResult};
@@ -76,7 +78,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
     let well_sec = top
         .table("well")?
         .ok_or_else(|| top.error("well", "missing the [well] table (survey and hole sizes)"))?;
-    let (survey_file, survey_path, origin, hole) = read_well(&well_sec, &dir, overrides)?;
+    let (survey_file, survey_path, origin, hole, hole_from) = read_well(&well_sec, &dir, overrides)?;
     let caliper_path = well_sec.string("caliper")?.map(|rel| dir.join(rel));
     let wellpath = WellPath::new(&survey_file.survey, origin).map_err(|p| {
         let line = survey_file.station_lines.get(p.index).copied().unwrap_or(0);
@@ -110,10 +112,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         .unwrap_or_else(|| Section::new(path, "operation", &empty));
     let operation = read_operation(&op_sec, &wellpath, &hole, overrides)?;
 
-    let string = match top.tables("string")? {
-        Some(secs) => read_string(&secs, &top, &operation, &hole, &mud)?,
-        None => DrillString { components: vec![] },
-    };
+    let (string, string_from, string_notes) = read_case_string(&top, &dir, &operation, &hole, &mud)?;
 
     let sol_sec = top
         .table("solver")?
@@ -139,12 +138,14 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
             survey: survey_file,
             survey_path,
             caliper_path,
+            hole_from,
             path: wellpath,
             hole,
         },
         mud,
         operation,
         string,
+        string_from,
         bit_rock,
         solver,
         tracking,
@@ -153,7 +154,70 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
     if let Some(note) = case.string_above_survey_note() {
         tracing::warn!("{}: {note}", path.display());
     }
+    for note in string_notes {
+        tracing::warn!("{note}");
+    }
     Ok(case)
+}
+
+/// The string of the case: its `[[string]]` tables, or the WITSML tubular `string_from` names
+/// (with that file's path and the notes of its reading, to show once the case is read), or none.
+fn read_case_string(
+    top: &Section,
+    dir: &Path,
+    operation: &Operation,
+    hole: &HoleSize,
+    mud: &Mud,
+) -> InputResult<(DrillString, Option<PathBuf>, Vec<String>)> {
+    let from = top.string("string_from")?;
+    let chosen = top.string("string_from_tubular")?;
+    let other_as_tube = top.boolean("string_other_as_tube")?.unwrap_or(false);
+    match (top.tables("string")?, from) {
+        (Some(_), Some(_)) => Err(top.error(
+            "string_from",
+            "the case has both `[[string]]` tables and `string_from`: give one of them",
+        )),
+        (Some(secs), None) => Ok((read_string(&secs, top, operation, hole, mud)?, None, vec![])),
+        (None, Some(rel)) => {
+            let xml = dir.join(&rel);
+            if !xml.is_file() {
+                return Err(top.error(
+                    "string_from",
+                    format!("WITSML tubular file `{}` not found", xml.display()),
+                ));
+            }
+            let text = crate::io::witsml::read_text(&xml)?;
+            let tub = parse_tubular(&text, &xml, chosen.as_deref(), other_as_tube)?;
+            let secs: Vec<Section> = tub
+                .components
+                .iter()
+                .map(|c| Section::new(&xml, format!("tubularComponent[{}]", c.uid), &c.table))
+                .collect();
+            let string = read_string(&secs, top, operation, hole, mud)?;
+            let mut notes: Vec<String> = tub.notes.iter().map(|n| format!("{}: {n}", xml.display())).collect();
+            if let (Some(len), Some(c), Some(t)) = (tub.top_len_m, string.components.last(), tub.components.last()) {
+                if (len - c.length_m).abs() > 0.01 {
+                    notes.push(format!(
+                        "{}: the topmost component `{}` ({}) fills the string to the surface: {:.2} m long, not its `len` {len} m",
+                        xml.display(),
+                        t.uid,
+                        t.kind,
+                        c.length_m
+                    ));
+                }
+            }
+            Ok((string, Some(xml), notes))
+        }
+        (None, None) if chosen.is_some() || other_as_tube => Err(top.error(
+            if chosen.is_some() {
+                "string_from_tubular"
+            } else {
+                "string_other_as_tube"
+            },
+            "applies only with `string_from`",
+        )),
+        (None, None) => Ok((DrillString { components: vec![] }, None, vec![])),
+    }
 }
 
 /// 1-based line of byte `offset` of `bytes`; the end of a file that ends with a line end is on
@@ -164,35 +228,16 @@ fn line_of(bytes: &[u8], offset: usize) -> usize {
     (newlines(&bytes[..offset.min(bytes.len())]) + 1).min(lines.max(1))
 }
 
-fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(SurveyFile, PathBuf, Vec3, HoleSize)> {
-    s.check_known(WELL_KEYS)?;
-    let rel = s
-        .string("survey")?
-        .ok_or_else(|| s.error("survey", "missing the survey CSV path"))?;
-    let survey_path = dir.join(&rel);
-    if !survey_path.exists() {
-        return Err(s.error("survey", format!("survey file `{}` not found", survey_path.display())));
-    }
-    if !survey_path.is_file() {
-        return Err(s.error("survey", format!("`{}` is not a file", survey_path.display())));
-    }
-    let case_unit = match s.string("survey_md_unit")? {
-        Some(u) => Some(lookup_dim(&u, D::Length).map_err(|m| s.error("survey_md_unit", m))?),
-        None => None,
-    };
-    let units = SurveyUnits {
-        md: ov.survey_md_unit.or(case_unit),
-        angle: None,
-    };
-    let survey = read_survey(&survey_path, &units)?;
-    let origin = s
-        .length_triple("origin")?
-        .map(|o| Vec3::new(o[0], o[1], o[2]))
-        .unwrap_or_else(Vec3::zeros);
+/// What `[well]` gives: the survey as read and its path, the origin, the hole and the WITSML
+/// file it was read from (`hole_from`), if any.
+type WellParts = (SurveyFile, PathBuf, Vec3, HoleSize, Option<PathBuf>);
+
+/// The hole sections of the `hole` list of `[well]` (`s`).
+fn read_hole_list(s: &Section) -> InputResult<Vec<HoleSection>> {
     let secs = s.tables("hole")?.ok_or_else(|| {
         s.error(
             "hole",
-            "missing the hole sections, e.g. hole = [{ to_md = \"3000 m\", diameter = \"8.5 in\" }]",
+            "missing the hole sections, e.g. hole = [{ to_md = \"3000 m\", diameter = \"8.5 in\" }] (or hole_from = \"geometry.xml\", a WITSML wbGeometry)",
         )
     })?;
     if secs.is_empty() {
@@ -229,11 +274,107 @@ fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<(Survey
             friction,
         });
     }
+    Ok(sections)
+}
+
+/// The hole sections of the WITSML wbGeometry `rel` (relative to `dir`) that `[well]
+/// hole_from` (`s`) names, with the file's path; `cased_friction` applies to cased sections.
+fn read_hole_from(s: &Section, dir: &Path, rel: &str) -> InputResult<(Vec<HoleSection>, PathBuf)> {
+    let file = dir.join(rel);
+    if !file.is_file() {
+        return Err(s.error(
+            "hole_from",
+            format!("WITSML wbGeometry file `{}` not found", file.display()),
+        ));
+    }
+    let cased = s.number("cased_friction")?;
+    if let Some(f) = cased {
+        if !(0.0..=1.5).contains(&f) {
+            return Err(s.error("cased_friction", format!("friction coefficient {f} outside [0, 1.5]")));
+        }
+    }
+    let text = crate::io::witsml::read_text(&file)?;
+    let chosen = s.string("hole_from_geometry")?;
+    let sections = parse_geometry(&text, &file, chosen.as_deref())?;
+    Ok((hole_sections(&sections, cased), file))
+}
+
+fn read_well(s: &Section, dir: &Path, ov: &CaseOverrides) -> InputResult<WellParts> {
+    s.check_known(WELL_KEYS)?;
+    let rel = s
+        .string("survey")?
+        .ok_or_else(|| s.error("survey", "missing the survey CSV path"))?;
+    let survey_path = dir.join(&rel);
+    if !survey_path.exists() {
+        return Err(s.error("survey", format!("survey file `{}` not found", survey_path.display())));
+    }
+    if !survey_path.is_file() {
+        return Err(s.error("survey", format!("`{}` is not a file", survey_path.display())));
+    }
+    let case_unit = match s.string("survey_md_unit")? {
+        Some(u) => Some(lookup_dim(&u, D::Length).map_err(|m| s.error("survey_md_unit", m))?),
+        None => None,
+    };
+    let units = SurveyUnits {
+        md: ov.survey_md_unit.or(case_unit),
+        angle: None,
+        trajectory: s.string("survey_trajectory")?,
+        sheet: s.string("survey_sheet")?,
+    };
+    let format = survey_format(&survey_path);
+    if units.trajectory.is_some() && format != SurveyFormat::Witsml {
+        return Err(s.error(
+            "survey_trajectory",
+            "the survey file is not a WITSML file: only a WITSML file has trajectories to choose from",
+        ));
+    }
+    if units.sheet.is_some() && format != SurveyFormat::Spreadsheet {
+        return Err(s.error(
+            "survey_sheet",
+            "the survey file is not a spreadsheet (.xlsx, .xls, .ods): it has no sheets to choose from",
+        ));
+    }
+    let mut survey = read_survey(&survey_path, &units)?;
+    if let Some(text) = s.string("azimuth_reference")? {
+        let to = parse_reference(&text).ok_or_else(|| {
+            s.error(
+                "azimuth_reference",
+                format!("`{text}` is not a north: expected `true`, `grid` or `magnetic`"),
+            )
+        })?;
+        convert_reference(&mut survey, to).map_err(|m| s.error("azimuth_reference", m))?;
+    }
+    // the case's origin, else the position the survey file gives its first station (WITSML)
+    let origin = s
+        .length_triple("origin")?
+        .or(survey.origin)
+        .map(|o| Vec3::new(o[0], o[1], o[2]))
+        .unwrap_or_else(Vec3::zeros);
+    let (sections, hole_from) = match (s.string("hole_from")?, s.has("hole")) {
+        (Some(_), true) => {
+            return Err(s.error(
+                "hole_from",
+                "the case has both `hole` and `hole_from`: give one of them",
+            ));
+        }
+        (Some(rel), false) => {
+            let (sections, file) = read_hole_from(s, dir, &rel)?;
+            (sections, Some(file))
+        }
+        (None, _) => {
+            for key in ["hole_from_geometry", "cased_friction"] {
+                if s.has(key) {
+                    return Err(s.error(key, "applies only with `hole_from`"));
+                }
+            }
+            (read_hole_list(s)?, None)
+        }
+    };
     let caliper = match s.string("caliper")? {
         Some(rel) => read_caliper(&dir.join(rel), s)?,
         None => vec![],
     };
-    Ok((survey, survey_path, origin, HoleSize::new(sections, caliper)))
+    Ok((survey, survey_path, origin, HoleSize::new(sections, caliper), hole_from))
 }
 
 fn read_caliper(path: &Path, s: &Section) -> InputResult<Vec<(f64, f64)>> {
@@ -374,6 +515,9 @@ const TOP_KEYS: &[&str] = &[
     "mud",
     "operation",
     "string",
+    "string_from",
+    "string_from_tubular",
+    "string_other_as_tube",
     "bit_rock",
     "solver",
     "tracking",
@@ -381,7 +525,19 @@ const TOP_KEYS: &[&str] = &[
     "slide_sheet",
 ];
 /// Keys accepted in the well table (checked before any is read, so a typo is named).
-const WELL_KEYS: &[&str] = &["survey", "survey_md_unit", "origin", "hole", "caliper"];
+const WELL_KEYS: &[&str] = &[
+    "survey",
+    "survey_md_unit",
+    "survey_trajectory",
+    "survey_sheet",
+    "azimuth_reference",
+    "origin",
+    "hole",
+    "hole_from",
+    "hole_from_geometry",
+    "cased_friction",
+    "caliper",
+];
 /// Keys accepted in the hole table (checked before any is read, so a typo is named).
 const HOLE_KEYS: &[&str] = &["to_md", "diameter", "friction"];
 /// Keys accepted in the mud table (checked before any is read, so a typo is named).

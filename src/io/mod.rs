@@ -1,4 +1,4 @@
-//! Input files: survey files (CSV or text report) and TOML case files, turned into validated
+//! Input files: survey files (CSV, text report, spreadsheet or WITSML trajectory) and TOML case files, turned into validated
 //! library types.
 
 pub mod case_toml;
@@ -11,3 +11,4 @@ pub mod string_toml;
 pub mod survey;
 pub mod toml_reader;
 pub mod tracking_toml;
+pub mod witsml;

@@ -22,7 +22,10 @@ pub fn echo_inputs(page: &mut Page, case: &Case, bit_md_m: f64, units: UnitSyste
         ("survey".into(), case.well.survey_path.display().to_string()),
         (
             "azimuth reference".into(),
-            case.well.survey.azimuth_reference.describe().to_string(),
+            match case.well.survey.azimuth_reference_source.as_str() {
+                "" => case.well.survey.azimuth_reference.describe().to_string(),
+                source => format!("{} (from {source})", case.well.survey.azimuth_reference.describe()),
+            },
         ),
         ("stations".into(), st.len().to_string()),
         (

@@ -1,5 +1,6 @@
 //! Outputs: CSV and JSON files with the interface's names, written atomically.
 
+pub mod case_writer;
 pub mod display_units;
 pub mod fitted_case;
 pub mod html;
@@ -16,6 +17,7 @@ pub mod solve_report;
 pub mod solve_text;
 pub mod survey_table;
 pub mod tracking_output;
+pub mod witsml_out;
 
 use std::path::Path;
 

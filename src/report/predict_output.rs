@@ -438,6 +438,29 @@ struct ModelJson {
     seconds: Finite,
 }
 
+/// The survey's north beyond its name: `azimuth_reference_source` (where the survey file states
+/// it, or the case's conversion; empty when not stated), `magnetic_declination_deg` and
+/// `grid_convergence_deg` (deg, as the file gives them, e.g. WITSML `magDeclUsed`,
+/// `gridCorUsed`; null when it does not).
+#[derive(Serialize)]
+pub struct NorthJson {
+    azimuth_reference_source: String,
+    magnetic_declination_deg: Option<Finite>,
+    grid_convergence_deg: Option<Finite>,
+}
+
+impl NorthJson {
+    /// From the survey file of `case`.
+    pub fn of(case: &Case) -> NorthJson {
+        let f = &case.well.survey;
+        NorthJson {
+            azimuth_reference_source: f.azimuth_reference_source.clone(),
+            magnetic_declination_deg: f.magnetic_declination_rad.map(|d| Finite(d.to_degrees())),
+            grid_convergence_deg: f.grid_convergence_rad.map(|c| Finite(c.to_degrees())),
+        }
+    }
+}
+
 /// `summary.json` of one case of `drillpath predict`.
 #[derive(Serialize)]
 pub struct PredictSummary {
@@ -446,6 +469,9 @@ pub struct PredictSummary {
     /// The north the survey's (and so the predicted) azimuths are measured from, as the survey
     /// file states it: `unspecified`, `true`, `grid` or `magnetic`.
     azimuth_reference: &'static str,
+    /// Where the reference and the declination / convergence come from, and the conversion.
+    #[serde(flatten)]
+    north: NorthJson,
     from_md_m: Finite,
     to_md_m: Finite,
     step_m: Finite,
@@ -470,6 +496,7 @@ impl PredictSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
             azimuth_reference: case.well.survey.azimuth_reference.name(),
+            north: NorthJson::of(case),
             from_md_m: Finite(p.from_md_m),
             to_md_m: Finite(p.to_md_m),
             step_m: Finite(f.settings.step_m),
@@ -587,6 +614,9 @@ pub struct BackanalysisSummary {
     case_file: String,
     /// The north the survey's azimuths are measured from, as the survey file states it.
     azimuth_reference: &'static str,
+    /// Where the reference and the declination / convergence come from, and the conversion.
+    #[serde(flatten)]
+    north: NorthJson,
     /// The BHA runs (each case's name, file and bit depth), the first case's first.
     runs: Vec<RunJson>,
     intervals: usize,
@@ -656,6 +686,7 @@ impl BackanalysisSummary {
             case: case.name.clone(),
             case_file: case_file.display().to_string(),
             azimuth_reference: case.well.survey.azimuth_reference.name(),
+            north: NorthJson::of(case),
             runs: std::iter::once((case, case_file))
                 .chain(later_runs.iter().copied())
                 .map(|(c, f)| RunJson {

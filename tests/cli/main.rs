@@ -14,3 +14,5 @@ mod predict;
 mod refusals;
 mod report;
 mod solve;
+mod tubular;
+mod witsml;

@@ -509,6 +509,87 @@ fn the_wrote_lines_name_the_report() {
     );
 }
 
+/// A WITSML trajectory of three stations in the WITSML 1.x namespace; `before_root` goes
+/// between the XML declaration and the root (a DTD), `name` is the trajectory's name.
+fn witsml_text(before_root: &str, name: &str) -> String {
+    let station = |uid: &str, md: f64, incl: f64| {
+        format!(
+            r#"<trajectoryStation uid="{uid}"><typeTrajStation>magnetic MWD</typeTrajStation><md uom="m">{md}</md><incl uom="dega">{incl}</incl><azi uom="dega">0</azi></trajectoryStation>"#
+        )
+    };
+    format!(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n{before_root}\n<trajectorys xmlns=\"http://www.witsml.org/schemas/1series\" version=\"1.4.1.1\">\n<trajectory uid=\"T\"><name>{name}</name><aziRef>grid north</aziRef>\n{}\n{}\n{}\n</trajectory>\n</trajectorys>\n",
+        station("a", 0.0, 0.0),
+        station("b", 300.0, 0.0),
+        station("c", 600.0, 30.0)
+    )
+}
+
+#[test]
+fn hostile_witsml_is_refused_and_nothing_is_written() {
+    // issue 22: an external entity is never resolved, nested entities answer at once, truncated
+    // or malformed XML, a wrong root and a file over the size limit are refused naming the
+    // file and the place; exit 2, inputs unchanged, no output written
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("secret.txt"), "TOPSECRET").unwrap();
+    let secret = d.join("secret.txt");
+    let xxe = witsml_text(
+        &format!(
+            "<!DOCTYPE trajectorys [<!ENTITY x SYSTEM \"file://{}\">]>",
+            secret.display()
+        ),
+        "&x;",
+    );
+    std::fs::write(d.join("xxe.xml"), &xxe).unwrap();
+    let mut lol = String::from("<!DOCTYPE trajectorys [<!ENTITY l0 \"lol\">");
+    for k in 1..10 {
+        lol += &format!("<!ENTITY l{k} \"{}\">", format!("&l{};", k - 1).repeat(10));
+    }
+    lol += "]>";
+    std::fs::write(d.join("laughs.xml"), witsml_text(&lol, "&l9;")).unwrap();
+    let good = witsml_text("", "t");
+    std::fs::write(d.join("truncated.xml"), &good[..good.len() - 40]).unwrap();
+    std::fs::write(d.join("malformed.xml"), good.replace("</md>", "</mdd>")).unwrap();
+    std::fs::write(d.join("root.xml"), good.replace("trajectorys", "wbGeometrys")).unwrap();
+    let big = std::fs::File::create(d.join("big.xml")).unwrap();
+    big.set_len(16 * 1024 * 1024 + 1).unwrap();
+    std::fs::write(d.join("good.xml"), &good).unwrap();
+    std::fs::write(
+        d.join("case.toml"),
+        case_text("50 kN", "").replace("survey = \"survey.csv\"", "survey = \"xxe.xml\""),
+    )
+    .unwrap();
+    let cases: &[(&str, &[&str])] = &[
+        (
+            "xxe.xml",
+            &[
+                "xxe.xml: line 2",
+                "document type declaration",
+                "never expanded or fetched",
+            ],
+        ),
+        ("laughs.xml", &["laughs.xml: line 2", "document type declaration"]),
+        ("truncated.xml", &["truncated.xml: line 7", "truncated"]),
+        ("malformed.xml", &["malformed.xml: line 5", "not well-formed XML"]),
+        (
+            "root.xml",
+            &["root.xml: line 3, root element `wbGeometrys`", "expected `trajectorys`"],
+        ),
+        ("big.xml", &["big.xml", "larger than 16 MiB"]),
+    ];
+    for (file, must) in cases {
+        let line = assert_refused(d, &["survey", file, "--out", "positions.csv"], must);
+        assert!(!line.contains("TOPSECRET"), "{line}");
+        assert_eq!(run_bounded(d, &["survey", file]).0.code(), Some(2));
+    }
+    let line = assert_refused(d, &["solve", "case.toml", "--out", "res"], &["xxe.xml: line 2"]);
+    assert!(!line.contains("TOPSECRET"), "{line}");
+    let r = run_in(d, &["survey", "good.xml", "--csv"]);
+    assert!(r.success(), "{}", r.describe());
+    assert_eq!(r.stdout.lines().count(), 4, "{}", r.stdout);
+}
+
 #[test]
 fn a_whole_string_locked_up_answers_at_the_wob_it_delivers() {
     // 300 m of horizontal hole after a 6 deg/30 m build, slid with 114 kN asked for: about

@@ -1,5 +1,5 @@
 //! Fuzz test of the input readers (issue 18): the survey reader
-//! (`drillpath::io::survey::parse_survey`, CSV and text reports) and the case reader
+//! (`drillpath::io::survey::parse_survey`, CSV, text reports and WITSML trajectories) and the case reader
 //! (`drillpath::io::case_toml::parse_case`) fed 26,000 generated inputs per run: random bytes
 //! and text, valid survey CSVs, text reports and case files mutated byte by byte, word by word
 //! and line by line, and the j-shape case with values replaced, removed and added.
@@ -70,6 +70,36 @@ static CSV_SEEDS: LazyLock<Vec<String>> = LazyLock::new(|| {
         head(&example_dir("j-shape").join("survey.csv"), 10),
         head(&example_dir("forge-16a").join("Directional_Survey16A-32.csv"), 8),
         head(&example_dir("volve-f10").join("15_9-F-10_actual_trajectory.csv"), 6),
+    ]
+});
+
+/// Valid WITSML 1.4.1.1 trajectories: pretty-printed and on one line, m / ft, dega / rad, a
+/// tie-in position, toolfaces, a projected station, two trajectories.
+static XML_SEEDS: LazyLock<Vec<String>> = LazyLock::new(|| {
+    let st = |uid: &str, kind: &str, md: &str, incl: &str, azi: &str| {
+        format!("<trajectoryStation uid=\"{uid}\">\n<typeTrajStation>{kind}</typeTrajStation>\n<md uom=\"m\">{md}</md>\n<tvd uom=\"m\">{md}</tvd>\n<incl uom=\"dega\">{incl}</incl>\n<azi uom=\"dega\">{azi}</azi>\n<gtf uom=\"dega\">-20</gtf>\n<dispNs uom=\"m\">1.5</dispNs>\n<dispEw uom=\"m\">-2</dispEw>\n</trajectoryStation>\n")
+    };
+    let traj = |name: &str, body: &str| {
+        format!("<trajectory uid=\"{name}\">\n<name>{name}</name>\n<magDeclUsed uom=\"dega\">-2.2</magDeclUsed>\n<gridCorUsed uom=\"rad\">-0.0166</gridCorUsed>\n<aziRef>grid north</aziRef>\n{body}</trajectory>\n")
+    };
+    let doc = |body: &str| {
+        format!("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<trajectorys xmlns=\"http://www.witsml.org/schemas/1series\" version=\"1.4.1.1\">\n{body}</trajectorys>\n")
+    };
+    let three = [
+        st("a", "tie in point", "0", "0", "0"),
+        st("b", "magnetic MWD", "150.5", "1.5", "182"),
+        st("c", "gyro MWD", "300", "10", "190"),
+    ]
+    .concat();
+    let pretty = doc(&traj(
+        "T1",
+        &format!("{three}{}", st("p", "hold to MD", "400", "10", "190")),
+    ));
+    vec![
+        pretty.clone(),
+        pretty.replace('\n', ""),
+        pretty.replace("uom=\"m\"", "uom=\"ft\""),
+        doc(&traj("T1", &three)).replace("uom=\"dega\">1", "uom=\"rad\">0.1"),
     ]
 });
 
@@ -371,6 +401,17 @@ fn check_placed(e: &InputError, files: &[(&Path, usize)]) -> Result<&'static str
             prop_assert!(text.contains(&format!("key `{key}`")), "{text}");
             (file, "error: key")
         }
+        Location::Element { file, line, element } => {
+            let n = match files.iter().find(|(p, _)| p == file) {
+                Some((_, n)) => *n,
+                None => line_count(&std::fs::read(file).unwrap_or_default()),
+            };
+            prop_assert!(
+                *line >= 1 && *line <= n && !element.is_empty(),
+                "line {line} is not a line of the file ({n} lines): {text}"
+            );
+            (file, "error: element")
+        }
         Location::Option(o) => {
             return Err(TestCaseError::fail(format!("a file error named as option {o}: {text}")));
         }
@@ -398,11 +439,12 @@ fn survey_units(k: usize) -> SurveyUnits {
         0 => SurveyUnits::default(),
         1 => SurveyUnits {
             md: lookup("ft"),
-            angle: None,
+            ..Default::default()
         },
         _ => SurveyUnits {
             md: None,
             angle: lookup("rad"),
+            ..Default::default()
         },
     }
 }
@@ -425,7 +467,11 @@ fn check_survey(bytes: &[u8], name: &str, units: &SurveyUnits) -> Result<&'stati
             }
             let n = line_count(bytes);
             prop_assert_eq!(f.station_lines.len(), st.len());
-            prop_assert!(f.station_lines.windows(2).all(|w| w[0] < w[1]));
+            // a WITSML file may hold several stations on one line
+            prop_assert!(f
+                .station_lines
+                .windows(2)
+                .all(|w| w[0] < w[1] || (name.ends_with(".xml") && w[0] <= w[1])));
             prop_assert!(f.station_lines.iter().all(|&l| l >= 1 && l <= n));
             Ok("read")
         }
@@ -543,6 +589,16 @@ fn fuzz_survey_reader_with_mutated_csvs() {
         6000,
         (mutated(&CSV_SEEDS), 0..3usize),
         |(b, k)| check_survey(b, "mutated.csv", &survey_units(*k)),
+    );
+}
+
+#[test]
+fn fuzz_survey_reader_with_mutated_witsml() {
+    fuzz(
+        "survey, mutated WITSML",
+        4000,
+        (mutated(&XML_SEEDS), 0..3usize),
+        |(b, k)| check_survey(b, "mutated.xml", &survey_units(*k)),
     );
 }
 

@@ -26,5 +26,7 @@ mod slack_off;
 mod sliding;
 mod softstring;
 mod solver;
+mod spreadsheet;
 mod steering;
 mod tracking;
+mod witsml;

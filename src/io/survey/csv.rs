@@ -19,7 +19,7 @@ pub(super) enum Failure {
 
 /// Read `lines` (the file's non-blank, non-comment lines) as a delimited survey.
 pub(super) fn parse(lines: &[Line], path: &Path, units: &SurveyUnits) -> Result<SurveyFile, Failure> {
-    let Some((header_line, rest)) = lines.split_first() else {
+    let Some(header_line) = lines.first() else {
         return Err(Failure::Other(InputError::file(
             path,
             "the survey file has no header row",
@@ -27,36 +27,75 @@ pub(super) fn parse(lines: &[Line], path: &Path, units: &SurveyUnits) -> Result<
     };
     let delim = detect_delimiter(header_line.text);
     let decimal_comma = delim != ',';
-    let header = split_fields(header_line.text, delim);
     let number = |h: &str| h.is_empty() || parse_number(h, decimal_comma).is_some();
-    if header.iter().all(|h| number(h)) || header_line.text.split_whitespace().all(number) {
-        return Err(Failure::Header(InputError::line(
-            path,
-            header_line.no,
-            None,
-            format!(
-                "no header row: `{}` looks like data; the first line that is not a comment must name the columns, e.g. `md [m],inc [deg],azi [deg]`",
-                header_line.text.trim()
-            ),
-        )));
+    if header_line.text.split_whitespace().all(number) {
+        return Err(no_header(path, header_line.no, header_line.text));
     }
-    let columns = find_columns(&header, path, header_line.no).map_err(Failure::Header)?;
-    read(columns, header_line.no, rest, delim, path, units).map_err(Failure::Other)
+    let rows: Vec<Fields> = lines
+        .iter()
+        .map(|l| Fields {
+            no: l.no,
+            fields: split_fields(l.text, delim),
+        })
+        .collect();
+    parse_fields(&rows, decimal_comma, path, units)
 }
 
-/// The survey from the lines after the header (`rest`), whose columns are `columns`.
+/// One row already split into fields (trimmed): its 1-based line (or sheet row) number.
+#[derive(Debug, Clone)]
+pub(super) struct Fields {
+    pub(super) no: usize,
+    pub(super) fields: Vec<String>,
+}
+
+/// The "no header row" failure for the first row `text` on line `no`.
+fn no_header(path: &Path, no: usize, text: &str) -> Failure {
+    Failure::Header(InputError::line(
+        path,
+        no,
+        None,
+        format!(
+            "no header row: `{}` looks like data; the first line that is not a comment must name the columns, e.g. `md [m],inc [deg],azi [deg]`",
+            text.trim()
+        ),
+    ))
+}
+
+/// Read `rows` (the non-blank, non-comment rows, split into fields) as a survey table: the
+/// first is the header, an optional units row follows, then one row per station. The rules of
+/// CSV files, shared by spreadsheets ([`super::sheet`]).
+pub(super) fn parse_fields(
+    rows: &[Fields],
+    decimal_comma: bool,
+    path: &Path,
+    units: &SurveyUnits,
+) -> Result<SurveyFile, Failure> {
+    let Some((header, rest)) = rows.split_first() else {
+        return Err(Failure::Other(InputError::file(
+            path,
+            "the survey file has no header row",
+        )));
+    };
+    let number = |h: &str| h.is_empty() || parse_number(h, decimal_comma).is_some();
+    if header.fields.iter().all(|h| number(h)) {
+        return Err(no_header(path, header.no, &header.fields.join(",")));
+    }
+    let columns = find_columns(&header.fields, path, header.no).map_err(Failure::Header)?;
+    read(columns, header.no, rest, decimal_comma, path, units).map_err(Failure::Other)
+}
+
+/// The survey from the rows after the header (`rest`), whose columns are `columns`.
 fn read(
     mut columns: [Column; 3],
     header_no: usize,
-    mut rest: &[Line],
-    delim: char,
+    mut rest: &[Fields],
+    decimal_comma: bool,
     path: &Path,
     units: &SurveyUnits,
 ) -> InputResult<SurveyFile> {
     if let Some((first, after)) = rest.split_first() {
-        let fields = split_fields(first.text, delim);
-        if is_units_line(&fields) {
-            apply_units_line(&mut columns, &fields, path, first.no)?;
+        if is_units_line(&first.fields) {
+            apply_units_line(&mut columns, &first.fields, path, first.no)?;
             rest = after;
         }
     }
@@ -64,13 +103,12 @@ fn read(
     let col_units = column_units(&columns, units, path, &mut notes)?;
     let factors = col_units.map(|u| u.to_si);
     let mut rows = Vec::new();
-    for line in rest {
-        let fields = split_fields(line.text, delim);
-        if fields.iter().all(|f| f.is_empty()) {
+    for row in rest {
+        if row.fields.iter().all(|f| f.is_empty()) {
             continue; // e.g. `,,,` written by spreadsheets after the last row
         }
-        let fields: Vec<&str> = fields.iter().map(String::as_str).collect();
-        rows.push(read_row(line.no, &fields, &columns, factors, delim != ',', path)?);
+        let fields: Vec<&str> = row.fields.iter().map(String::as_str).collect();
+        rows.push(read_row(row.no, &fields, &columns, factors, decimal_comma, path)?);
     }
     let azi = &columns[2];
     let reference = match azi.reference {
@@ -154,6 +192,7 @@ mod tests {
         let units = SurveyUnits {
             md: md.and_then(lookup),
             angle: angle.and_then(lookup),
+            ..Default::default()
         };
         parse_survey(text.as_bytes(), Path::new(FILE), &units)
     }

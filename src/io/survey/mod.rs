@@ -1,6 +1,7 @@
 //! Survey file reader: measured depth, inclination and azimuth columns found by name in a
-//! delimited (CSV) file or a whitespace-separated text report, converted to SI and validated
-//! into a [`Survey`].
+//! delimited (CSV) file, a whitespace-separated text report or a spreadsheet (module `sheet`,
+//! the CSV rules on one sheet's cells), converted to SI and validated into a [`Survey`]; a
+//! WITSML trajectory is read by [`crate::io::witsml::trajectory`].
 //!
 //! The contract (docs/guide.md, "Survey file rules"):
 //! - a UTF-8 BOM is stripped, CRLF is accepted, a file that is not UTF-8 is read as Latin-1;
@@ -22,7 +23,11 @@
 
 mod csv;
 mod header;
+mod north;
+mod sheet;
 mod text_report;
+
+pub use north::{convert_reference, parse_reference};
 
 use std::path::Path;
 
@@ -42,13 +47,80 @@ pub struct SurveyUnits {
     pub md: Option<Unit>,
     /// Unit of inclination / azimuth columns without a unit in their header (an angle unit).
     pub angle: Option<Unit>,
+    /// Which trajectory of a WITSML file to read, by name or uid (`None`: the only one); not
+    /// used for other files (callers refuse it there, naming their key or option).
+    pub trajectory: Option<String>,
+    /// Which sheet of a spreadsheet to read, by name (`None`: the first with a survey header);
+    /// not used for other files (callers refuse it there).
+    pub sheet: Option<String>,
 }
 
-/// Read and validate the survey file at `path` (CSV or text report; see the module
-/// documentation).
+/// The kinds of survey file, which decide the reader.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SurveyFormat {
+    /// A WITSML 1.4.1.1 trajectory (`.xml`, or contents starting with `<`).
+    Witsml,
+    /// A spreadsheet (`.xlsx`, `.xlsm`, `.xlsb`, `.xls`, `.ods`).
+    Spreadsheet,
+    /// A CSV or a whitespace-separated text report (anything else).
+    Text,
+}
+
+/// The format of the survey file at `path`, by its extension, else by its first bytes (a file
+/// that cannot be read is `Text`: the reader then says why).
+pub fn survey_format(path: &Path) -> SurveyFormat {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match ext.as_str() {
+        "xml" => SurveyFormat::Witsml,
+        "xlsx" | "xlsm" | "xlsb" | "xls" | "ods" => SurveyFormat::Spreadsheet,
+        _ => {
+            use std::io::Read;
+            let mut head = Vec::new();
+            let read = std::fs::File::open(path).and_then(|f| f.take(256).read_to_end(&mut head));
+            if read.is_ok() && crate::io::witsml::looks_like_xml(&head) {
+                SurveyFormat::Witsml
+            } else {
+                SurveyFormat::Text
+            }
+        }
+    }
+}
+
+/// Read and validate the survey file at `path`: a WITSML 1.4.1.1 trajectory (extension `.xml`,
+/// or contents starting with `<`; [`crate::io::witsml::trajectory`]), a spreadsheet (`.xlsx`,
+/// `.xlsm`, `.xlsb`, `.xls`, `.ods`: one sheet read with the CSV rules), or a CSV or text
+/// report (see the module documentation).
 pub fn read_survey(path: &Path, units: &SurveyUnits) -> InputResult<SurveyFile> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    if ext == "xml" {
+        let text = crate::io::witsml::read_text(path)?;
+        return read_trajectory(&text, path, units);
+    }
+    if survey_format(path) == SurveyFormat::Spreadsheet {
+        return sheet::read_sheet(path, units);
+    }
     let bytes = std::fs::read(path).map_err(|e| InputError::file(path, format!("cannot read the survey file: {e}")))?;
     parse_survey(&bytes, path, units)
+}
+
+/// A WITSML trajectory read with `units`' choice of trajectory; the unit overrides do not apply
+/// (every WITSML measure carries its unit) and a sheet name is refused.
+fn read_trajectory(text: &str, path: &Path, units: &SurveyUnits) -> InputResult<SurveyFile> {
+    let mut file = crate::io::witsml::trajectory::parse_trajectory(text, path, units.trajectory.as_deref())?;
+    if units.md.is_some() {
+        file.notes.push(
+            "the MD unit given by the case file or command line is not used: every WITSML measure carries its own `uom`".into(),
+        );
+    }
+    Ok(file)
 }
 
 /// Parse and validate the survey file contents `bytes`; `path` is used only in messages.
@@ -56,6 +128,10 @@ pub fn read_survey(path: &Path, units: &SurveyUnits) -> InputResult<SurveyFile> 
 /// Bytes that are not valid UTF-8 are read as Latin-1 (so a `°` written by a legacy tool still
 /// works), with a note saying so.
 pub fn parse_survey(bytes: &[u8], path: &Path, units: &SurveyUnits) -> InputResult<SurveyFile> {
+    if crate::io::witsml::looks_like_xml(bytes) {
+        let text = crate::io::witsml::text_of(bytes.to_vec(), path)?;
+        return read_trajectory(&text, path, units);
+    }
     match std::str::from_utf8(bytes) {
         Ok(text) => parse_text(text, path, units),
         Err(_) => {
@@ -219,6 +295,11 @@ fn finish(found: Found, path: &Path) -> InputResult<SurveyFile> {
         station_lines: rows.iter().map(|r| r.line).collect(),
         azimuth_reference: reference.0,
         azimuth_reference_source: reference.1,
+        magnetic_declination_rad: None,
+        grid_convergence_rad: None,
+        origin: None,
+        station_info: Vec::new(),
+        projected: Vec::new(),
     })
 }
 
