@@ -250,11 +250,7 @@ pub(super) fn find_columns<S: AsRef<str>>(fields: &[S], path: &Path, line: usize
         _ => {
             let k = found.iter().position(Option::is_none).unwrap_or(0);
             let role = Role::ALL[k];
-            let listed = fields
-                .iter()
-                .map(|h| format!("`{}`", h.as_ref()))
-                .collect::<Vec<_>>()
-                .join(", ");
+            let listed = listed_columns(fields.iter().map(|h| h.as_ref()));
             Err(InputError::line(
                 path,
                 line,
@@ -511,5 +507,52 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("r.txt: line 4, column `MD`") && e.contains("furlong"), "{e}");
+    }
+}
+
+/// Longest column name quoted whole in a message, characters.
+pub const MAX_LISTED_NAME_CHARS: usize = 40;
+
+/// Most columns listed in a message.
+pub const MAX_LISTED_COLUMNS: usize = 12;
+
+/// The header's column names for a message, each quoted: long names cut after
+/// [`MAX_LISTED_NAME_CHARS`] characters and the list after [`MAX_LISTED_COLUMNS`] names (a file
+/// that is not a survey table, such as a one-line XML export, would otherwise be echoed whole).
+fn listed_columns<'a>(names: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = names.collect();
+    let mut out: Vec<String> = names
+        .iter()
+        .take(MAX_LISTED_COLUMNS)
+        .map(|h| {
+            let cut: String = h.chars().take(MAX_LISTED_NAME_CHARS).collect();
+            if cut.len() < h.len() {
+                format!("`{cut}...` ({} characters)", h.chars().count())
+            } else {
+                format!("`{h}`")
+            }
+        })
+        .collect();
+    if names.len() > MAX_LISTED_COLUMNS {
+        out.push(format!("and {} more", names.len() - MAX_LISTED_COLUMNS));
+    }
+    out.join(", ")
+}
+
+#[cfg(test)]
+mod listed_tests {
+    use super::*;
+
+    #[test]
+    fn long_headers_are_cut_in_messages() {
+        let long = "x".repeat(500);
+        let s = listed_columns([long.as_str(), "md"].into_iter());
+        assert!(
+            s.contains("(500 characters)") && s.contains("`md`") && s.len() < 120,
+            "{s}"
+        );
+        let many: Vec<String> = (0..20).map(|k| format!("c{k}")).collect();
+        let s = listed_columns(many.iter().map(|x| x.as_str()));
+        assert!(s.ends_with("and 8 more"), "{s}");
     }
 }
