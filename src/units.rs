@@ -238,11 +238,17 @@ pub fn parse_quantity(text: &str, dimension: Dimension, default_unit: &str) -> R
     let unit = if unit.is_empty() { default_unit } else { unit };
     let u = lookup_dim(unit, dimension)?;
     let si = value * u.to_si;
-    if !si.is_finite() {
-        return Err(format!("`{t}` is too large: it is not a finite number in SI units"));
+    if !si.is_finite() || si.abs() > MAX_ABS_SI {
+        return Err(format!(
+            "`{t}` is too large: beyond any physical value (more than {MAX_ABS_SI:e} in SI units, where products of a few such values overflow)"
+        ));
     }
     Ok(si)
 }
+
+/// Largest magnitude of a quantity accepted in SI units: far beyond any physical value of a
+/// drilling case, and small enough that products of a few of them stay finite.
+pub const MAX_ABS_SI: f64 = 1e100;
 
 /// Convert an SI value into `unit` (for output and messages).
 pub fn from_si(value_si: f64, unit: &str) -> f64 {
@@ -380,10 +386,12 @@ mod tests {
 
     #[test]
     fn a_value_that_overflows_in_si_units_is_refused() {
-        // 1e308 kN is 1e311 N: beyond f64
+        // 1e308 kN is 1e311 N: beyond f64; 1e308 lb/ft is finite in kg/m, but its weight per
+        // length in N/m is not
         let e = parse_quantity("1e308 kN", Dimension::Force, "kN").unwrap_err();
         assert!(e.contains("too large"), "{e}");
-        assert!(parse_quantity("1e300 kN", Dimension::Force, "kN").unwrap().is_finite());
+        assert!(parse_quantity("1e300 kN", Dimension::Force, "kN").is_err());
+        assert!(parse_quantity("1e90 kN", Dimension::Force, "kN").unwrap().is_finite());
     }
 
     #[test]

@@ -341,13 +341,13 @@ fn hostile_xml_is_refused() {
     // an error just past the last line end names the last line (found by the fuzz test)
     let e = refused(b"<?xml version=\"1.0\"\n", "not well-formed XML");
     assert!(e.starts_with("t.xml: line 1:"), "{e}");
-    // a value that overflows in SI units
+    // a value that overflows in SI units, or lies beyond any physical size
     let t = doc(&trajectory(
         "t",
         "T",
         &three_stations().replace("<md uom=\"ft\">2000</md>", "<md uom=\"km\">1e306</md>"),
     ));
-    refused(t.as_bytes(), "`1e306` is not a finite number (in SI units)");
+    refused(t.as_bytes(), "`1e306` is not a finite number of physical size");
     refused(doc(&trajectory("t", "T", "")).as_bytes(), "has no `trajectoryStation`");
 }
 

@@ -223,8 +223,11 @@ pub fn measure<'a>(
         return Err(at("empty: no value".into()));
     }
     let v: f64 = raw.parse().map_err(|_| at(format!("`{raw}` is not a number")))?;
-    if !v.is_finite() || !(v * unit.to_si).is_finite() {
-        return Err(at(format!("`{raw}` is not a finite number (in SI units)")));
+    if !v.is_finite() || !(v * unit.to_si).is_finite() || (v * unit.to_si).abs() > crate::units::MAX_ABS_SI {
+        return Err(at(format!(
+            "`{raw}` is not a finite number of physical size (at most {:e} in SI units)",
+            crate::units::MAX_ABS_SI
+        )));
     }
     Ok(Some(Measure {
         si: v * unit.to_si,
