@@ -203,6 +203,52 @@ pub(super) struct StepOutcome {
 pub(super) type StepResidual<'a> =
     dyn Fn([f64; 2], &WarmStart) -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> + 'a;
 
+/// Largest component of a deviation or turn, rad.
+fn max_abs(x: &[f64; 2]) -> f64 {
+    x[0].abs().max(x[1].abs())
+}
+
+/// Whether the direction iteration has converged: the deviation `res` within
+/// [`DIRECTION_TOLERANCE_RAD`], or within ten times it after an update below
+/// [`TURN_TOLERANCE_RAD`] (`last_update`, rad).
+fn direction_converged(res: &[f64; 2], last_update: f64) -> bool {
+    let r_norm = max_abs(res);
+    r_norm < DIRECTION_TOLERANCE_RAD || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
+}
+
+/// The Jacobian of the deviation at `turn` (where it is `res`) by forward differences of
+/// [`TURN_PERTURBATION_RAD`], and the Newton iterations of its string solves.
+fn jacobian_by_differences(
+    eval: &StepResidual,
+    turn: [f64; 2],
+    res: [f64; 2],
+    warm: &WarmStart,
+) -> Result<(Matrix2<f64>, usize), PredictError> {
+    let mut j = Matrix2::zeros();
+    let mut iterations = 0;
+    for c in 0..2 {
+        let mut tp = turn;
+        tp[c] += TURN_PERTURBATION_RAD;
+        let (_, sp, rp, _) = eval(tp, warm)?;
+        iterations += sp.iterations;
+        for r in 0..2 {
+            j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
+        }
+    }
+    Ok((j, iterations))
+}
+
+/// The Newton update `-J^-1 res` of the turn angles, scaled down to at most
+/// [`MAX_TURN_CHANGE_RAD`] in its largest component.
+fn capped_newton_update(jinv: &Matrix2<f64>, res: [f64; 2]) -> Vector2<f64> {
+    let mut dt = -(jinv * Vector2::new(res[0], res[1]));
+    let big = dt.amax();
+    if big > MAX_TURN_CHANGE_RAD {
+        dt *= MAX_TURN_CHANGE_RAD / big;
+    }
+    dt
+}
+
 /// Newton's method on the turn angles of the step ending at `md_m` from `turn`, with the
 /// Jacobian `jac` kept between steps (finite differences where missing or after poor progress,
 /// Broyden updates otherwise).
@@ -226,26 +272,15 @@ pub(super) fn implicit_step(
             res_r = res[1],
             "direction iteration"
         );
-        let r_norm = res[0].abs().max(res[1].abs());
-        if r_norm < DIRECTION_TOLERANCE_RAD
-            || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
-        {
+        if direction_converged(&res, last_update) {
             converged = true;
             break;
         }
         let j = match *jac {
             Some(j) => j,
             None => {
-                let mut j = Matrix2::zeros();
-                for c in 0..2 {
-                    let mut tp = turn;
-                    tp[c] += TURN_PERTURBATION_RAD;
-                    let (_, sp, rp, _) = eval(tp, warm)?;
-                    step_iterations += sp.iterations;
-                    for r in 0..2 {
-                        j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
-                    }
-                }
+                let (j, its) = jacobian_by_differences(eval, turn, res, warm)?;
+                step_iterations += its;
                 *jac = Some(j);
                 j
             }
@@ -254,17 +289,12 @@ pub(super) fn implicit_step(
             *jac = None;
             continue;
         };
-        let mut dt = -(jinv * Vector2::new(res[0], res[1]));
-        let big = dt.amax();
-        if big > MAX_TURN_CHANGE_RAD {
-            dt *= MAX_TURN_CHANGE_RAD / big;
-        }
+        let dt = capped_newton_update(&jinv, res);
         let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
         last_update = dt.amax();
         let (p, sol, r, d) = eval(new_turn, warm)?;
         step_iterations += sol.iterations;
-        let norm = |x: &[f64; 2]| x[0].abs().max(x[1].abs());
-        if norm(&r) > 0.5 * norm(&res) {
+        if max_abs(&r) > 0.5 * max_abs(&res) {
             // poor progress: rebuild the Jacobian by differences at the new point
             *jac = None;
         } else {
@@ -305,43 +335,28 @@ pub(super) fn backtracking_step(
     warm: &WarmStart,
     md_m: f64,
 ) -> Result<StepOutcome, PredictError> {
-    let norm = |x: &[f64; 2]| x[0].abs().max(x[1].abs());
     let (mut p1, mut sol1, mut res, mut dir) = eval(turn, warm)?;
     let mut iterations = sol1.iterations;
     let mut converged = false;
     let mut last_update = f64::INFINITY;
     for _ in 0..MAX_BACKTRACKING_ITERATIONS {
-        let r_norm = norm(&res);
-        if r_norm < DIRECTION_TOLERANCE_RAD
-            || (last_update < TURN_TOLERANCE_RAD && r_norm < 10.0 * DIRECTION_TOLERANCE_RAD)
-        {
+        if direction_converged(&res, last_update) {
             converged = true;
             break;
         }
-        let mut j = Matrix2::zeros();
-        for c in 0..2 {
-            let mut tp = turn;
-            tp[c] += TURN_PERTURBATION_RAD;
-            let (_, sp, rp, _) = eval(tp, warm)?;
-            iterations += sp.iterations;
-            for r in 0..2 {
-                j[(r, c)] = (rp[r] - res[r]) / TURN_PERTURBATION_RAD;
-            }
-        }
+        let r_norm = max_abs(&res);
+        let (j, its) = jacobian_by_differences(eval, turn, res, warm)?;
+        iterations += its;
         let Some(jinv) = j.try_inverse() else {
             break;
         };
-        let mut dt = -(jinv * Vector2::new(res[0], res[1]));
-        let big = dt.amax();
-        if big > MAX_TURN_CHANGE_RAD {
-            dt *= MAX_TURN_CHANGE_RAD / big;
-        }
+        let mut dt = capped_newton_update(&jinv, res);
         let mut accepted = false;
         for _ in 0..MAX_BACKTRACKING_HALVINGS {
             let new_turn = [turn[0] + dt[0], turn[1] + dt[1]];
             let (p, sol, r, d) = eval(new_turn, warm)?;
             iterations += sol.iterations;
-            if norm(&r) < r_norm {
+            if max_abs(&r) < r_norm {
                 last_update = dt.amax();
                 (turn, p1, sol1, res, dir) = (new_turn, p, sol, r, d);
                 accepted = true;
@@ -356,7 +371,7 @@ pub(super) fn backtracking_step(
     tracing::debug!(
         md = md_m,
         converged,
-        residual = norm(&res),
+        residual = max_abs(&res),
         "backtracking implicit step"
     );
     Ok(StepOutcome {
