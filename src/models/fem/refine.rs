@@ -227,9 +227,7 @@ pub fn solve_refined(
     };
     match solve_holding_toolface(&mut fine, &rest, |m| solve_interior_point_from(m, state, &rest)) {
         Ok(mut again) if again.converged => {
-            again.stats.iterations += sol.stats.iterations;
-            again.stats.factorizations += sol.stats.factorizations;
-            again.stats.seconds += sol.stats.seconds;
+            again.stats.add_work(&sol.stats);
             again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
             Ok((fine, again))
         }

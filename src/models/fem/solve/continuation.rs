@@ -43,6 +43,20 @@ fn at_wob(model: &Model, wob_n: f64) -> Model {
     m
 }
 
+/// The path's first step: `model` solved cold at [`START_FRACTION`] of its WOB (at most four
+/// steps' iterations), and the model the later steps are solved on, warm-started (the full
+/// tangent).
+fn first_step(model: &Model, ctl: &SolveControls) -> Result<(Solution, Model), SolveError> {
+    let first_ctl = SolveControls {
+        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
+        ..*ctl
+    };
+    let sol = solve_interior_point(&at_wob(model, START_FRACTION * model.loads.wob_n), &first_ctl)?;
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    Ok((sol, consistent))
+}
+
 /// Solve `model` along the WOB path from [`START_FRACTION`] of its WOB, within `ctl`'s
 /// iteration limit (all steps together) and time limit. Returns the last converged solution
 /// and the WOB it carries (N): the model's WOB if the path reached it, less if it stopped
@@ -52,19 +66,13 @@ pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<O
     let t0 = Instant::now();
     let target = model.loads.wob_n;
     let mut wob = START_FRACTION * target;
-    let first_ctl = SolveControls {
-        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
-        ..*ctl
-    };
-    let mut sol = solve_interior_point(&at_wob(model, wob), &first_ctl)?;
+    let (mut sol, consistent) = first_step(model, ctl)?;
     let mut iterations = sol.stats.iterations;
     let mut factorizations = sol.stats.factorizations;
     if !sol.converged {
         return Ok(None);
     }
     let mut step = START_FRACTION * target;
-    let mut consistent = model.clone();
-    consistent.consistent_tangent = true;
     while wob < target && step >= MIN_STEP_FRACTION * target {
         let elapsed = t0.elapsed().as_secs_f64();
         if iterations >= ctl.max_iterations || elapsed > ctl.time_limit_s {
@@ -118,17 +126,9 @@ pub const SEARCH_BUDGET_FACTOR: usize = 3;
 pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_n: f64) -> Option<(f64, f64)> {
     let t0 = Instant::now();
     let target = model.loads.wob_n;
-    let first_ctl = SolveControls {
-        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
-        ..*ctl
-    };
     let mut lo = START_FRACTION * target;
-    let mut state = solve_interior_point(&at_wob(model, lo), &first_ctl)
-        .ok()
-        .filter(|s| s.converged && s.state.hook_load_n >= 0.0)?
-        .state;
-    let mut consistent = model.clone();
-    consistent.consistent_tangent = true;
+    let (first, consistent) = first_step(model, ctl).ok()?;
+    let mut state = Some(first).filter(|s| s.converged && s.state.hook_load_n >= 0.0)?.state;
     let mut hi: Option<f64> = None;
     let mut step = START_FRACTION * target;
     let mut iterations = 0;

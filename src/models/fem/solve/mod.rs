@@ -84,23 +84,16 @@ fn continued(model: &Model, ctl: &SolveControls, direct: Solution) -> Result<Sol
         ..*ctl
     };
     let path = continuation::solve_by_wob_continuation(model, &left(direct.stats.seconds)).unwrap_or(None);
-    let (path_its, path_factors, path_s, reached) = match &path {
-        Some((sol, wob)) => (
-            sol.stats.iterations,
-            sol.stats.factorizations,
-            sol.stats.seconds,
-            Some(*wob),
-        ),
-        None => (0, 0, 0.0, None),
+    let (path_stats, reached) = match &path {
+        Some((sol, wob)) => (sol.stats.clone(), Some(*wob)),
+        None => (SolveStats::default(), None),
     };
     if let Some((mut sol, wob)) = path.filter(|(sol, _)| sol.converged) {
-        sol.stats.iterations += direct.stats.iterations;
-        sol.stats.factorizations += direct.stats.factorizations;
-        sol.stats.seconds += direct.stats.seconds;
+        sol.stats.add_work(&direct.stats);
         sol.stats.wob_continuation_n = Some((wob, target));
         return Ok(sol);
     }
-    let spent = direct.stats.seconds + path_s;
+    let spent = direct.stats.seconds + path_stats.seconds;
     let rest = ctl.max_iterations.saturating_sub(direct.stats.iterations);
     let mut out = if rest > 0 && spent < ctl.time_limit_s {
         let mut consistent = model.clone();
@@ -110,16 +103,12 @@ fn continued(model: &Model, ctl: &SolveControls, direct: Solution) -> Result<Sol
             ..left(spent)
         };
         let mut again = solve_interior_point_from(&consistent, direct.state, &resume_ctl)?;
-        again.stats.iterations += direct.stats.iterations;
-        again.stats.factorizations += direct.stats.factorizations;
-        again.stats.seconds += direct.stats.seconds;
+        again.stats.add_work(&direct.stats);
         again
     } else {
         direct
     };
-    out.stats.iterations += path_its;
-    out.stats.factorizations += path_factors;
-    out.stats.seconds += path_s;
+    out.stats.add_work(&path_stats);
     out.stats.wob_continuation_n = reached.map(|wob| (wob, target));
     Ok(out)
 }

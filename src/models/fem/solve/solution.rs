@@ -26,6 +26,16 @@ pub struct SolveStats {
     pub wob_continuation_n: Option<(f64, f64)>,
 }
 
+impl SolveStats {
+    /// Add the work of `other` (another solve of the same problem: its iterations,
+    /// factorizations and time) to these statistics.
+    pub fn add_work(&mut self, other: &SolveStats) {
+        self.iterations += other.iterations;
+        self.factorizations += other.factorizations;
+        self.seconds += other.seconds;
+    }
+}
+
 /// A converged (or flagged unconverged) solution.
 pub struct Solution {
     /// Final state.
