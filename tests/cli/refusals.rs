@@ -8,7 +8,9 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 use tempfile::TempDir;
 
-use crate::common::{assert_error_names, case_dir, drillpath, example_case, run_in, Run, BIT, DRILL_PIPE};
+use crate::common::{
+    assert_error_names, case_dir, drillpath, example_case, run_in, slid_horizontal, Run, BIT, DRILL_PIPE,
+};
 
 /// Vertical to 300 m, a build of 3 deg/30 m to 30 deg, then a hold to 600 m.
 const SURVEY: &str = "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n400,10,0\n600,30,0\n";
@@ -597,16 +599,7 @@ fn a_whole_string_locked_up_answers_at_the_wob_it_delivers() {
     // solve finds no equilibrium at 114 kN; it answers with the whole string at the largest
     // WOB it delivers (its hook load zero), exit 0, the warning naming both WOBs
     // (tests/verification/slack_off.rs checks the mechanics).
-    let mut survey = String::from("md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n");
-    for k in 1..=45 {
-        survey += &format!("{},{},0\n", 300.0 + 10.0 * k as f64, 2.0 * k as f64);
-    }
-    survey += "1050,90,0\n";
-    let stab = "[[string]]\ntype = \"stabilizer\"\nod = \"8.4375 in\"\nbody_od = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"1.5 m\"\n";
-    let collars = "[[string]]\ntype = \"collar\"\nod = \"6.5 in\"\nid = \"2.8125 in\"\nlength = \"54 m\"\n";
-    let text = format!(
-        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"1050 m\", diameter = \"8.5 in\" }}]\n[mud]\ndensity = \"1.2 sg\"\n[operation]\nmode = \"sliding\"\nbit_md = \"1050 m\"\nwob = \"114 kN\"\nrop = \"12 m/h\"\nfriction = 0.25\n{BIT}{stab}{collars}{DRILL_PIPE}[solver]\nelement_length = \"1 m\"\n"
-    );
+    let (survey, text) = slid_horizontal(114.0);
     let dir = case_dir(&survey, &text);
     let r = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "whole", "--json"]);
     assert!(r.success(), "{}", r.describe());

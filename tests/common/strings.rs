@@ -129,3 +129,41 @@ pub fn pipe_properties() -> (f64, f64, f64) {
     let w_b = 29.0 * 9.80665 * (1.0 - 1200.0 / 7850.0);
     (ei, w_b, (8.5 - 5.0) * 0.0254 / 2.0)
 }
+
+/// The slid horizontal of the WOB-path and lock-up tests (issue 16): vertical to 300 m, a
+/// 6 deg/30 m build to 90 deg (stations every 10 m), 300 m level (bit at 1,050 m), 8.5 in
+/// hole; bit, 1/16 in under-gauge near-bit stabilizer, 54 m of 6.5 in collars, 5 in pipe with
+/// tool joints; 1.2 sg, sliding with `wob_kn`, friction 0.25, 1 m pipe elements. Returns the
+/// survey CSV and the case file's text.
+pub fn slid_horizontal(wob_kn: f64) -> (String, String) {
+    let mut csv = String::from("md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n");
+    let build = 90.0 / 6.0 * 30.0;
+    let n = (build / 10.0_f64).ceil() as usize;
+    for k in 1..=n {
+        let f = k as f64 / n as f64;
+        csv += &format!("{},{},0\n", 300.0 + f * build, f * 90.0);
+    }
+    let md = 300.0 + build + 300.0;
+    csv += &format!("{md},90,0\n");
+    let toml = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "{md} m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+bit_md = "{md} m"
+wob = "{wob_kn} kN"
+rop = "12 m/h"
+friction = 0.25
+{BIT}{}{}{DRILL_PIPE}[solver]
+element_length = "1 m"
+bha_element_length = "0.5 m"
+"#,
+        stabilizer("8.4375 in"),
+        collar("54 m")
+    );
+    (csv, toml)
+}

@@ -13,44 +13,10 @@ use drillpath::models::fem::model::Model;
 use drillpath::models::fem::solve::{solve, SolveControls};
 use drillpath::models::levels::run;
 
-use crate::common::{collar, load_temp_case, stabilizer, BIT, DRILL_PIPE};
-
-/// The survey: vertical to 300 m, 6 deg/30 m to 90 deg (stations every 10 m), 300 m level.
-fn survey() -> (String, f64) {
-    let mut s = String::from("md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n");
-    let build = 90.0 / 6.0 * 30.0;
-    let n = (build / 10.0_f64).ceil() as usize;
-    for k in 1..=n {
-        let f = k as f64 / n as f64;
-        s += &format!("{},{},0\n", 300.0 + f * build, f * 90.0);
-    }
-    let md = 300.0 + build + 300.0;
-    s += &format!("{md},90,0\n");
-    (s, md)
-}
+use crate::common::{load_temp_case, slid_horizontal};
 
 fn case(wob_kn: f64) -> Case {
-    let (csv, md) = survey();
-    let toml = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "{md} m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-bit_md = "{md} m"
-wob = "{wob_kn} kN"
-rop = "12 m/h"
-friction = 0.25
-{BIT}{}{}{DRILL_PIPE}[solver]
-element_length = "1 m"
-bha_element_length = "0.5 m"
-"#,
-        stabilizer("8.4375 in"),
-        collar("54 m")
-    );
+    let (csv, toml) = slid_horizontal(wob_kn);
     load_temp_case(&csv, &toml)
 }
 
