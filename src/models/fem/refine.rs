@@ -109,13 +109,14 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
     let mesh = split_mesh(&model.mesh, split, h_m);
     let friction_of = |md: f64| -> f64 {
         // the friction of the nearest old node (the friction changes only at hole sections,
-        // which carry no refined element)
-        let k = model
-            .md_ref
-            .iter()
-            .enumerate()
-            .min_by(|x, y| (x.1 - md).abs().total_cmp(&(y.1 - md).abs()))
-            .map_or(0, |(k, _)| k);
+        // which carry no refined element); the reference MDs fall from the bit upward
+        let md_ref = &model.md_ref;
+        let k = md_ref.partition_point(|&m| m > md).min(md_ref.len() - 1);
+        let k = if k > 0 && (md_ref[k - 1] - md).abs() <= (md_ref[k] - md).abs() {
+            k - 1
+        } else {
+            k
+        };
         model.friction[k]
     };
     let mut out = Model::new(
