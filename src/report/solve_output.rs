@@ -86,6 +86,9 @@ struct SolverJson {
     /// `blade` or `point` (`[solver] stabilizer_contact`); absent for the soft string.
     #[serde(skip_serializing_if = "Option::is_none")]
     stabilizer_contact: Option<&'static str>,
+    /// Whether the solution came from the friction continuation; absent for the soft string.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    friction_continuation: Option<bool>,
 }
 
 /// The `fidelity` key: the level asked for and run, and what it does not compute.
@@ -280,6 +283,7 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             final_residual: Some(Finite(*p.stats.residual_history.last().unwrap_or(&0.0))),
             max_penetration_rel: Some(Finite(p.stats.max_penetration)),
             stabilizer_contact: Some(case.solver.stabilizer_contact.name()),
+            friction_continuation: Some(p.stats.friction_continuation),
         },
         None => SolverJson {
             converged: true,
@@ -291,6 +295,7 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             final_residual: None,
             max_penetration_rel: None,
             stabilizer_contact: None,
+            friction_continuation: None,
         },
     }
 }

@@ -230,6 +230,7 @@ pub fn solve_refined(
         Ok(mut again) if again.converged => {
             again.stats.add_work(&sol.stats);
             again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
+            again.stats.friction_continuation = sol.stats.friction_continuation;
             Ok((fine, again))
         }
         other => {

@@ -65,32 +65,92 @@ fn first_step(model: &Model, ctl: &SolveControls) -> Result<(Solution, Model), S
 pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<Option<(Solution, f64)>, SolveError> {
     let t0 = Instant::now();
     let target = model.loads.wob_n;
-    let mut wob = START_FRACTION * target;
-    let (mut sol, consistent) = first_step(model, ctl)?;
-    let mut iterations = sol.stats.iterations;
-    let mut factorizations = sol.stats.factorizations;
-    if !sol.converged {
+    let (first, consistent) = first_step(model, ctl)?;
+    if !first.converged {
         return Ok(None);
     }
-    let mut step = START_FRACTION * target;
-    while wob < target && step >= MIN_STEP_FRACTION * target {
+    let (sol, share) = follow_path(
+        |share| at_wob(&consistent, share * target),
+        first,
+        START_FRACTION,
+        ctl,
+        t0,
+    );
+    Ok(Some((sol, share * target)))
+}
+
+/// Solve `model` along a friction path: frictionless first (cold, at most four steps'
+/// iterations), then the wall friction raised in steps from zero to the model's, each solved
+/// from the previous equilibrium. Friction makes the contact problem unsymmetric and, on very
+/// fine meshes, the direct Newton iteration can wander (docs/performance.md, "Fine BHA
+/// meshes"); the frictionless problem is the symmetric one, and the path keeps each step near
+/// an equilibrium. The friction of a rotating or sliding string is set by the motion, not by
+/// the path, so the end of the path is the model's equilibrium. Returns the last converged
+/// solution and the share of the model's friction it carries (1 if the path reached it, then
+/// the solution is converged); `Ok(None)` if the frictionless solve failed.
+pub fn solve_by_friction_continuation(
+    model: &Model,
+    ctl: &SolveControls,
+) -> Result<Option<(Solution, f64)>, SolveError> {
+    let t0 = Instant::now();
+    let with_friction = |share: f64| {
+        let mut m = model.clone();
+        m.friction.iter_mut().for_each(|f| *f *= share);
+        m
+    };
+    let first_ctl = SolveControls {
+        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
+        ..*ctl
+    };
+    let first = solve_interior_point(&with_friction(0.0), &first_ctl)?;
+    if !first.converged {
+        return Ok(None);
+    }
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    let at = |share: f64| {
+        let mut m = consistent.clone();
+        m.friction.iter_mut().for_each(|f| *f *= share);
+        m
+    };
+    Ok(Some(follow_path(at, first, 0.0, ctl, t0)))
+}
+
+/// Follow a path of models `at(t)` from `t = from` (whose solution is `first`) to `t = 1`:
+/// steps of [`START_FRACTION`] at first, each solved from the previous equilibrium within
+/// [`STEP_ITERATIONS`], halved after a failure and grown by [`STEP_GROWTH`] after a success,
+/// until `t = 1`, a step below [`MIN_STEP_FRACTION`], or `ctl`'s iteration limit (all steps
+/// together, `first`'s included) or time limit (from `t0`). Returns the last converged solution
+/// (flagged converged only at `t = 1`, its statistics the whole path's) and its `t`.
+fn follow_path(
+    at: impl Fn(f64) -> Model,
+    first: Solution,
+    from: f64,
+    ctl: &SolveControls,
+    t0: Instant,
+) -> (Solution, f64) {
+    let mut t = from;
+    let mut sol = first;
+    let mut iterations = sol.stats.iterations;
+    let mut factorizations = sol.stats.factorizations;
+    let mut step = START_FRACTION;
+    while t < 1.0 && step >= MIN_STEP_FRACTION {
         let elapsed = t0.elapsed().as_secs_f64();
         if iterations >= ctl.max_iterations || elapsed > ctl.time_limit_s {
             break;
         }
-        let next = (wob + step).min(target);
+        let next = (t + step).min(1.0);
         let step_ctl = SolveControls {
             max_iterations: STEP_ITERATIONS.min(ctl.max_iterations - iterations),
             time_limit_s: ctl.time_limit_s - elapsed,
             ..*ctl
         };
-        let attempt = solve_interior_point_from(&at_wob(&consistent, next), sol.state.clone(), &step_ctl);
-        match attempt {
+        match solve_interior_point_from(&at(next), sol.state.clone(), &step_ctl) {
             Ok(s) if s.converged => {
                 iterations += s.stats.iterations;
                 factorizations += s.stats.factorizations;
                 sol = s;
-                wob = next;
+                t = next;
                 step *= STEP_GROWTH;
             }
             Ok(s) => {
@@ -99,17 +159,17 @@ pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<O
                 step *= 0.5;
             }
             Err(e) => {
-                tracing::debug!(wob_n = next, error = %e, "WOB continuation step failed");
+                tracing::debug!(path_parameter = next, error = %e, "continuation step failed");
                 step *= 0.5;
             }
         }
     }
-    sol.converged = wob >= target;
+    sol.converged = t >= 1.0;
     sol.stats.iterations = iterations;
     sol.stats.factorizations = factorizations;
     sol.stats.seconds = t0.elapsed().as_secs_f64();
     sol.stats.timed_out = t0.elapsed().as_secs_f64() > ctl.time_limit_s;
-    Ok(Some((sol, wob)))
+    (sol, t)
 }
 
 /// Iteration budget of [`wob_at_zero_hook_load`], in `max_iterations`.

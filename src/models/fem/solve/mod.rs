@@ -93,7 +93,24 @@ fn continued(model: &Model, ctl: &SolveControls, direct: Solution) -> Result<Sol
         sol.stats.wob_continuation_n = Some((wob, target));
         return Ok(sol);
     }
-    let spent = direct.stats.seconds + path_stats.seconds;
+    let mut spent = direct.stats.seconds + path_stats.seconds;
+    let mut path_stats = path_stats;
+    if model.needs_unsymmetric() && spent < ctl.time_limit_s {
+        match continuation::solve_by_friction_continuation(model, &left(spent)) {
+            Ok(Some((mut sol, _))) if sol.converged => {
+                sol.stats.add_work(&direct.stats);
+                sol.stats.add_work(&path_stats);
+                sol.stats.wob_continuation_n = reached.map(|wob| (wob, target));
+                sol.stats.friction_continuation = true;
+                return Ok(sol);
+            }
+            Ok(Some((sol, _))) => {
+                spent += sol.stats.seconds;
+                path_stats.add_work(&sol.stats);
+            }
+            _ => {}
+        }
+    }
     let rest = ctl.max_iterations.saturating_sub(direct.stats.iterations);
     let mut out = if rest > 0 && spent < ctl.time_limit_s {
         let mut consistent = model.clone();

@@ -24,6 +24,10 @@ pub struct SolveStats {
     /// ([`super::continuation`]): the WOB it reached and the model's WOB, N (equal when it
     /// converged); None when none ran.
     pub wob_continuation_n: Option<(f64, f64)>,
+    /// The solution came from the friction continuation
+    /// ([`super::continuation::solve_by_friction_continuation`]) after the direct solve and the
+    /// WOB continuation did not converge.
+    pub friction_continuation: bool,
 }
 
 impl SolveStats {
