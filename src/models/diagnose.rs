@@ -71,15 +71,29 @@ pub fn stop_phrase(
 ) -> String {
     let n = stats.iterations;
     let its = if n == 1 { "iteration" } else { "iterations" };
-    let path = match stats.wob_continuation_n {
-        Some((reached, target)) => format!(
-            ", with a WOB continuation from {:.0}% of the WOB that reached {:.1} of {:.1} kN (each stage limited by `[solver] max_iterations` = {})",
+    let wob_path = stats.wob_continuation_n.map(|(reached, target)| {
+        format!(
+            "a WOB continuation from {:.0}% of the WOB that reached {:.1} of {:.1} kN",
             100.0 * crate::models::fem::solve::continuation::START_FRACTION,
             reached / 1e3,
-            target / 1e3,
+            target / 1e3
+        )
+    });
+    let friction_path = stats.friction_continuation.map(|share| {
+        format!(
+            "a friction continuation from zero that reached {:.0}% of the wall friction",
+            100.0 * share
+        )
+    });
+    let paths: Vec<String> = wob_path.into_iter().chain(friction_path).collect();
+    let path = if paths.is_empty() {
+        format!(" (the limit, `[solver] max_iterations` = {})", ctl.max_iterations)
+    } else {
+        format!(
+            ", with {} (each stage limited by `[solver] max_iterations` = {})",
+            paths.join(", then "),
             ctl.max_iterations
-        ),
-        None => format!(" (the limit, `[solver] max_iterations` = {})", ctl.max_iterations),
+        )
     };
     if stats.timed_out {
         format!("in {n} {its}{path}: it {}", time_limit_phrase(ctl))
@@ -188,5 +202,25 @@ weight = "29 kg/m"
         assert_eq!(h.len(), 2, "{h:?}");
         assert!(h[0].contains("lock-up") && h[0].contains("sliding"), "{h:?}");
         assert!(h[1].contains("helically buckled"), "{h:?}");
+    }
+
+    #[test]
+    fn the_stop_phrase_names_each_path_that_ran() {
+        use crate::models::fem::solve::{SolveControls, SolveStats};
+        let ctl = SolveControls::default();
+        let mut stats = SolveStats {
+            iterations: 420,
+            ..SolveStats::default()
+        };
+        assert_eq!(
+            stop_phrase(&stats, &ctl),
+            "in 420 iterations (the limit, `[solver] max_iterations` = 300)"
+        );
+        stats.wob_continuation_n = Some((50e3, 60e3));
+        stats.friction_continuation = Some(0.57);
+        assert_eq!(
+            stop_phrase(&stats, &ctl),
+            "in 420 iterations, with a WOB continuation from 10% of the WOB that reached 50.0 of 60.0 kN, then a friction continuation from zero that reached 57% of the wall friction (each stage limited by `[solver] max_iterations` = 300)"
+        );
     }
 }

@@ -283,7 +283,7 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             final_residual: Some(Finite(*p.stats.residual_history.last().unwrap_or(&0.0))),
             max_penetration_rel: Some(Finite(p.stats.max_penetration)),
             stabilizer_contact: Some(case.solver.stabilizer_contact.name()),
-            friction_continuation: Some(p.stats.friction_continuation),
+            friction_continuation: Some(p.converged && p.stats.friction_continuation.is_some()),
         },
         None => SolverJson {
             converged: true,

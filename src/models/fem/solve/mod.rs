@@ -75,42 +75,45 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
     }
 }
 
-/// The WOB continuation after the first iterations `direct` of `model`'s direct solve did not
-/// converge, then the rest of the direct solve if the path does not reach the WOB.
+/// The continuation paths after the first iterations `direct` of `model`'s direct solve did
+/// not converge: the WOB path, then (friction acting on a moving string) the friction path,
+/// then the rest of the direct solve. The statistics count the work of every stage that ran.
 fn continued(model: &Model, ctl: &SolveControls, direct: Solution) -> Result<Solution, SolveError> {
     let target = model.loads.wob_n;
     let left = |spent: f64| SolveControls {
         time_limit_s: ctl.time_limit_s - spent,
         ..*ctl
     };
-    let path = continuation::solve_by_wob_continuation(model, &left(direct.stats.seconds)).unwrap_or(None);
-    let (path_stats, reached) = match &path {
-        Some((sol, wob)) => (sol.stats.clone(), Some(*wob)),
-        None => (SolveStats::default(), None),
+    // the work of the paths that did not converge
+    let mut paths = SolveStats::default();
+    let wob_path = continuation::solve_by_wob_continuation(model, &left(direct.stats.seconds)).unwrap_or(None);
+    let reached = wob_path.as_ref().map(|(_, wob)| (*wob, target));
+    let first = direct.stats.clone();
+    let done = |mut sol: Solution, paths: &SolveStats, friction: Option<f64>| {
+        sol.stats.add_work(&first);
+        sol.stats.add_work(paths);
+        sol.stats.wob_continuation_n = reached;
+        sol.stats.friction_continuation = friction;
+        sol
     };
-    if let Some((mut sol, wob)) = path.filter(|(sol, _)| sol.converged) {
-        sol.stats.add_work(&direct.stats);
-        sol.stats.wob_continuation_n = Some((wob, target));
-        return Ok(sol);
+    if let Some((sol, _)) = wob_path {
+        if sol.converged {
+            return Ok(done(sol, &paths, None));
+        }
+        paths.add_work(&sol.stats);
     }
-    let mut spent = direct.stats.seconds + path_stats.seconds;
-    let mut path_stats = path_stats;
-    if model.needs_unsymmetric() && spent < ctl.time_limit_s {
-        match continuation::solve_by_friction_continuation(model, &left(spent)) {
-            Ok(Some((mut sol, _))) if sol.converged => {
-                sol.stats.add_work(&direct.stats);
-                sol.stats.add_work(&path_stats);
-                sol.stats.wob_continuation_n = reached.map(|wob| (wob, target));
-                sol.stats.friction_continuation = true;
-                return Ok(sol);
+    let mut friction_reached = None;
+    if model.needs_unsymmetric() && direct.stats.seconds + paths.seconds < ctl.time_limit_s {
+        let spent = direct.stats.seconds + paths.seconds;
+        if let Some((sol, share)) = continuation::solve_by_friction_continuation(model, &left(spent)).unwrap_or(None) {
+            if sol.converged {
+                return Ok(done(sol, &paths, Some(share)));
             }
-            Ok(Some((sol, _))) => {
-                spent += sol.stats.seconds;
-                path_stats.add_work(&sol.stats);
-            }
-            _ => {}
+            paths.add_work(&sol.stats);
+            friction_reached = Some(share);
         }
     }
+    let spent = direct.stats.seconds + paths.seconds;
     let rest = ctl.max_iterations.saturating_sub(direct.stats.iterations);
     let mut out = if rest > 0 && spent < ctl.time_limit_s {
         let mut consistent = model.clone();
@@ -125,7 +128,8 @@ fn continued(model: &Model, ctl: &SolveControls, direct: Solution) -> Result<Sol
     } else {
         direct
     };
-    out.stats.add_work(&path_stats);
-    out.stats.wob_continuation_n = reached.map(|wob| (wob, target));
+    out.stats.add_work(&paths);
+    out.stats.wob_continuation_n = reached;
+    out.stats.friction_continuation = friction_reached;
     Ok(out)
 }

@@ -24,10 +24,11 @@ pub struct SolveStats {
     /// ([`super::continuation`]): the WOB it reached and the model's WOB, N (equal when it
     /// converged); None when none ran.
     pub wob_continuation_n: Option<(f64, f64)>,
-    /// The solution came from the friction continuation
-    /// ([`super::continuation::solve_by_friction_continuation`]) after the direct solve and the
-    /// WOB continuation did not converge.
-    pub friction_continuation: bool,
+    /// The friction continuation that followed the direct solve and the WOB continuation
+    /// when neither converged ([`super::continuation::solve_by_friction_continuation`]): the
+    /// share of the model's friction it reached (1 when the solution came from it); None when
+    /// none ran or its frictionless start failed.
+    pub friction_continuation: Option<f64>,
 }
 
 impl SolveStats {
