@@ -259,6 +259,8 @@ if __name__ == '__main__':
     for ell in (20.0, 30.0, 40.0):
         row(f'hold prior 1 - l(1 - exp(-h/l))/h, l = {ell:.0f} m', likelihood(hold_prior=ell))
         row(f'the same, no warm-up scoring, l = {ell:.0f} m', likelihood(hold_prior=ell, warm=False))
+    for ell in (30.0, 20.0):
+        row(f'+ AR(1) member and the hold prior, l = {ell:.0f} m', likelihood(KEPT + [ar1()], hold_prior=ell))
     # after-the-fact bounds: fixed weights on the 90 m intervals (grid of 0.1), chosen on the results
     results = []
     for a, b, s in itertools.product([i / 10 for i in range(11)], repeat=3):
