@@ -374,6 +374,7 @@ fn score_behind(case: &Case, md: f64, kappa: [f64; 2], w: WarmUpScoring, trackin
     let held = turned(&a, [kappa[0] * w.horizon_m, kappa[1] * w.horizon_m]);
     let naive = naive_corrections(path, md, end, &held);
     let at = Situation {
+        from_md_m: md,
         deviation: deviation_from_recent(case, md),
         excess: [0.0; 2],
         naive: &naive,
@@ -522,6 +523,7 @@ fn assimilate_interval(
     let excess = [march_turn[0] - kappa[0] * len, march_turn[1] - kappa[1] * len];
     let naive = naive_corrections(&case.well.path, iv.from_md_m, iv.to_md_m, &march_end);
     let at = Situation {
+        from_md_m: iv.from_md_m,
         deviation: dev,
         excess,
         naive: &naive,
@@ -547,6 +549,7 @@ fn assimilate_interval(
     let frozen_model = turned(&start, [kappa[0] * len, kappa[1] * len]);
     let frozen_naive = naive_corrections(&case.well.path, iv.from_md_m, iv.to_md_m, &frozen_model);
     let frozen_at = Situation {
+        from_md_m: iv.from_md_m,
         deviation: dev,
         excess: [0.0; 2],
         naive: &frozen_naive,

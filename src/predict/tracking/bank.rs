@@ -97,6 +97,8 @@ fn reversion_offset(len_m: f64, deviation: [f64; 2]) -> [f64; 2] {
 /// Where a prediction starts, as the members of the bank see it.
 #[derive(Debug, Clone, Copy)]
 pub struct Situation<'a> {
+    /// The MD the prediction starts from, m.
+    pub from_md_m: f64,
     /// The deviation of the hole's direction from its recent mean direction (toward the high
     /// side, toward the right), rad.
     pub deviation: [f64; 2],
@@ -105,6 +107,31 @@ pub struct Situation<'a> {
     /// The naive members' corrections of the model's prediction, in the order of
     /// [`MEMBERS`] (toward the high side, toward the right), rad.
     pub naive: &'a [[f64; 2]],
+}
+
+/// One prediction the bank scored, as its members made it, kept for study (mixing rules compared
+/// offline on the same predictions, see `examples/tracking_members.rs`).
+#[derive(Debug, Clone)]
+pub struct ScoredPrediction {
+    /// The MD the prediction started from, m.
+    pub from_md_m: f64,
+    /// Its length, m.
+    pub len_m: f64,
+    /// The observed correction (the measured turn less the model's; toward the high side,
+    /// toward the right), rad.
+    pub z: [f64; 2],
+    /// Survey covariance of the end station, rad^2.
+    pub end_station: Matrix2<f64>,
+    /// Each filter's predicted correction (rad) and covariance (end station included, rad^2).
+    pub filters: Vec<([f64; 2], Matrix2<f64>)>,
+    /// The filters' weights among the filters when it was predicted.
+    pub filter_weights: Vec<f64>,
+    /// Each naive member's correction (rad) and covariance (end station included, rad^2), in
+    /// the order of [`MEMBERS`].
+    pub naive: Vec<([f64; 2], Matrix2<f64>)>,
+    /// The weights of the filters as one member, then of the naive members, when it was
+    /// predicted.
+    pub member_weights: Vec<f64>,
 }
 
 /// The bank.
@@ -125,6 +152,8 @@ pub struct FilterBank {
     naive: NaiveMembers,
     /// The scale of the stated covariance from the mixture's past errors.
     calibration: Calibration,
+    /// The predictions scored so far, in order.
+    history: Vec<ScoredPrediction>,
 }
 
 impl FilterBank {
@@ -170,6 +199,7 @@ impl FilterBank {
             linearized_at: parameters.iter().map(|p| p.1).collect(),
             naive: NaiveMembers::new(settings.fluctuation_sd_rad_per_m, settings.forgetting_length_m),
             calibration: Calibration::new(settings.forgetting_length_m),
+            history: Vec::new(),
         }
     }
 
@@ -215,6 +245,11 @@ impl FilterBank {
             .zip(self.weights())
             .map(|(&(l, b, t), w)| (l, b, t, w * share))
             .collect()
+    }
+
+    /// The predictions scored so far, in order (see [`ScoredPrediction`]).
+    pub fn history(&self) -> &[ScoredPrediction] {
+        &self.history
     }
 
     /// The weight of the filters, taken as one member, in the whole mixture.
@@ -399,6 +434,18 @@ impl FilterBank {
             .map(|k| self.filters[k].turn_covariance(len_m, &self.sensitivity_of(k, sensitivity)) + end_station)
             .collect();
         let bank_ll = mixture_log_likelihood(z, &self.weights(), &turns, &covs);
+        self.history.push(ScoredPrediction {
+            from_md_m: at.from_md_m,
+            len_m,
+            z,
+            end_station: *end_station,
+            filters: turns.iter().copied().zip(covs.iter().copied()).collect(),
+            filter_weights: self.weights(),
+            naive: (0..MEMBERS.len())
+                .map(|k| (at.naive[k], self.naive.covariance(k, len_m) + end_station))
+                .collect(),
+            member_weights: self.naive.weights(),
+        });
         for ((s, t), cov) in self.score.iter_mut().zip(turns).zip(covs) {
             let y = Vector2::new(z[0] - t[0], z[1] - t[1]);
             *s = *s * keep + log_likelihood(&y, &cov);
@@ -521,6 +568,7 @@ mod tests {
 
     /// No deviation, no excess turn, every naive member predicting no correction.
     const AT: Situation<'static> = Situation {
+        from_md_m: 0.0,
         deviation: [0.0; 2],
         excess: [0.0; 2],
         naive: &[[0.0; 2]; 3],
@@ -581,6 +629,51 @@ mod tests {
         let at = Situation { naive: &naive, ..AT };
         let t = bank.predicted_turn(30.0, &at);
         assert!((t[1] / turn(20)[1] - 1.0).abs() < 0.1, "{t:?}");
+    }
+
+    /// Reference: the history reproduces the mixture it scored (what the offline study of
+    /// `examples/tracking_mix.py` relies on). After alternating turns that spread the weights, the
+    /// last record's members mixed with its recorded weights (the filters' mean times their
+    /// share, plus each naive member's correction times its weight) equal the bank's predicted
+    /// correction just before that scoring, to 1e-15 rad; one record per scoring.
+    #[test]
+    fn the_history_reproduces_the_mixture_it_scored() {
+        let s = TrackingSettings::default();
+        let noise = Matrix2::from_diagonal_element(0.1f64.to_radians().powi(2));
+        let mut bank = FilterBank::new(&s, &[], &noise, true);
+        let none = DMatrix::zeros(2, 0);
+        let turn = |k: usize| {
+            [
+                (0.3 * (k % 4) as f64).to_radians(),
+                if k.is_multiple_of(3) { 1f64 } else { -0.5 }.to_radians(),
+            ]
+        };
+        let mut predicted = [0.0; 2];
+        for k in 0..8 {
+            let naive = [[0.0; 2], turn(k + 1), [0.01, -0.02]];
+            let at = Situation { naive: &naive, ..AT };
+            predicted = bank.predicted_turn(30.0, &at);
+            bank.score(turn(k), 30.0, &none, &noise, &at);
+            bank.advance(30.0);
+            bank.observe(turn(k), 30.0, &none, &noise, [0.0; 2], [0.0; 2]);
+        }
+        assert_eq!(bank.history().len(), 8);
+        let last = bank.history().last().unwrap();
+        let w = &last.member_weights;
+        assert!(w.iter().all(|&x| x > 1e-6 && x < 1.0 - 1e-6), "{w:?}");
+        for c in 0..2 {
+            let filters: f64 = last
+                .filters
+                .iter()
+                .zip(&last.filter_weights)
+                .map(|(f, fw)| fw * f.0[c])
+                .sum();
+            let naive: f64 = last.naive.iter().zip(&w[1..]).map(|(n, nw)| nw * n.0[c]).sum();
+            assert!(
+                (w[0] * filters + naive - predicted[c]).abs() < 1e-15,
+                "{c}: {predicted:?}"
+            );
+        }
     }
 
     /// Reference: a law parameter seen through a sensitivity that changes sign (as with another

@@ -91,6 +91,7 @@ pub fn project(case: &Case, pred: &Prediction, mds: &[f64], tracking: &TrackingS
         let excess = [mt[0] - kappa[0] * u, mt[1] - kappa[1] * u];
         let naive = naive_corrections(&case.well.path, from, md, &march);
         let at = Situation {
+            from_md_m: from,
             deviation: dev,
             excess,
             naive: &naive,
@@ -102,6 +103,7 @@ pub fn project(case: &Case, pred: &Prediction, mds: &[f64], tracking: &TrackingS
         let held = turned(&start, [kappa[0] * u, kappa[1] * u]);
         let frozen_naive = naive_corrections(&case.well.path, from, md, &held);
         let frozen_at = Situation {
+            from_md_m: from,
             deviation: dev,
             excess: [0.0; 2],
             naive: &frozen_naive,
