@@ -43,18 +43,25 @@ fn at_wob(model: &Model, wob_n: f64) -> Model {
     m
 }
 
-/// The path's first step: `model` solved cold at [`START_FRACTION`] of its WOB (at most four
-/// steps' iterations), and the model the later steps are solved on, warm-started (the full
-/// tangent).
-fn first_step(model: &Model, ctl: &SolveControls) -> Result<(Solution, Model), SolveError> {
+/// A path's first step: `start` (the path's first model) solved cold (at most four steps'
+/// iterations), and `model` with the full tangent, on which the later steps are solved
+/// warm-started.
+fn first_step(start: &Model, model: &Model, ctl: &SolveControls) -> Result<(Solution, Model), SolveError> {
     let first_ctl = SolveControls {
         max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
         ..*ctl
     };
-    let sol = solve_interior_point(&at_wob(model, START_FRACTION * model.loads.wob_n), &first_ctl)?;
+    let sol = solve_interior_point(start, &first_ctl)?;
     let mut consistent = model.clone();
     consistent.consistent_tangent = true;
     Ok((sol, consistent))
+}
+
+/// `model` with its wall friction times `share`.
+fn with_friction(model: &Model, share: f64) -> Model {
+    let mut m = model.clone();
+    m.friction.iter_mut().for_each(|f| *f *= share);
+    m
 }
 
 /// Solve `model` along the WOB path from [`START_FRACTION`] of its WOB, within `ctl`'s
@@ -65,7 +72,8 @@ fn first_step(model: &Model, ctl: &SolveControls) -> Result<(Solution, Model), S
 pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<Option<(Solution, f64)>, SolveError> {
     let t0 = Instant::now();
     let target = model.loads.wob_n;
-    let (first, consistent) = first_step(model, ctl)?;
+    let start = at_wob(model, START_FRACTION * target);
+    let (first, consistent) = first_step(&start, model, ctl)?;
     if !first.converged {
         return Ok(None);
     }
@@ -93,26 +101,11 @@ pub fn solve_by_friction_continuation(
     ctl: &SolveControls,
 ) -> Result<Option<(Solution, f64)>, SolveError> {
     let t0 = Instant::now();
-    let with_friction = |share: f64| {
-        let mut m = model.clone();
-        m.friction.iter_mut().for_each(|f| *f *= share);
-        m
-    };
-    let first_ctl = SolveControls {
-        max_iterations: ctl.max_iterations.min(4 * STEP_ITERATIONS),
-        ..*ctl
-    };
-    let first = solve_interior_point(&with_friction(0.0), &first_ctl)?;
+    let (first, consistent) = first_step(&with_friction(model, 0.0), model, ctl)?;
     if !first.converged {
         return Ok(None);
     }
-    let mut consistent = model.clone();
-    consistent.consistent_tangent = true;
-    let at = |share: f64| {
-        let mut m = consistent.clone();
-        m.friction.iter_mut().for_each(|f| *f *= share);
-        m
-    };
+    let at = |share: f64| with_friction(&consistent, share);
     Ok(Some(follow_path(at, first, 0.0, ctl, t0)))
 }
 
@@ -187,7 +180,7 @@ pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_
     let t0 = Instant::now();
     let target = model.loads.wob_n;
     let mut lo = START_FRACTION * target;
-    let (first, consistent) = first_step(model, ctl).ok()?;
+    let (first, consistent) = first_step(&at_wob(model, lo), model, ctl).ok()?;
     let mut state = Some(first).filter(|s| s.converged && s.state.hook_load_n >= 0.0)?.state;
     let mut hi: Option<f64> = None;
     let mut step = START_FRACTION * target;
