@@ -10,7 +10,7 @@ use crate::units::{lookup_dim, parse_quantity, Dimension as D};
 use std::path::Path;
 
 /// Keys accepted in a `[[steering]]` interval.
-pub const STEERING_KEYS: &[&str] = &["from_md", "to_md", "mode", "toolface"];
+pub const STEERING_KEYS: &[&str] = &["from_md", "to_md", "mode", "toolface", "ratio"];
 
 /// Where an interval came from, for messages.
 enum Origin {
@@ -22,8 +22,9 @@ enum Origin {
 
 /// The steering plan of the case file `top` (its `[[steering]]` tables and the `slide_sheet`
 /// it names, relative to `dir`); `default_toolface_rad` is the toolface of an interval that
-/// gives none (the operation's).
-pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64) -> InputResult<SteeringPlan> {
+/// gives none (the operation's); `has_rss`: the string has a rotary steerable system (a
+/// `ratio` is refused without one).
+pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64, has_rss: bool) -> InputResult<SteeringPlan> {
     let mut all: Vec<(SteeringInterval, Origin)> = Vec::new();
     let tables = top.tables("steering")?.unwrap_or_default();
     for (k, t) in tables.iter().enumerate() {
@@ -41,7 +42,16 @@ pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64) -> In
             .ok_or_else(|| t.error("mode", "missing mode (slide or rotate)"))?;
         let rotating = parse_mode(&mode).ok_or_else(|| t.error("mode", unknown_mode(&mode)))?;
         let tf = t.quantity("toolface", D::Angle, "deg")?.unwrap_or(default_toolface_rad);
-        all.push((interval(from, to, rotating, tf), Origin::Table(k)));
+        let ratio = super::rss_toml::read_ratio(t, "ratio")?;
+        if ratio.is_some() && !has_rss {
+            return Err(t.error(
+                "ratio",
+                "a steering ratio needs a rotary steerable system (an `rss` component) in the string",
+            ));
+        }
+        let mut iv = interval(from, to, rotating, tf);
+        iv.ratio = ratio;
+        all.push((iv, Origin::Table(k)));
     }
     let sheet_path = top.string("slide_sheet")?.map(|rel| dir.join(rel));
     if let Some(path) = &sheet_path {
@@ -79,6 +89,7 @@ fn interval(from: f64, to: f64, rotating: bool, toolface_rad: f64) -> SteeringIn
         to_md_m: to,
         rotating,
         toolface_rad: toolface_rad.rem_euclid(std::f64::consts::TAU),
+        ratio: None,
     }
 }
 
