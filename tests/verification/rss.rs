@@ -319,3 +319,38 @@ fn pad_force_and_hinge_match_closed_form_beam_columns() {
         );
     }
 }
+
+/// Bad steering input names its key: a `[[steering]]` ratio outside [0, 1], a ratio for a
+/// string without an RSS, and a string with both a bent housing and an RSS.
+#[test]
+fn bad_rss_plans_are_named() {
+    use crate::common::try_load_temp_case;
+    use crate::steering::motor_string;
+    let survey = "md_m,inc_deg,azi_deg\n0,0,45\n500,0,45\n1000,30,45\n2000,30,45\n";
+    let case = |string: &str, plan: &str| {
+        format!(
+            "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"2000 m\", diameter = \"8.5 in\" }}]\n[operation]\nmode = \"drilling\"\nwob = \"60 kN\"\nrpm = 60\n{string}\n{plan}\n"
+        )
+    };
+    let err = |string: &str, plan: &str| {
+        try_load_temp_case(survey, &case(string, plan))
+            .expect_err("an error")
+            .to_string()
+    };
+    let plan = |r: f64| format!("[[steering]]\nfrom_md = 1900\nto_md = 1950\nmode = \"rotate\"\nratio = {r}\n");
+    assert!(try_load_temp_case(survey, &case(&rss_string(&push_tool(10.0, 0.2)), &plan(0.7))).is_ok());
+    let e = err(&rss_string(&push_tool(10.0, 0.2)), &plan(1.2));
+    assert!(e.contains("`steering[0].ratio`") && e.contains("outside [0, 1]"), "{e}");
+    let e = err(&motor_string(1.5, 2.0, 8.375), &plan(0.5));
+    assert!(
+        e.contains("`steering[0].ratio`") && e.contains("needs a rotary steerable system"),
+        "{e}"
+    );
+    let both = motor_string(1.5, 2.0, 8.375).replacen(
+        "[[string]]\ntype = \"sub\"",
+        "[[string]]\ntype = \"rss\"\nrss_type = \"push-the-bit\"\npad_force = \"10 kN\"\npad_position = \"8.5 m\"\nod = \"6.75 in\"\nid = \"3.5 in\"\nlength = \"0.5 m\"\n[[string]]\ntype = \"sub\"",
+        1,
+    );
+    let e = err(&both, "");
+    assert!(e.contains("rss_type") && e.contains("one steering tool"), "{e}");
+}

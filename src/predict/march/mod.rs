@@ -143,6 +143,8 @@ pub struct StepSteer {
     /// The toolface set, rad ([`crate::case::Operation::toolface_rad`]; the first of the
     /// revolution when rotating).
     pub toolface_rad: f64,
+    /// The steering ratio of a rotary steerable system (None for a bent housing).
+    pub ratio: Option<f64>,
 }
 
 impl StepSteer {
@@ -153,6 +155,7 @@ impl StepSteer {
         (s.bend().is_some() || s.rss().is_some()).then(|| StepSteer {
             rotating: case.operation.rotates(),
             toolface_rad: case.operation.toolface_rad,
+            ratio: s.rss().map(|r| r.ratio),
         })
     }
     /// `slide` or `rotate`.
