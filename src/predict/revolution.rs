@@ -7,12 +7,12 @@ use crate::geometry::Vec3;
 use crate::models::fem::results::BitResult;
 
 /// Toolfaces over a revolution at which a rotating bent housing is solved (equally spaced from
-/// the operation's). Measured on the 1.5 deg motor of tests/verification/steering.rs at 30 and
-/// 90 deg inclination (docs/theory.md, "Bent motors"): against 72 toolfaces, the rotating
-/// tendency is within 0.006 deg/30 m for every number tested from 18 to 48, within 0.009 at 12
-/// but 0.016 at 16 (contacts that open and close as the housing turns make the mean converge
-/// unevenly); 24 keeps a margin under 0.01 deg/30 m.
-pub const ROTATING_TOOLFACES: usize = 24;
+/// the operation's): the smallest of N = 4, 6, 8, 12, 24, 48 whose rotating tendency is within
+/// 0.01 deg/30 m of N = 72 on `wells/horizontal/steered.toml` at 30, 60 and 92.5 deg (largest
+/// error 0.0066 deg/30 m at 30 deg; N = 8 gives 0.011) and on the 1.5 deg motor of
+/// tests/verification/steering.rs at 30 and 90 deg (0.009; N = 8 gives 0.012 and 0.022)
+/// (docs/performance.md, "Toolfaces over a revolution"; `examples/toolface_count.rs`).
+pub const ROTATING_TOOLFACES: usize = 12;
 
 /// One state in which the predictor solves a steerable string, and the share of the time the
 /// bit drills in it.
@@ -64,6 +64,11 @@ pub fn toolfaces_n(case: &Case, n: usize) -> Vec<SteerState> {
     }
 }
 
+/// Whether the shares `w` are all equal.
+fn equal(w: &[f64]) -> bool {
+    w.windows(2).all(|p| p[0] == p[1])
+}
+
 /// Mean of the unit drilling directions `d` (global) weighted by the shares `w` (summing to
 /// 1), made unit: the direction a bit drills when it spends the share `w[k]` of the time
 /// drilling along `d[k]` (the toolfaces of a revolution, an RSS's steering and neutral
@@ -72,7 +77,12 @@ pub fn mean_direction(d: &[Vec3], w: &[f64]) -> Vec3 {
     if d.len() == 1 {
         return d[0];
     }
-    let s: Vec3 = d.iter().zip(w).map(|(d, w)| d * *w).sum();
+    let s: Vec3 = if equal(w) {
+        // equal shares (a revolution's toolfaces): the plain sum, no rounding of the weights
+        d.iter().sum()
+    } else {
+        d.iter().zip(w).map(|(d, w)| d * *w).sum()
+    };
     s.normalize()
 }
 
@@ -84,7 +94,15 @@ pub fn mean_bit(bits: &[BitResult], w: &[f64]) -> BitResult {
     if bits.len() == 1 {
         return m;
     }
-    let mean = |f: fn(&BitResult) -> f64| bits.iter().zip(w).map(|(b, w)| f(b) * w).sum::<f64>();
+    let n = bits.len() as f64;
+    let eq = equal(w);
+    let mean = |f: fn(&BitResult) -> f64| {
+        if eq {
+            bits.iter().map(f).sum::<f64>() / n
+        } else {
+            bits.iter().zip(w).map(|(b, w)| f(b) * w).sum::<f64>()
+        }
+    };
     m.wob_n = mean(|b| b.wob_n);
     m.build_force_n = mean(|b| b.build_force_n);
     m.walk_force_n = mean(|b| b.walk_force_n);

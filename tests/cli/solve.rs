@@ -254,7 +254,7 @@ fn a_bent_motor_reports_its_yield_and_rotating_tendency() {
     let (b, r) = (rot["build"].as_f64().unwrap(), rot["right"].as_f64().unwrap());
     assert!(b.hypot(r) < 0.25 * y, "{b} {r} against {y}");
     assert_eq!(bent["steering"]["toolface_reference"], "gravity");
-    assert_eq!(bent["steering"]["rotating_toolfaces"], 24);
+    assert_eq!(bent["steering"]["rotating_toolfaces"], 12);
     assert!(bent["steering"]["not_computed"].is_null());
     let straight = json("wells/horizontal/case.toml");
     for key in ["motor_yield_deg_per_30m", "rotating_tendency_deg_per_30m", "steering"] {
