@@ -354,3 +354,49 @@ fn bad_rss_plans_are_named() {
     let e = err(&both, "");
     assert!(e.contains("rss_type") && e.contains("one steering tool"), "{e}");
 }
+
+/// The RSS works at every stiff level: the bit side forces of a push-the-bit (20 kN) and a
+/// point-the-bit (1 deg) tool at toolface 40 deg, rotating at 60 rpm, from `bha`, `hybrid` and
+/// `whole` agree within 1% of the largest (the pad force is fixed in space and the hinge held at
+/// its toolface, whatever the whole string's wind-up), each solve converged, and the whole
+/// string's global balance includes the pad force (equilibrium error below 1e-6 of the largest
+/// force).
+#[test]
+fn rss_at_every_stiff_level() {
+    use drillpath::case::fidelity::{Choice, Fidelity, Level};
+    use drillpath::models::levels::run;
+    for tool in [push_tool(20.0, 1.0), point_tool(1.0, 1.0)] {
+        let c = rss_case(30.0, &tool, "drilling", 40.0);
+        let ctl = SolveControls::from_settings(&c.solver);
+        let forces: Vec<(f64, f64)> = [Level::Bha, Level::Hybrid, Level::Whole]
+            .into_iter()
+            .map(|level| {
+                let choice = Choice {
+                    requested: Fidelity::Level(level),
+                    level,
+                    reason: String::new(),
+                };
+                let r = run(&c, choice, &ctl).unwrap();
+                assert!(r.converged, "{level:?}");
+                if let (Level::Whole, Some(f)) = (level, r.fem.as_ref()) {
+                    let e = f.results.force_imbalance_n.norm() / f.results.largest_force_n;
+                    assert!(e < 1e-6, "equilibrium error {e}");
+                }
+                let b = r.bit.unwrap();
+                println!(
+                    "{level:?}: build {:.3} walk {:.3} kN",
+                    b.build_force_n / 1e3,
+                    b.walk_force_n / 1e3
+                );
+                (b.build_force_n, b.walk_force_n)
+            })
+            .collect();
+        let scale = forces.iter().map(|f| f.0.hypot(f.1)).fold(0.0, f64::max);
+        for f in &forces[1..] {
+            assert!(
+                (f.0 - forces[0].0).hypot(f.1 - forces[0].1) < 0.01 * scale,
+                "{forces:?}"
+            );
+        }
+    }
+}
