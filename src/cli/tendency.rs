@@ -106,7 +106,7 @@ pub fn run(a: TendencyArgs, quiet: bool) -> anyhow::Result<()> {
         )?
     };
     let w = case.operation.wob_n;
-    if a.wobs.is_none() && !(w > 0.0) {
+    if a.wobs.is_none() && (w.is_nan() || w <= 0.0) {
         return Err(InputError::option("--wobs", "the case gives no WOB: give the weights on bit to sweep").into());
     }
     let wobs_n = list(
