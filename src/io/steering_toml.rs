@@ -60,7 +60,7 @@ pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64, has_r
         }
         let text = std::fs::read_to_string(path)
             .map_err(|e| InputError::file(path, format!("cannot read the slide sheet: {e}")))?;
-        all.extend(read_sheet(&text, path, default_toolface_rad)?);
+        all.extend(read_sheet(&text, path, default_toolface_rad, has_rss)?);
     }
     all.sort_by(|a, b| a.0.from_md_m.total_cmp(&b.0.from_md_m));
     for w in all.windows(2) {
@@ -107,18 +107,26 @@ fn unknown_mode(s: &str) -> String {
 }
 
 /// The columns of a slide sheet: their names after [`normalize_name`].
-const COLUMNS: [(&str, &[&str]); 4] = [
+const COLUMNS: [(&str, &[&str]); 5] = [
     ("md_from", &["mdfrom", "from", "frommd", "top", "mdtop"]),
     ("md_to", &["mdto", "to", "tomd", "bottom", "mdbottom"]),
     ("mode", &["mode", "slideorrotate"]),
     ("toolface_deg", &["toolface", "tf", "toolfaceangle"]),
+    ("ratio", &["ratio", "steeringratio", "dutycycle"]),
 ];
 
 /// The intervals of the slide sheet `text` (file `path`): a header naming the columns
 /// `md_from,md_to,mode,toolface_deg` (found by name, in any order, units in brackets or as a
 /// suffix: `_m`, `_ft`, `[ft]`, `_deg`), then one interval per line; blank and `#` lines
-/// skipped. The toolface cell may be empty (then `default_toolface_rad`).
-fn read_sheet(text: &str, path: &Path, default_toolface_rad: f64) -> InputResult<Vec<(SteeringInterval, Origin)>> {
+/// skipped. The toolface cell may be empty (then `default_toolface_rad`). An optional `ratio`
+/// column sets a rotary steerable system's steering ratio (in [0, 1]; refused when `has_rss` is
+/// false); an empty cell keeps the tool's.
+fn read_sheet(
+    text: &str,
+    path: &Path,
+    default_toolface_rad: f64,
+    has_rss: bool,
+) -> InputResult<Vec<(SteeringInterval, Origin)>> {
     let mut lines = text
         .lines()
         .enumerate()
@@ -132,8 +140,8 @@ fn read_sheet(text: &str, path: &Path, default_toolface_rad: f64) -> InputResult
     };
     let delim = detect_delimiter(header);
     let fields = split_fields(header, delim);
-    let mut index = [usize::MAX; 4];
-    let mut units: [Option<String>; 4] = Default::default();
+    let mut index = [usize::MAX; 5];
+    let mut units: [Option<String>; 5] = Default::default();
     for (i, f) in fields.iter().enumerate() {
         let (name, unit) = split_header_unit(f);
         let norm = normalize_name(name);
@@ -194,7 +202,23 @@ fn read_sheet(text: &str, path: &Path, default_toolface_rad: f64) -> InputResult
         } else {
             number(3, D::Angle, &tf_unit)?
         };
-        out.push((interval(from, to, rotating, tf), Origin::Line(line)));
+        let mut iv = interval(from, to, rotating, tf);
+        if index[4] != usize::MAX && !cell(4).is_empty() {
+            let err = |m: &str| InputError::line(path, line, Some("ratio"), m);
+            let r: f64 = cell(4)
+                .parse()
+                .map_err(|_| err(&format!("`{}` is not a number", cell(4))))?;
+            if !(0.0..=1.0).contains(&r) {
+                return Err(err(&format!("steering ratio {} outside [0, 1]", cell(4))));
+            }
+            if !has_rss {
+                return Err(err(
+                    "a steering ratio needs a rotary steerable system (an `rss` component) in the string",
+                ));
+            }
+            iv.ratio = Some(r);
+        }
+        out.push((iv, Origin::Line(line)));
     }
     Ok(out)
 }

@@ -400,3 +400,48 @@ fn rss_at_every_stiff_level() {
         }
     }
 }
+
+/// A slide sheet's optional `ratio` column sets an RSS's ratio per interval (an empty cell keeps
+/// the tool's); a ratio outside [0, 1], or for a string without an RSS, is an error naming the
+/// sheet's line and the column.
+#[test]
+fn slide_sheet_ratio_column() {
+    use crate::common::case_dir;
+    use crate::steering::motor_string;
+    let survey = "md_m,inc_deg,azi_deg\n0,0,45\n500,0,45\n1000,30,45\n2000,30,45\n";
+    let load = |string: &str, sheet: &str| {
+        let case = format!(
+            "slide_sheet = \"sheet.csv\"\n[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"2000 m\", diameter = \"8.5 in\" }}]\n[operation]\nmode = \"drilling\"\nwob = \"60 kN\"\nrpm = 60\n{string}\n"
+        );
+        let dir = case_dir(survey, &case);
+        std::fs::write(dir.path().join("sheet.csv"), sheet).unwrap();
+        drillpath::io::case_toml::load_case(&dir.path().join("case.toml"), &Default::default())
+    };
+    let rss = rss_string(&push_tool(10.0, 0.2));
+    let c = load(
+        &rss,
+        "md_from,md_to,mode,toolface_deg,ratio\n1900,1920,rotate,0,0.7\n1920,1950,rotate,90,\n",
+    )
+    .unwrap();
+    let ratios: Vec<Option<f64>> = c.steering.intervals.iter().map(|iv| iv.ratio).collect();
+    assert_eq!(ratios, vec![Some(0.7), None]);
+    assert_eq!(c.steered(&c.steering.intervals[0]).string.rss().unwrap().ratio, 0.7);
+    assert_eq!(c.steered(&c.steering.intervals[1]).string.rss().unwrap().ratio, 0.2);
+    let e = load(&rss, "md_from,md_to,mode,toolface_deg,ratio\n1900,1920,rotate,0,1.3\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("sheet.csv") && e.contains("line 2") && e.contains("ratio") && e.contains("outside [0, 1]"),
+        "{e}"
+    );
+    let e = load(
+        &motor_string(1.5, 2.0, 8.375),
+        "md_from,md_to,mode,toolface_deg,ratio\n1900,1920,slide,0,0.5\n",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("line 2") && e.contains("needs a rotary steerable system"),
+        "{e}"
+    );
+}
