@@ -75,10 +75,14 @@ impl Case {
     }
 
     /// This case drilling as the steering interval `iv` says: sliding at its toolface, or
-    /// rotating (drilling at the case's rpm, 60 rpm when it gives none).
+    /// rotating (drilling at the case's rpm, 60 rpm when it gives none); a rotary steerable
+    /// system at the interval's ratio when it gives one.
     pub fn steered(&self, iv: &SteeringInterval) -> Case {
         let mut c = self.clone();
         c.operation.toolface_rad = iv.toolface_rad;
+        if let Some(r) = iv.ratio {
+            c.string = c.string.with_rss_ratio(r);
+        }
         if iv.rotating {
             c.operation.mode = Mode::Drilling;
             if c.operation.rpm <= 0.0 {

@@ -1,4 +1,5 @@
-//! Steering plans: where a bent housing slides at a toolface and where it rotates, by MD
+//! Steering plans: where a bent housing slides at a toolface and where it rotates (and a rotary
+//! steerable system's toolface and ratio), by MD
 //! (`[[steering]]` in the case, a slide sheet CSV; docs/guide.md "Steering plans"), SI.
 
 use std::path::PathBuf;
@@ -15,6 +16,9 @@ pub struct SteeringInterval {
     /// Toolface while sliding, rad ([`crate::case::Operation::toolface_rad`]); the first of the
     /// revolution when rotating.
     pub toolface_rad: f64,
+    /// Steering ratio of a rotary steerable system over the interval, in [0, 1] (None: the
+    /// tool's own, [`crate::string::RssTool::ratio`]).
+    pub ratio: Option<f64>,
 }
 
 /// A steering plan: intervals by increasing MD that do not overlap. Where none covers an MD,
@@ -58,6 +62,7 @@ mod tests {
             to_md_m: b,
             rotating,
             toolface_rad: 0.0,
+            ratio: None,
         };
         SteeringPlan {
             intervals: vec![iv(100.0, 110.0, false), iv(110.0, 140.0, true), iv(200.0, 205.0, false)],

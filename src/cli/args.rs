@@ -45,6 +45,12 @@ pub enum Command {
     ///
     /// Example: drillpath loads wells/j-shape/case.toml --every "30 m" --out results/
     Loads(LoadsArgs),
+    /// Tendency charts for pre-drill design: the dogleg a bent motor (or RSS) gives against its
+    /// bend angle (or steering ratio) for several WOBs, and the rotary tendency against
+    /// inclination; independent solves in parallel.
+    ///
+    /// Example: drillpath tendency wells/horizontal/steered.toml --out tendency/
+    Tendency(TendencyArgs),
     /// Write an editable, commented case from WITSML 1.4.1.1 trajectory, wbGeometry and tubular files.
     ///
     /// Example: drillpath import traj.xml geometry.xml bha.xml --out case.toml
@@ -53,6 +59,35 @@ pub enum Command {
     ///
     /// Example: drillpath init mywell/case.toml && drillpath solve mywell/case.toml
     Init(InitArgs),
+}
+
+/// Arguments of `drillpath tendency`.
+#[derive(Debug, Args)]
+pub struct TendencyArgs {
+    /// Case file (.toml) with a bent motor (`bend_angle`) or an `rss` component.
+    pub case: PathBuf,
+    /// Bend angles of the motor's capability sweep, comma-separated (e.g. "0,0.5,1,1.5"; bare
+    /// numbers in deg) [default: 0 to 3 deg by 0.5].
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub bends: Option<String>,
+    /// Steering ratios of an RSS's capability sweep, comma-separated, each in [0, 1]
+    /// [default: 0 to 1 by 0.25].
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub ratios: Option<String>,
+    /// Weights on bit, comma-separated (e.g. "40 kN,60 kN"; bare numbers in kN) [default: the
+    /// case's WOB x 0.5, 1, 1.5].
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub wobs: Option<String>,
+    /// Inclinations of the rotary sweep, comma-separated (bare numbers in deg), each in [0, 120]
+    /// [default: 0 to 90 deg by 15].
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub incs: Option<String>,
+    /// Directory for tendency.csv and tendency.svg.
+    #[arg(long, value_name = "DIR", default_value = "tendency")]
+    pub out: PathBuf,
+    /// Worker threads [default: all cores].
+    #[arg(long, value_name = "N")]
+    pub threads: Option<usize>,
 }
 
 /// Arguments of `drillpath import`.

@@ -10,6 +10,7 @@ pub mod predict;
 pub mod progress;
 pub mod solve;
 pub mod survey;
+pub mod tendency;
 
 use crate::error::InputError;
 use crate::units::{lookup_dim, parse_quantity, Dimension};
@@ -23,6 +24,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Predict(a) => predict::run(a, cli.quiet),
         Command::Backanalyze(a) => backanalyze::run(a, cli.quiet),
         Command::Loads(a) => loads::run(a, cli.quiet),
+        Command::Tendency(a) => tendency::run(a, cli.quiet),
         Command::Import(a) => import::run(a),
         Command::Init(a) => init::run(a.file, a.force),
     }

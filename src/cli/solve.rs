@@ -55,15 +55,23 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         bail!("{}", not_converged_message(&a, &case, &s));
     }
     let steering = crate::predict::steer::steering(&case, &SolveControls::from_settings(&case.solver));
-    let summary = json_text(&SolveSummary::new(&case, &s).with_steering(steering.as_ref()))
-        .map_err(|e| anyhow!("internal error: {e}"))?;
+    let rss = crate::predict::steer::rss_steering(&case, &SolveControls::from_settings(&case.solver));
+    let summary = json_text(
+        &SolveSummary::new(&case, &s)
+            .with_steering(steering.as_ref())
+            .with_rss(rss.as_ref()),
+    )
+    .map_err(|e| anyhow!("internal error: {e}"))?;
     if let Some(dir) = &a.out {
         let csv = string_csv(&case, &s).map_err(|e| anyhow!("internal error: {e}"))?;
         outputs.stage(dir.join("summary.json"), summary.as_bytes());
         outputs.stage(dir.join("string.csv"), csv);
     }
     if let Some(file) = &a.view.report {
-        outputs.stage(file.clone(), solve_html(&case, &s, a.view.units, steering.as_ref())?);
+        outputs.stage(
+            file.clone(),
+            solve_html(&case, &s, a.view.units, steering.as_ref(), rss.as_ref())?,
+        );
     }
     outputs.commit()?;
     let mut out = std::io::stdout().lock();
@@ -77,6 +85,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         out_dir: a.out.as_deref(),
         report: a.view.report.as_deref(),
         steering: steering.as_ref(),
+        rss: rss.as_ref(),
     };
     write_summary(&mut out, &case, &s, &view)?;
     Ok(())

@@ -128,7 +128,7 @@ pub fn parse_case(bytes: &[u8], path: &Path, overrides: &CaseOverrides) -> Input
         .table("tracking")?
         .unwrap_or_else(|| Section::new(path, "tracking", &empty));
     let tracking = read_tracking(&tr_sec, wellpath.md_end() - wellpath.md_start())?;
-    let steering = super::steering_toml::read_steering(&top, &dir, operation.toolface_rad)?;
+    let steering = super::steering_toml::read_steering(&top, &dir, operation.toolface_rad, string.rss().is_some())?;
 
     let case = Case {
         name,

@@ -5,6 +5,7 @@ pub mod case_toml;
 pub mod measured_csv;
 pub mod motor_toml;
 pub mod paths;
+pub mod rss_toml;
 pub mod solver_toml;
 pub mod steering_toml;
 pub mod string_toml;

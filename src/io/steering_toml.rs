@@ -10,7 +10,7 @@ use crate::units::{lookup_dim, parse_quantity, Dimension as D};
 use std::path::Path;
 
 /// Keys accepted in a `[[steering]]` interval.
-pub const STEERING_KEYS: &[&str] = &["from_md", "to_md", "mode", "toolface"];
+pub const STEERING_KEYS: &[&str] = &["from_md", "to_md", "mode", "toolface", "ratio"];
 
 /// Where an interval came from, for messages.
 enum Origin {
@@ -22,8 +22,9 @@ enum Origin {
 
 /// The steering plan of the case file `top` (its `[[steering]]` tables and the `slide_sheet`
 /// it names, relative to `dir`); `default_toolface_rad` is the toolface of an interval that
-/// gives none (the operation's).
-pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64) -> InputResult<SteeringPlan> {
+/// gives none (the operation's); `has_rss`: the string has a rotary steerable system (a
+/// `ratio` is refused without one).
+pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64, has_rss: bool) -> InputResult<SteeringPlan> {
     let mut all: Vec<(SteeringInterval, Origin)> = Vec::new();
     let tables = top.tables("steering")?.unwrap_or_default();
     for (k, t) in tables.iter().enumerate() {
@@ -41,7 +42,16 @@ pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64) -> In
             .ok_or_else(|| t.error("mode", "missing mode (slide or rotate)"))?;
         let rotating = parse_mode(&mode).ok_or_else(|| t.error("mode", unknown_mode(&mode)))?;
         let tf = t.quantity("toolface", D::Angle, "deg")?.unwrap_or(default_toolface_rad);
-        all.push((interval(from, to, rotating, tf), Origin::Table(k)));
+        let ratio = super::rss_toml::read_ratio(t, "ratio")?;
+        if ratio.is_some() && !has_rss {
+            return Err(t.error(
+                "ratio",
+                "a steering ratio needs a rotary steerable system (an `rss` component) in the string",
+            ));
+        }
+        let mut iv = interval(from, to, rotating, tf);
+        iv.ratio = ratio;
+        all.push((iv, Origin::Table(k)));
     }
     let sheet_path = top.string("slide_sheet")?.map(|rel| dir.join(rel));
     if let Some(path) = &sheet_path {
@@ -50,7 +60,7 @@ pub fn read_steering(top: &Section, dir: &Path, default_toolface_rad: f64) -> In
         }
         let text = std::fs::read_to_string(path)
             .map_err(|e| InputError::file(path, format!("cannot read the slide sheet: {e}")))?;
-        all.extend(read_sheet(&text, path, default_toolface_rad)?);
+        all.extend(read_sheet(&text, path, default_toolface_rad, has_rss)?);
     }
     all.sort_by(|a, b| a.0.from_md_m.total_cmp(&b.0.from_md_m));
     for w in all.windows(2) {
@@ -79,6 +89,7 @@ fn interval(from: f64, to: f64, rotating: bool, toolface_rad: f64) -> SteeringIn
         to_md_m: to,
         rotating,
         toolface_rad: toolface_rad.rem_euclid(std::f64::consts::TAU),
+        ratio: None,
     }
 }
 
@@ -96,18 +107,26 @@ fn unknown_mode(s: &str) -> String {
 }
 
 /// The columns of a slide sheet: their names after [`normalize_name`].
-const COLUMNS: [(&str, &[&str]); 4] = [
+const COLUMNS: [(&str, &[&str]); 5] = [
     ("md_from", &["mdfrom", "from", "frommd", "top", "mdtop"]),
     ("md_to", &["mdto", "to", "tomd", "bottom", "mdbottom"]),
     ("mode", &["mode", "slideorrotate"]),
     ("toolface_deg", &["toolface", "tf", "toolfaceangle"]),
+    ("ratio", &["ratio", "steeringratio", "dutycycle"]),
 ];
 
 /// The intervals of the slide sheet `text` (file `path`): a header naming the columns
 /// `md_from,md_to,mode,toolface_deg` (found by name, in any order, units in brackets or as a
 /// suffix: `_m`, `_ft`, `[ft]`, `_deg`), then one interval per line; blank and `#` lines
-/// skipped. The toolface cell may be empty (then `default_toolface_rad`).
-fn read_sheet(text: &str, path: &Path, default_toolface_rad: f64) -> InputResult<Vec<(SteeringInterval, Origin)>> {
+/// skipped. The toolface cell may be empty (then `default_toolface_rad`). An optional `ratio`
+/// column sets a rotary steerable system's steering ratio (in [0, 1]; refused when `has_rss` is
+/// false); an empty cell keeps the tool's.
+fn read_sheet(
+    text: &str,
+    path: &Path,
+    default_toolface_rad: f64,
+    has_rss: bool,
+) -> InputResult<Vec<(SteeringInterval, Origin)>> {
     let mut lines = text
         .lines()
         .enumerate()
@@ -121,8 +140,8 @@ fn read_sheet(text: &str, path: &Path, default_toolface_rad: f64) -> InputResult
     };
     let delim = detect_delimiter(header);
     let fields = split_fields(header, delim);
-    let mut index = [usize::MAX; 4];
-    let mut units: [Option<String>; 4] = Default::default();
+    let mut index = [usize::MAX; 5];
+    let mut units: [Option<String>; 5] = Default::default();
     for (i, f) in fields.iter().enumerate() {
         let (name, unit) = split_header_unit(f);
         let norm = normalize_name(name);
@@ -183,7 +202,23 @@ fn read_sheet(text: &str, path: &Path, default_toolface_rad: f64) -> InputResult
         } else {
             number(3, D::Angle, &tf_unit)?
         };
-        out.push((interval(from, to, rotating, tf), Origin::Line(line)));
+        let mut iv = interval(from, to, rotating, tf);
+        if index[4] != usize::MAX && !cell(4).is_empty() {
+            let err = |m: &str| InputError::line(path, line, Some("ratio"), m);
+            let r: f64 = cell(4)
+                .parse()
+                .map_err(|_| err(&format!("`{}` is not a number", cell(4))))?;
+            if !(0.0..=1.0).contains(&r) {
+                return Err(err(&format!("steering ratio {} outside [0, 1]", cell(4))));
+            }
+            if !has_rss {
+                return Err(err(
+                    "a steering ratio needs a rotary steerable system (an `rss` component) in the string",
+                ));
+            }
+            iv.ratio = Some(r);
+        }
+        out.push((iv, Origin::Line(line)));
     }
     Ok(out)
 }

@@ -38,6 +38,12 @@ pub(crate) const COMPONENT_KEYS: &[&str] = &[
     "gauge_length",
     "bend_angle",
     "bend_to_bit",
+    "rss_type",
+    "pad_force",
+    "pad_position",
+    "deflection_angle",
+    "hinge_position",
+    "ratio",
 ];
 
 /// The string of the `[[string]]` tables `secs` (`top`: the case's top table, for errors about
@@ -60,6 +66,18 @@ pub fn read_string(
         let (component, has_length) = read_component(c, k, k + 1 == secs.len(), mud, bottom)?;
         if component.bend.is_some() && comps.iter().any(|p| p.bend.is_some()) {
             return Err(c.error("bend_angle", "a string may have one bent housing"));
+        }
+        let steers = |p: &Component| p.bend.is_some() || p.rss.is_some();
+        if steers(&component) && comps.iter().any(steers) {
+            let key = if component.rss.is_some() {
+                "rss_type"
+            } else {
+                "bend_angle"
+            };
+            return Err(c.error(
+                key,
+                "a string may have one steering tool (a bent housing or a rotary steerable system)",
+            ));
         }
         if !has_length {
             missing_length = Some(k);
@@ -143,6 +161,7 @@ fn read_component(c: &Section, k: usize, last: bool, mud: &Mud, bottom_m: f64) -
         weight_air_n_per_m: weight,
         sensor_to_bit_m: read_sensor(c, kind, bottom_m, length)?,
         bend: super::motor_toml::read_bend(c, kind, bottom_m, length)?,
+        rss: super::rss_toml::read_rss(c, kind, bottom_m, length)?,
     };
     Ok((component, length.is_some()))
 }

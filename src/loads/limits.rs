@@ -188,6 +188,7 @@ mod tests {
             weight_air_n_per_m: 29.0 * G,
             sensor_to_bit_m: None,
             bend: None,
+            rss: None,
         }
     }
 

@@ -141,6 +141,7 @@ mod tests {
             weight_air_n_per_m: 300.0,
             sensor_to_bit_m: None,
             bend: None,
+            rss: None,
         }
     }
 

@@ -478,6 +478,7 @@ mod tests {
             weight_air_n_per_m: 29.0 * crate::units::G,
             sensor_to_bit_m: None,
             bend: None,
+            rss: None,
         }
     }
 
@@ -596,6 +597,7 @@ mod tests {
             weight_air_n_per_m: area * 7850.0 * crate::units::G,
             sensor_to_bit_m: None,
             bend: None,
+            rss: None,
         }
     }
 

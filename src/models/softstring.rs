@@ -359,6 +359,7 @@ mod tests {
             weight_air_n_per_m: w_air,
             sensor_to_bit_m: None,
             bend: None,
+            rss: None,
         }
     }
 

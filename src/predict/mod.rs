@@ -11,5 +11,6 @@ pub mod law;
 pub mod march;
 pub mod revolution;
 pub mod steer;
+pub mod tendency;
 pub mod track;
 pub mod tracking;

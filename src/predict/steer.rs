@@ -11,9 +11,9 @@ use crate::geometry::frame::{inc_azi, MAGNETIC_TOOLFACE_BELOW_RAD};
 use crate::geometry::{Station, Survey, Vec3, WellPath};
 use crate::models::fem::bha::default_cut_m;
 use crate::models::fem::solve::SolveControls;
-use crate::string::MotorBend;
+use crate::string::{MotorBend, RssTool};
 
-pub use super::revolution::{mean_bit, mean_direction, toolfaces, toolfaces_n, ROTATING_TOOLFACES};
+pub use super::revolution::{mean_bit, mean_direction, toolfaces, toolfaces_n, SteerState, ROTATING_TOOLFACES};
 
 /// A steady dogleg rate in the hole frame at the bit, rad/m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,12 +103,12 @@ pub fn steady_turn(case: &Case, bit_rock: &BitRock, ctl: &SolveControls) -> Resu
     steady_turn_at(case, bit_rock, ctl, &toolfaces(case))
 }
 
-/// [`steady_turn`] with the drilling direction averaged over the toolfaces `faces` (rad).
+/// [`steady_turn`] with the drilling direction averaged over the states `faces`.
 pub fn steady_turn_at(
     case: &Case,
     bit_rock: &BitRock,
     ctl: &SolveControls,
-    faces: &[f64],
+    faces: &[SteerState],
 ) -> Result<SteadyTurn, PredictError> {
     let md = case.operation.bit_md_m;
     let frame = case.well.path.frame_at(md);
@@ -234,5 +234,52 @@ pub fn steering(case: &Case, ctl: &SolveControls) -> Option<Steering> {
         magnetic: inc < MAGNETIC_TOOLFACE_BELOW_RAD,
         rotating_toolfaces: ROTATING_TOOLFACES,
         tendencies,
+    })
+}
+
+/// The steering tendency of a rotary steerable system at the case's bit depth (what `solve`
+/// reports).
+#[derive(Debug, Clone)]
+pub struct RssSteering {
+    /// The tool (with the ratio the tendency is computed at).
+    pub tool: RssTool,
+    /// The operation's toolface, rad.
+    pub toolface_rad: f64,
+    /// Whether that toolface is magnetic (from north) at the tool, the hole being within
+    /// [`MAGNETIC_TOOLFACE_BELOW_RAD`] of vertical there; else gravity (from the high side).
+    pub magnetic: bool,
+    /// The dogleg the assembly drills rotating with the tool steering at the operation's
+    /// toolface for the share `tool.ratio` of the time, or why it was not computed.
+    pub tendency: Result<SteadyTurn, String>,
+}
+
+/// The steering tendency of `case`'s rotary steerable system (None without one):
+/// [`steady_turn`] with the string rotating at the case's rotary speed
+/// ([`crate::case::DEFAULT_ROTATING_RPM`] when it gives none) and the tool steering at the
+/// operation's toolface for the share `ratio` of the time, neutral for the rest. Not computed
+/// (the reason given) off bottom, with a hook load given instead of the WOB, or when the
+/// steady curvature is not found.
+pub fn rss_steering(case: &Case, ctl: &SolveControls) -> Option<RssSteering> {
+    let tool = case.string.rss()?;
+    let op = &case.operation;
+    let md_tool = op.bit_md_m - tool.position_to_bit_m();
+    let inc = case.well.path.point_at(md_tool.max(case.well.path.md_start())).inc_rad;
+    let tendency = if !op.mode.on_bottom() {
+        Err(format!("off bottom (mode {}): no WOB to drill with", op.mode.name()))
+    } else if op.hook_load_n.is_some() {
+        Err("the hook load is given instead of the WOB".to_string())
+    } else {
+        let mut rotate = case.clone();
+        rotate.operation.mode = Mode::Drilling;
+        if rotate.operation.rpm <= 0.0 {
+            rotate.operation.rpm = crate::case::DEFAULT_ROTATING_RPM;
+        }
+        steady_turn(&rotate, &case.bit_rock, ctl).map_err(|e| e.to_string())
+    };
+    Some(RssSteering {
+        tool,
+        toolface_rad: op.toolface_rad,
+        magnetic: inc < MAGNETIC_TOOLFACE_BELOW_RAD,
+        tendency,
     })
 }

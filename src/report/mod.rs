@@ -16,6 +16,7 @@ pub mod solve_output;
 pub mod solve_report;
 pub mod solve_text;
 pub mod survey_table;
+pub mod tendency_output;
 pub mod tracking_output;
 pub mod witsml_out;
 

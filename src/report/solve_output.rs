@@ -8,7 +8,8 @@ use crate::models::buckling::{summarize, Mark};
 use crate::models::fem::results::NodeResult;
 use crate::models::levels::{LevelResult, StringSolve};
 use crate::models::softstring::SoftStringResult;
-use crate::predict::steer::{SteadyTurn, Steering};
+use crate::predict::steer::{RssSteering, SteadyTurn, Steering};
+use crate::string::RssSteer;
 use serde::Serialize;
 
 /// Header of `string.csv`: the interface's columns.
@@ -176,6 +177,8 @@ pub struct SolveSummary {
     motor_yield_deg_per_30m: Option<Finite>,
     rotating_tendency_deg_per_30m: Option<TurnRateJson>,
     steering: Option<SteeringJson>,
+    rss_dogleg_deg_per_30m: Option<Finite>,
+    rss: Option<RssJson>,
 }
 
 /// A dogleg rate split into build and right turn, deg/30 m.
@@ -204,6 +207,23 @@ struct SteeringJson {
     motor_yield_toolface_deg: Option<Finite>,
     motor_yield_rate_deg_per_30m: Option<TurnRateJson>,
     rotating_toolfaces: usize,
+    not_computed: Option<String>,
+}
+
+/// The `rss` key: the rotary steerable system and its steering tendency.
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct RssJson {
+    rss_type: &'static str,
+    pad_force_kN: Option<Finite>,
+    pad_position_m: Option<Finite>,
+    deflection_angle_deg: Option<Finite>,
+    hinge_position_m: Option<Finite>,
+    ratio: Finite,
+    toolface_deg: Finite,
+    toolface_reference: &'static str,
+    rate_deg_per_30m: Option<TurnRateJson>,
+    dogleg_toolface_deg: Option<Finite>,
     not_computed: Option<String>,
 }
 
@@ -366,6 +386,8 @@ impl SolveSummary {
             motor_yield_deg_per_30m: None,
             rotating_tendency_deg_per_30m: None,
             steering: None,
+            rss_dogleg_deg_per_30m: None,
+            rss: None,
             sensors: s
                 .sensors
                 .iter()
@@ -400,6 +422,47 @@ impl SolveSummary {
             motor_yield_rate_deg_per_30m: ok.map(|(y, _)| TurnRateJson::of(y)),
             rotating_toolfaces: st.rotating_toolfaces,
             not_computed: st.tendencies.as_ref().err().cloned(),
+        });
+        self
+    }
+}
+
+impl SolveSummary {
+    /// The summary with the rotary steerable system's tendency `rss` (None: no RSS, whose
+    /// `rss_dogleg_deg_per_30m` and `rss` are null).
+    pub fn with_rss(mut self, rss: Option<&RssSteering>) -> SolveSummary {
+        let Some(st) = rss else {
+            return self;
+        };
+        let ok = st.tendency.as_ref().ok();
+        self.rss_dogleg_deg_per_30m = ok.map(|t| Finite(t.dogleg_rad_per_m().to_degrees() * 30.0));
+        let (force, pad, defl, hinge) = match st.tool.steer {
+            RssSteer::PushTheBit {
+                pad_force_n,
+                pad_to_bit_m,
+            } => (Some(Finite(pad_force_n / 1e3)), Some(Finite(pad_to_bit_m)), None, None),
+            RssSteer::PointTheBit {
+                deflection_rad,
+                hinge_to_bit_m,
+            } => (
+                None,
+                None,
+                Some(Finite(deflection_rad.to_degrees())),
+                Some(Finite(hinge_to_bit_m)),
+            ),
+        };
+        self.rss = Some(RssJson {
+            rss_type: st.tool.kind_name(),
+            pad_force_kN: force,
+            pad_position_m: pad,
+            deflection_angle_deg: defl,
+            hinge_position_m: hinge,
+            ratio: Finite(st.tool.ratio),
+            toolface_deg: Finite(st.toolface_rad.to_degrees()),
+            toolface_reference: if st.magnetic { "magnetic" } else { "gravity" },
+            rate_deg_per_30m: ok.map(TurnRateJson::of),
+            dogleg_toolface_deg: ok.map(|t| Finite(t.toolface_rad().to_degrees())),
+            not_computed: st.tendency.as_ref().err().cloned(),
         });
         self
     }

@@ -6,13 +6,13 @@ use super::inputs::echo_inputs;
 use super::plots::{render, Band, Chart, Series, Style};
 use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
-use super::solve_text::steering_line;
+use super::solve_text::{rss_line, steering_line};
 use crate::case::{Case, Level};
 use crate::models::buckling::{spans, BuckleState, Mark};
 use crate::models::fem::results::{NodeResult, SolveResults};
 use crate::models::fem::solve::SolveStats;
 use crate::models::levels::StringSolve;
-use crate::predict::steer::Steering;
+use crate::predict::steer::{RssSteering, Steering};
 
 /// Ids of the solve report's figures (the tests look for each).
 pub const SOLVE_FIGURES: &[&str] = &[
@@ -418,7 +418,7 @@ fn html(
 }
 
 /// The HTML report of the solve `s` of `case`, in `units` (with a bent housing's tendencies
-/// `steering` in the note at the top): the
+/// `steering`, or a rotary steerable system's `rss`, in the note at the top): the
 /// whole string, or the stiff part of a `bha` or `hybrid` result from the bit to the coupling
 /// point with the level's hook load and surface torque (hybrid) or none (bha). A `soft`
 /// result has nothing stiff to draw: an error.
@@ -427,6 +427,7 @@ pub fn solve_html(
     s: &StringSolve,
     units: UnitSystem,
     steering: Option<&Steering>,
+    rss: Option<&RssSteering>,
 ) -> anyhow::Result<String> {
     let lr = &s.level;
     let Some(part) = &lr.fem else {
@@ -446,6 +447,9 @@ pub fn solve_html(
             )
         })
         .unwrap_or_default();
+    if let Some(st) = rss {
+        warnings.push_str(&format!(" {}.", rss_line(st, units).trim().replacen("rss", "RSS", 1)));
+    }
     warnings.extend(s.warnings(case).iter().map(|w| format!(" WARNING: {w}.")));
     if lr.choice.level == Level::Whole {
         let options = ReportOptions {

@@ -6,7 +6,7 @@ use crate::case::{Case, Level};
 use crate::models::buckling::summarize;
 use crate::models::fem::results::BitResult;
 use crate::models::levels::StringSolve;
-use crate::predict::steer::Steering;
+use crate::predict::steer::{RssSteering, Steering};
 use std::io::Write;
 use std::path::Path;
 
@@ -22,6 +22,8 @@ pub struct SolveView<'a> {
     pub report: Option<&'a Path>,
     /// The bent housing's tendencies (None: a straight string).
     pub steering: Option<&'a Steering>,
+    /// A rotary steerable system's tendency (None: no RSS).
+    pub rss: Option<&'a RssSteering>,
 }
 
 /// The lines every level prints about the operation and the bit: mode, bit MD, WOB, rpm; bit
@@ -101,6 +103,9 @@ pub fn write_summary(out: &mut impl Write, case: &Case, s: &StringSolve, view: &
     if let Some(st) = view.steering {
         writeln!(out, "{}", steering_line(st, view.units))?;
     }
+    if let Some(st) = view.rss {
+        writeln!(out, "{}", rss_line(st, view.units))?;
+    }
     if lr.choice.level == Level::Whole {
         write_whole(out, case, s, view)
     } else {
@@ -129,6 +134,45 @@ pub fn steering_line(st: &Steering, units: UnitSystem) -> String {
             st.rotating_toolfaces
         ),
         Err(why) => format!("{head}; motor yield not computed: {why}"),
+    }
+}
+
+/// The stdout line of a rotary steerable system's tendency, in `units`.
+pub fn rss_line(st: &RssSteering, units: UnitSystem) -> String {
+    let dl = units.dogleg();
+    let what = match st.tool.steer {
+        crate::string::RssSteer::PushTheBit {
+            pad_force_n,
+            pad_to_bit_m,
+        } => format!(
+            "pad force {} at {} from the bit",
+            units.force().fmt(pad_force_n, 1),
+            units.depth().fmt(pad_to_bit_m, 2)
+        ),
+        crate::string::RssSteer::PointTheBit {
+            deflection_rad,
+            hinge_to_bit_m,
+        } => format!(
+            "deflection {} deg at {} from the bit",
+            fixed(deflection_rad.to_degrees(), 2),
+            units.depth().fmt(hinge_to_bit_m, 2)
+        ),
+    };
+    let head = format!(
+        "  rss ({}): {what}, ratio {}, toolface {} deg ({})",
+        st.tool.kind_name(),
+        fixed(st.tool.ratio, 2),
+        fixed(st.toolface_rad.to_degrees(), 1),
+        if st.magnetic { "magnetic" } else { "gravity" }
+    );
+    match &st.tendency {
+        Ok(t) => format!(
+            "{head}; dogleg rotating {} (build {}, right {})",
+            dl.fmt(t.dogleg_rad_per_m(), 2),
+            dl.fmt_signed(t.build_rad_per_m, 2),
+            dl.fmt_signed(t.right_rad_per_m, 2),
+        ),
+        Err(why) => format!("{head}; dogleg not computed: {why}"),
     }
 }
 

@@ -27,6 +27,8 @@ pub enum ComponentKind {
     Sub,
     /// Drilling jar.
     Jar,
+    /// Rotary steerable system: push-the-bit or point-the-bit ([`Component::rss`]).
+    Rss,
 }
 
 impl ComponentKind {
@@ -42,6 +44,7 @@ impl ComponentKind {
             "mwd" => ComponentKind::Mwd,
             "sub" => ComponentKind::Sub,
             "jar" => ComponentKind::Jar,
+            "rss" => ComponentKind::Rss,
             _ => return None,
         })
     }
@@ -57,10 +60,11 @@ impl ComponentKind {
             ComponentKind::Mwd => "mwd",
             ComponentKind::Sub => "sub",
             ComponentKind::Jar => "jar",
+            ComponentKind::Rss => "rss",
         }
     }
     /// Accepted names, for messages.
-    pub const NAMES: &'static str = "bit, stabilizer, collar, pipe, hwdp, motor, mwd, sub, jar";
+    pub const NAMES: &'static str = "bit, stabilizer, collar, pipe, hwdp, motor, mwd, sub, jar, rss";
 }
 
 /// Fraction of a stabilizer's length its blades take when `blade_length` is not given.
@@ -110,6 +114,88 @@ pub struct Component {
     pub sensor_to_bit_m: Option<f64>,
     /// Bent housing of a `motor` component (None: straight; also for a zero bend angle).
     pub bend: Option<MotorBend>,
+    /// Steering of an `rss` component (None for the other kinds).
+    pub rss: Option<RssTool>,
+}
+
+/// How a rotary steerable system steers (docs/theory.md 9.10), SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RssSteer {
+    /// Push-the-bit: pads push the tool toward the set toolface with a force of set
+    /// magnitude `pad_force_n` (N, >= 0) at `pad_to_bit_m` (m above the bit face, on the
+    /// `rss` component).
+    PushTheBit {
+        /// Pad force, N.
+        pad_force_n: f64,
+        /// Distance from the bit face to the pads, m.
+        pad_to_bit_m: f64,
+    },
+    /// Point-the-bit: the bit shaft is deflected by `deflection_rad` (rad, >= 0) at a hinge
+    /// `hinge_to_bit_m` (m above the bit face, on the `rss` component), toward the toolface.
+    PointTheBit {
+        /// Deflection of the bit shaft, rad.
+        deflection_rad: f64,
+        /// Distance from the bit face to the hinge, m.
+        hinge_to_bit_m: f64,
+    },
+}
+
+/// A rotary steerable system: its steering and its steering ratio (the share of the time it
+/// steers at the set toolface; the rest of the time it is neutral).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RssTool {
+    /// Push-the-bit or point-the-bit.
+    pub steer: RssSteer,
+    /// Steering ratio (duty cycle), in [0, 1].
+    pub ratio: f64,
+}
+
+impl RssTool {
+    /// The same tool neutral: no pad force, no deflection (positions kept, so the mesh is the
+    /// same).
+    pub fn neutral(&self) -> RssTool {
+        let steer = match self.steer {
+            RssSteer::PushTheBit { pad_to_bit_m, .. } => RssSteer::PushTheBit {
+                pad_force_n: 0.0,
+                pad_to_bit_m,
+            },
+            RssSteer::PointTheBit { hinge_to_bit_m, .. } => RssSteer::PointTheBit {
+                deflection_rad: 0.0,
+                hinge_to_bit_m,
+            },
+        };
+        RssTool {
+            steer,
+            ratio: self.ratio,
+        }
+    }
+    /// Distance from the bit face to the pads or the hinge, m.
+    pub fn position_to_bit_m(&self) -> f64 {
+        match self.steer {
+            RssSteer::PushTheBit { pad_to_bit_m, .. } => pad_to_bit_m,
+            RssSteer::PointTheBit { hinge_to_bit_m, .. } => hinge_to_bit_m,
+        }
+    }
+    /// The kink of the unloaded axis of a point-the-bit tool (None for push-the-bit).
+    pub fn kink(&self) -> Option<MotorBend> {
+        match self.steer {
+            RssSteer::PointTheBit {
+                deflection_rad,
+                hinge_to_bit_m,
+            } => Some(MotorBend {
+                angle_rad: deflection_rad,
+                to_bit_m: hinge_to_bit_m,
+            }),
+            RssSteer::PushTheBit { .. } => None,
+        }
+    }
+    /// Name of the kind as written in case files (`push-the-bit`, `point-the-bit`).
+    pub fn kind_name(&self) -> &'static str {
+        match self.steer {
+            RssSteer::PushTheBit { .. } => "push-the-bit",
+            RssSteer::PointTheBit { .. } => "point-the-bit",
+        }
+    }
 }
 
 /// The bent housing of a motor: a kink of the unloaded string axis (docs/theory.md, "Bent

@@ -3,7 +3,7 @@
 pub mod component;
 pub mod material;
 
-pub use component::{Component, ComponentKind, MotorBend, MAX_BEND_ANGLE_RAD};
+pub use component::{Component, ComponentKind, MotorBend, RssSteer, RssTool, MAX_BEND_ANGLE_RAD};
 pub use material::Material;
 
 /// Components from the bit upward, contiguous (`components[k+1].bottom_m == components[k].top_m()`).
@@ -85,6 +85,35 @@ impl DrillString {
     /// The bent housing of the string (the first motor with a bend), if any.
     pub fn bend(&self) -> Option<MotorBend> {
         self.components.iter().find_map(|c| c.bend)
+    }
+    /// The rotary steerable system of the string (the first `rss` component's), if any.
+    pub fn rss(&self) -> Option<RssTool> {
+        self.components.iter().find_map(|c| c.rss)
+    }
+    /// The kink of the string's unloaded axis: a bent housing's bend, or a point-the-bit
+    /// tool's hinge with its deflection (None when the string has neither).
+    pub fn kink(&self) -> Option<MotorBend> {
+        self.bend().or_else(|| self.rss().and_then(|r| r.kink()))
+    }
+    /// The string with its rotary steerable system neutral ([`RssTool::neutral`]); the same
+    /// string without one.
+    pub fn rss_neutral(&self) -> DrillString {
+        let mut s = self.clone();
+        for c in &mut s.components {
+            c.rss = c.rss.map(|r| r.neutral());
+        }
+        s
+    }
+    /// The string with its rotary steerable system's ratio set to `ratio` (no effect without
+    /// one).
+    pub fn with_rss_ratio(&self, ratio: f64) -> DrillString {
+        let mut s = self.clone();
+        for c in &mut s.components {
+            if let Some(r) = c.rss.as_mut() {
+                r.ratio = ratio;
+            }
+        }
+        s
     }
     /// Distances from the bit of stabilizer contact points (mid-length), m.
     pub fn stabilizer_contacts_m(&self) -> Vec<f64> {

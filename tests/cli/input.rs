@@ -1070,3 +1070,60 @@ fn toolface_that_is_not_an_angle() {
     fx.edit_case("rpm = 60", "rpm = 60\ntoolface = \"90 m\"");
     fx.expect_error(&["survey", "case.toml"], &["case.toml", "`operation.toolface`"]);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Rotary steerable systems (docs/guide.md, `[[string]]` `rss_type`, `pad_force`, `pad_position`,
+// `deflection_angle`, `hinge_position`, `ratio`; `[[steering]]` `ratio`).
+
+#[test]
+fn a_valid_rss_of_each_kind_is_accepted() {
+    for keys in [
+        "rss_type = \"push-the-bit\"\npad_force = \"15 kN\"\npad_position = \"3 m\"\nratio = 0.5",
+        "rss_type = \"point-the-bit\"\ndeflection_angle = \"0.6 deg\"\nhinge_position = \"3 m\"",
+    ] {
+        let fx = Fixture::new();
+        fx.edit_case("type = \"collar\"", &format!("type = \"rss\"\n{keys}"));
+        let r = fx.run(&["survey", "case.toml"]);
+        assert!(r.success(), "{}", r.describe());
+    }
+}
+
+#[test]
+fn bad_rss_keys_are_named() {
+    let cases: [(&str, &[&str]); 9] = [
+        (
+            "type = \"rss\"\nrss_type = \"push-the-bit\"\npad_force = \"15 kN\"",
+            &["`string[2].pad_position`", "pad_force without pad_position"],
+        ),
+        (
+            "type = \"rss\"\nrss_type = \"push-the-bit\"\npad_force = \"15 kN\"\npad_position = \"3 m\"\ndeflection_angle = 0.5",
+            &["`string[2].deflection_angle`", "this one is push-the-bit"],
+        ),
+        (
+            "type = \"rss\"\nrss_type = \"point-the-bit\"\ndeflection_angle = 0.5\nhinge_position = \"3 m\"\npad_force = 10",
+            &["`string[2].pad_force`", "this one is point-the-bit"],
+        ),
+        (
+            "type = \"rss\"\nrss_type = \"push-the-bit\"\npad_force = \"15 kN\"\npad_position = \"3 m\"\nratio = 1.5",
+            &["`string[2].ratio`", "outside [0, 1]"],
+        ),
+        (
+            "type = \"rss\"\nrss_type = \"point-the-bit\"\ndeflection_angle = 4.5\nhinge_position = \"3 m\"",
+            &["`string[2].deflection_angle`", "above the largest accepted, 4 deg"],
+        ),
+        (
+            "type = \"rss\"\nrss_type = \"push-the-bit\"\npad_force = \"15 kN\"\npad_position = \"0.1 m\"",
+            &["`string[2].pad_position`", "not on this rss"],
+        ),
+        ("type = \"rss\"\npad_force = \"15 kN\"", &["`string[2].rss_type`", "missing rss_type"]),
+        ("type = \"rss\"\nrss_type = \"pull-the-bit\"", &["`string[2].rss_type`", "pull-the-bit"]),
+        ("type = \"collar\"\npad_force = \"15 kN\"", &["`string[2].pad_force`", "only an `rss`"]),
+    ];
+    for (keys, expect) in cases {
+        let fx = Fixture::new();
+        fx.edit_case("type = \"collar\"", keys);
+        let mut want = vec!["case.toml"];
+        want.extend_from_slice(expect);
+        fx.expect_error(&["survey", "case.toml"], &want);
+    }
+}

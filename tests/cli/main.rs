@@ -14,5 +14,6 @@ mod predict;
 mod refusals;
 mod report;
 mod solve;
+mod tendency;
 mod tubular;
 mod witsml;

@@ -254,7 +254,7 @@ fn a_bent_motor_reports_its_yield_and_rotating_tendency() {
     let (b, r) = (rot["build"].as_f64().unwrap(), rot["right"].as_f64().unwrap());
     assert!(b.hypot(r) < 0.25 * y, "{b} {r} against {y}");
     assert_eq!(bent["steering"]["toolface_reference"], "gravity");
-    assert_eq!(bent["steering"]["rotating_toolfaces"], 24);
+    assert_eq!(bent["steering"]["rotating_toolfaces"], 12);
     assert!(bent["steering"]["not_computed"].is_null());
     let straight = json("wells/horizontal/case.toml");
     for key in ["motor_yield_deg_per_30m", "rotating_tendency_deg_per_30m", "steering"] {
@@ -264,6 +264,39 @@ fn a_bent_motor_reports_its_yield_and_rotating_tendency() {
     assert!(
         text.stdout
             .contains("bent motor: 1.50 deg at 2.00 m from the bit, toolface 0.0 deg (gravity); motor yield sliding"),
+        "{}",
+        text.stdout
+    );
+}
+
+/// A rotary steerable system's outputs (docs/guide.md "Rotary steerable systems", "Outputs of
+/// solve"): `wells/horizontal/rss.toml` at `bha` prints the `rss (push-the-bit)` line and writes
+/// `rss_dogleg_deg_per_30m` (equal to the rates' magnitude) and the `rss` key; the straight
+/// `case.toml` writes them `null`, and the RSS case's motor keys are `null`.
+#[test]
+fn an_rss_reports_its_dogleg() {
+    let json = |file: &str| -> serde_json::Value {
+        let out = run_in(root(), &["solve", file, "--fidelity", "bha", "--json"]);
+        assert!(out.success(), "{file}: {}", out.stderr);
+        serde_json::from_str(&out.stdout).unwrap()
+    };
+    let rss = json("wells/horizontal/rss.toml");
+    let d = rss["rss_dogleg_deg_per_30m"].as_f64().unwrap();
+    let rate = &rss["rss"]["rate_deg_per_30m"];
+    let (b, r) = (rate["build"].as_f64().unwrap(), rate["right"].as_f64().unwrap());
+    assert!((b.hypot(r) - d).abs() < 1e-9, "{d} {b} {r}");
+    assert_eq!(rss["rss"]["rss_type"], "push-the-bit");
+    assert_eq!(rss["rss"]["pad_force_kN"], 15.0);
+    assert_eq!(rss["rss"]["ratio"], 0.15);
+    assert!(rss["rss"]["deflection_angle_deg"].is_null() && rss["motor_yield_deg_per_30m"].is_null());
+    let straight = json("wells/horizontal/case.toml");
+    for key in ["rss_dogleg_deg_per_30m", "rss"] {
+        assert!(straight[key].is_null(), "{key}");
+    }
+    let text = run_in(root(), &["solve", "wells/horizontal/rss.toml", "--fidelity", "bha"]);
+    assert!(
+        text.stdout
+            .contains("rss (push-the-bit): pad force 15.0 kN at 0.90 m from the bit, ratio 0.15, toolface 0.0 deg (gravity); dogleg rotating"),
         "{}",
         text.stdout
     );

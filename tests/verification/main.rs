@@ -22,6 +22,7 @@ mod loads;
 mod mwd_sag;
 mod paper;
 mod predict;
+mod rss;
 mod slack_off;
 mod sliding;
 mod softstring;

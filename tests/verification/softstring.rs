@@ -45,6 +45,7 @@ fn pipe(len: f64, w_air: f64, tj: Option<f64>) -> Component {
         weight_air_n_per_m: w_air,
         sensor_to_bit_m: None,
         bend: None,
+        rss: None,
     }
 }
 

@@ -26,9 +26,10 @@ impl Kink {
     /// The kink of `mesh`'s bend at toolface `toolface_rad` (rad) with the DOF bases `basis`
     /// (the unloaded triads) of the nodes: the part below the bend turned by the bend angle
     /// about `t x d`, `d` the toolface direction ([`crate::geometry::frame::toolface_direction`])
-    /// at the bend node, so that the bit points toward `d`. None for a straight mesh.
+    /// at the bend node, so that the bit points toward `d`. None for a straight mesh or a zero
+    /// angle (a neutral point-the-bit tool).
     pub fn of_mesh(mesh: &Mesh, basis: &[Matrix3<f64>], toolface_rad: f64) -> Option<Kink> {
-        let bend = mesh.bend?;
+        let bend = mesh.bend.filter(|b| b.angle_rad != 0.0)?;
         let q = &basis[bend.node];
         let t = q.column(0).into_owned();
         let d = crate::geometry::frame::toolface_direction(&t, toolface_rad);

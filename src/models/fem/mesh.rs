@@ -131,8 +131,45 @@ pub struct Mesh {
     pub nodes: Vec<MeshNode>,
     /// Elements, `elements[e]` joins nodes e and e+1.
     pub elements: Vec<MeshElement>,
-    /// The bent housing's node and angle (None: a straight string).
+    /// The kink's node and angle: a bent housing's bend or a point-the-bit hinge (None: a
+    /// straight string).
     pub bend: Option<MeshBend>,
+    /// A push-the-bit tool's pads (None: none).
+    pub pad: Option<MeshPad>,
+}
+
+/// Where a push-the-bit tool's pads push, on the mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshPad {
+    /// Index of the node at the pads.
+    pub node: usize,
+    /// Pad force, N (applied toward the toolface).
+    pub force_n: f64,
+}
+
+/// The node of `nodes` nearest `s_m` (m above the bit).
+fn nearest_node(nodes: &[MeshNode], s_m: f64) -> Option<usize> {
+    nodes
+        .iter()
+        .enumerate()
+        .min_by(|a, c| (a.1.s_m - s_m).abs().total_cmp(&(c.1.s_m - s_m).abs()))
+        .map(|(k, _)| k)
+}
+
+/// The pads of `string`'s push-the-bit tool on `nodes` (None without one).
+fn pad_node(string: &DrillString, nodes: &[MeshNode]) -> Option<MeshPad> {
+    let crate::string::RssSteer::PushTheBit {
+        pad_force_n,
+        pad_to_bit_m,
+    } = string.rss()?.steer
+    else {
+        return None;
+    };
+    let node = nearest_node(nodes, pad_to_bit_m)?;
+    Some(MeshPad {
+        node,
+        force_n: pad_force_n,
+    })
 }
 
 /// Where the unloaded string axis kinks: a bent motor housing on the mesh.
@@ -145,15 +182,12 @@ pub struct MeshBend {
     pub angle_rad: f64,
 }
 
-/// The node of `nodes` at the bend of `string`'s bent housing (None for a straight string, or
-/// a bend at the first or last node, which has no element on one side).
+/// The node of `nodes` at the kink of `string` (a bent housing's bend, a point-the-bit
+/// hinge: [`DrillString::kink`]; None for a straight string, or a kink at the first or last
+/// node, which has no element on one side).
 fn bend_node(string: &DrillString, nodes: &[MeshNode]) -> Option<MeshBend> {
-    let b = string.bend()?;
-    let node = nodes
-        .iter()
-        .enumerate()
-        .min_by(|a, c| (a.1.s_m - b.to_bit_m).abs().total_cmp(&(c.1.s_m - b.to_bit_m).abs()))
-        .map(|(k, _)| k)?;
+    let b = string.kink()?;
+    let node = nearest_node(nodes, b.to_bit_m)?;
     (node > 0 && node < nodes.len() - 1).then_some(MeshBend {
         node,
         angle_rad: b.angle_rad,
@@ -230,7 +264,13 @@ pub fn build_mesh(
         })
         .collect();
     let bend = bend_node(string, &nodes);
-    Mesh { nodes, elements, bend }
+    let pad = pad_node(string, &nodes);
+    Mesh {
+        nodes,
+        elements,
+        bend,
+        pad,
+    }
 }
 
 /// The node marks of `string` (component ends, the contact marks of `touches`, tool joints),
@@ -243,6 +283,10 @@ fn merged_marks(string: &DrillString, touches: &[Option<Touch>], settings: &Solv
         if let Some(b) = c.bend {
             // a node at the bent housing, where the unloaded axis kinks
             marks.push((b.to_bit_m, None));
+        }
+        if let Some(r) = c.rss {
+            // a node at the pads or the hinge of a rotary steerable system
+            marks.push((r.position_to_bit_m(), None));
         }
         if let Some(x) = c.sensor_to_bit_m {
             // a node at the survey sensor, where its sag angle is read

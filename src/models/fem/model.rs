@@ -452,6 +452,17 @@ impl Model {
         self.evaluate_with(state, gaps, None, Some(elements))
     }
 
+    /// The push-the-bit pads' force on the string (global, N) and its node: the pad force along
+    /// the toolface direction ([`crate::geometry::frame::toolface_direction`] at the node's
+    /// unloaded axis, the model's toolface), fixed in space (the tool holds its toolface
+    /// whatever the string does). None without pads or with a zero force.
+    pub fn pad_force(&self) -> Option<(usize, Vec3)> {
+        let p = self.mesh.pad.filter(|p| p.force_n != 0.0)?;
+        let t = self.basis[p.node].column(0).into_owned();
+        let d = crate::geometry::frame::toolface_direction(&t, self.loads.toolface_rad);
+        Some((p.node, d * p.force_n))
+    }
+
     fn evaluate_with(
         &self,
         state: &mut State,
@@ -473,6 +484,13 @@ impl Model {
         let tb_loc = self.basis[0].transpose() * tb;
         for k in 0..3 {
             r[self.dof(0, 3 + k)] -= tb_loc[k];
+        }
+        // push-the-bit pads: a force of set magnitude toward the toolface at the pad node
+        if let Some((node, f)) = self.pad_force() {
+            let f_loc = self.basis[node].transpose() * f;
+            for k in 0..3 {
+                r[self.dof(node, k)] -= f_loc[k];
+            }
         }
         // hook load: force -H t_top at the top node
         let top = nn - 1;

@@ -12,7 +12,7 @@
 //! really touches and are left as they are. `[solver] refine_contacts = false` turns it off.
 
 use super::element::rotation::skew;
-use super::mesh::{Mesh, MeshBend, MeshNode};
+use super::mesh::{Mesh, MeshBend, MeshNode, MeshPad};
 use super::model::{Model, State};
 use super::solve::toolface::solve_holding_toolface;
 use super::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError};
@@ -73,6 +73,7 @@ fn split_mesh(mesh: &Mesh, split: &[usize], h_m: f64) -> Mesh {
     let mut nodes: Vec<MeshNode> = vec![mesh.nodes[0]];
     let mut elements = Vec::new();
     let mut bend = None;
+    let mut pad = mesh.pad.filter(|mp| mp.node == 0);
     for (e, el) in mesh.elements.iter().enumerate() {
         let (a, b) = (mesh.nodes[e], mesh.nodes[e + 1]);
         let pieces = if split.contains(&e) {
@@ -99,8 +100,20 @@ fn split_mesh(mesh: &Mesh, split: &[usize], h_m: f64) -> Mesh {
                 ..mb
             });
         }
+        // and the pads their force
+        if let Some(mp) = mesh.pad.filter(|mp| mp.node == e + 1) {
+            pad = Some(MeshPad {
+                node: nodes.len() - 1,
+                ..mp
+            });
+        }
     }
-    Mesh { nodes, elements, bend }
+    Mesh {
+        nodes,
+        elements,
+        bend,
+        pad,
+    }
 }
 
 /// `model` with the elements `split` divided into pieces of at most `h_m` (same hole, loads,

@@ -306,6 +306,10 @@ fn imbalance(model: &Model, sol: &Solution) -> (Vec3, Vec3, f64) {
         // f_int = f_ext + reaction, so the reaction force on the string is +residual there
         add(fr, mr, st.x[i]);
     }
+    // a push-the-bit tool's pad force
+    if let Some((node, f)) = model.pad_force() {
+        add(f, Vec3::zeros(), st.x[node]);
+    }
     // the applied hook load and bit torque
     add(
         -model.basis[nn - 1].column(0) * st.hook_load_n,

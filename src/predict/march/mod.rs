@@ -129,11 +129,12 @@ pub struct StepRecord {
     pub direction: Vec3,
     /// Newton iterations of this step's solve.
     pub iterations: usize,
-    /// How a bent housing drilled the step (None: a straight string).
+    /// How a bent housing or a rotary steerable system drilled the step (None: a string with
+    /// neither).
     pub steer: Option<StepSteer>,
 }
 
-/// How a bent housing drills: sliding at a toolface or rotating.
+/// How a bent housing (or a rotary steerable system) drills: sliding at a toolface or rotating.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepSteer {
     /// The string rotates (the housing turns with it, the drilling direction is the mean over
@@ -142,14 +143,19 @@ pub struct StepSteer {
     /// The toolface set, rad ([`crate::case::Operation::toolface_rad`]; the first of the
     /// revolution when rotating).
     pub toolface_rad: f64,
+    /// The steering ratio of a rotary steerable system (None for a bent housing).
+    pub ratio: Option<f64>,
 }
 
 impl StepSteer {
-    /// How `case`'s string drills (None for a straight string).
+    /// How `case`'s string drills (None for a string without a bent housing or a rotary
+    /// steerable system).
     pub fn of_case(case: &Case) -> Option<StepSteer> {
-        case.string.bend().map(|_| StepSteer {
+        let s = &case.string;
+        (s.bend().is_some() || s.rss().is_some()).then(|| StepSteer {
             rotating: case.operation.rotates(),
             toolface_rad: case.operation.toolface_rad,
+            ratio: s.rss().map(|r| r.ratio),
         })
     }
     /// `slide` or `rotate`.
@@ -370,7 +376,7 @@ pub fn predict_from(
     let ctl = &settings.controls;
     let tendency = settings.tendency;
     let cut = model_cut_m(case, start, &hole, settings)?;
-    let bent = case.string.bend().is_some();
+    let bent = case.string.bend().is_some() || case.string.rss().is_some();
     let mut s = from;
     let start_case = steered_at(case, s);
     let faces = crate::predict::revolution::toolfaces(&start_case);

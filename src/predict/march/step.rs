@@ -12,7 +12,7 @@ use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, Solv
 use crate::models::fem::warm::transport_state;
 use crate::predict::law::BitAction;
 use crate::predict::law::{drilling_direction, LawParams};
-use crate::predict::revolution::{mean_bit, mean_direction};
+use crate::predict::revolution::{mean_bit, mean_direction, SteerState};
 use nalgebra::{Matrix2, Vector2};
 
 /// Solve the model warm-started from `warm`; without one, or when the warm start fails, the
@@ -127,15 +127,27 @@ pub(crate) fn solve_bit(
     cut_m: f64,
     warm: &WarmStart,
     ctl: &SolveControls,
-    faces: &[f64],
+    faces: &[SteerState],
 ) -> Result<BitSolve, PredictError> {
     let frame = path.frame_at(md_m);
     let params = LawParams::at(bit_rock, md_m);
     let mut first: Option<BitSolve> = None;
     let (mut bits, mut dirs, mut iterations) = (Vec::new(), Vec::new(), 0);
     let mut correction = warm.as_ref().map(|(m, _)| m.kink_correction_rad()).unwrap_or(0.0);
-    for (k, &tf) in faces.iter().enumerate() {
-        let mut model = bha_model(case, path, hole, md_m, cut_m);
+    // the case with its rotary steerable system neutral, for the share of the time it does
+    // not steer
+    let neutral = faces.iter().any(|f| f.neutral).then(|| {
+        let mut c = case.clone();
+        c.string = c.string.rss_neutral();
+        c
+    });
+    for (k, st) in faces.iter().enumerate() {
+        let tf = st.toolface_rad;
+        let c = match &neutral {
+            Some(n) if st.neutral => n,
+            _ => case,
+        };
+        let mut model = bha_model(c, path, hole, md_m, cut_m);
         model.consistent_tangent = true;
         model.set_toolface(tf);
         model.turn_kink(tf + correction);
@@ -174,8 +186,9 @@ pub(crate) fn solve_bit(
         }
     }
     let mut out = first.expect("at least one toolface");
-    out.bit = mean_bit(&bits);
-    out.direction = mean_direction(&dirs);
+    let w: Vec<f64> = faces.iter().map(|f| f.weight).collect();
+    out.bit = mean_bit(&bits, &w);
+    out.direction = mean_direction(&dirs, &w);
     out.iterations = iterations;
     Ok(out)
 }
