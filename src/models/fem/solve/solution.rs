@@ -24,6 +24,10 @@ pub struct SolveStats {
     /// ([`super::continuation`]): the WOB it reached and the model's WOB, N (equal when it
     /// converged); None when none ran.
     pub wob_continuation_n: Option<(f64, f64)>,
+    /// Whether a re-solve from a helix along the wall followed a converged solve that lay
+    /// straight beyond the helical onset (`models::levels`, [`super::helix`]): `Some(true)` kept
+    /// (the answer is the buckled string), `Some(false)` tried and not kept; None when none ran.
+    pub helix_restart: Option<bool>,
 }
 
 impl SolveStats {
