@@ -25,8 +25,8 @@ use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
 use crate::models::fem::solve::continuation;
-use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::helix;
+use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
@@ -257,7 +257,9 @@ fn off_the_straight_branch(case: &Case, model: Model, sol: Solution, ctl: &Solve
     let start = refine::carried_state(&model, &sol.state, &fine);
     let mut consistent = fine.clone();
     consistent.consistent_tangent = true;
-    let again = solve_interior_point_from(&consistent, start, ctl).ok().filter(|s| s.converged);
+    let again = solve_interior_point_from(&consistent, start, ctl)
+        .ok()
+        .filter(|s| s.converged);
     let Some(mut again) = again else {
         let sol = buckled_or_straight(case, &model, sol, &straight, &axial, ctl);
         return (model, sol);

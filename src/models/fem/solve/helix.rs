@@ -14,10 +14,10 @@
 //! buckled.
 
 use super::{solve_interior_point_from, Solution, SolveControls, SolveStats};
-use std::time::Instant;
 use crate::geometry::Vec3;
 use crate::models::fem::model::{Model, State};
 use std::f64::consts::{FRAC_PI_2, PI};
+use std::time::Instant;
 
 /// Radius of the start helix as a fraction of the radial clearance: just off the wall, so that
 /// no node starts in penetration.
@@ -80,10 +80,7 @@ pub const ELEMENTS_PER_PITCH: f64 = 8.0;
 /// when every element there is short enough.
 pub fn coarse_for_pitch(model: &Model, axial_n: &[f64], runs: &[(usize, usize)]) -> Option<(Vec<usize>, f64)> {
     let nn = model.nodes();
-    let elements: Vec<usize> = runs
-        .iter()
-        .flat_map(|&(lo, hi)| lo..hi.min(nn - 1))
-        .collect();
+    let elements: Vec<usize> = runs.iter().flat_map(|&(lo, hi)| lo..hi.min(nn - 1)).collect();
     let h = elements
         .iter()
         .map(|&e| {
