@@ -354,21 +354,3 @@ fn an_unbuckled_solve_beyond_the_helical_onset_is_flagged() {
     );
 }
 
-#[test]
-#[ignore]
-fn helix_experiment() {
-    let (ei, _, r) = pipe_properties();
-    for (inc, wob, fr) in [(0.5, 100.0, 0.3), (90.0, 280.0, 0.2), (90.0, 280.0, 0.05)] {
-        let case = straight_hole_case(inc, 600.0, wob, fr, Some("1 m"));
-        let t0 = std::time::Instant::now();
-        let s = whole_solve(&case);
-        let fem = s.level.fem.as_ref().unwrap();
-        let (wall, f) = window(&s, 450.0, 550.0);
-        println!(
-            "EXP {inc} {wob} {fr}: helix {:?} wall {wall:.1} Mitchell {:.1} time {:.2}",
-            fem.stats.helix_restart,
-            r * f * f / (4.0 * ei),
-            t0.elapsed().as_secs_f64()
-        );
-    }
-}
