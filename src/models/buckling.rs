@@ -567,6 +567,7 @@ mod tests {
             sinusoidal_n: Some(100.0),
             helical_n: Some(141.0),
             state: st,
+            helical_wall_force_n_per_m: None,
         };
         let m = [
             mk(10.0, BuckleState::None, 0.0),

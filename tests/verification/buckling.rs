@@ -353,4 +353,3 @@ fn an_unbuckled_solve_beyond_the_helical_onset_is_flagged() {
         "{w:?}"
     );
 }
-

@@ -138,7 +138,7 @@ pub fn helical_start(model: &Model, state: &State, axial_n: &[f64], runs: &[(usi
             d.dot(&b2).atan2(d.dot(&b1))
         };
         let mut theta = theta0;
-        for i in lo..=hi {
+        for (i, dxi) in dx.iter_mut().enumerate().take(hi + 1).skip(lo) {
             if i > lo {
                 let f = 0.5 * (compression(i - 1) + compression(i));
                 theta += (s(i) - s(i - 1)) * (f / (2.0 * ei(i - 1))).sqrt();
@@ -153,7 +153,7 @@ pub fn helical_start(model: &Model, state: &State, axial_n: &[f64], runs: &[(usi
                 Shape::Snake { swing_rad } => theta0 + swing_rad * (theta - theta0).sin(),
             };
             let target = (b1 * angle.cos() + b2 * angle.sin()) * a;
-            dx[i] = (target - d) * ramp;
+            *dxi = (target - d) * ramp;
         }
     }
     let mut du = vec![0.0; model.dofs()];
@@ -178,9 +178,9 @@ pub fn helical_start(model: &Model, state: &State, axial_n: &[f64], runs: &[(usi
     }
     let mut out = state.clone();
     model.update(&mut out, &du, 1.0);
-    for i in 0..nn {
+    for (i, dxi) in dx.iter().enumerate() {
         let (d, _, _) = lateral(model, &out, i);
-        if dx[i].norm() > 0.0 && d.norm() > 0.5 * model.clearance(i, out.md[i]) {
+        if dxi.norm() > 0.0 && d.norm() > 0.5 * model.clearance(i, out.md[i]) {
             out.normal[i] = d.normalize();
         }
     }
