@@ -10,8 +10,11 @@
 //! `2 pi sqrt(2 EI / F)` under the local compression `F`, Lubinski / Mitchell, docs/theory.md 7),
 //! tapered to the converged shape over half a pitch at each end of the run, the node rotations
 //! turned with the change of slope. [`solve_from_helix`] re-solves from there with the
-//! interior-point contact Newton; the caller accepts the result only if it converged and is
-//! buckled.
+//! interior-point contact Newton under a pseudo-transient lateral damping
+//! ([`SolveControls::lateral_damping_n_per_m`], [`instability_stiffness`]) that vanishes with
+//! the residual, with the model's friction at once or along a friction path ([`ATTEMPTS`]);
+//! the caller accepts the result only if it converged and is buckled. [`coarse_for_pitch`]
+//! names the elements too long for the helix's pitch.
 
 use super::{solve_interior_point_from, Solution, SolveControls, SolveStats};
 use crate::geometry::Vec3;
@@ -29,7 +32,10 @@ pub enum Shape {
     /// A helix along the wall: the contact angle turns by the phase `theta`.
     Helix,
     /// A sinusoid along the wall: the contact angle swings `swing_rad sin(theta)` (rad) about
-    /// where the run's lower end lies.
+    /// where the run's lower end lies. Not among [`ATTEMPTS`]: tried on the horizontal pipe at
+    /// 350 kN with friction 0.2 (swing 90 deg, friction path in steps of 0.25) it converged at
+    /// 0.25 of the friction and failed at 0.5, as the helix's path stops (at 0.39; docs/theory.md
+    /// 7.5).
     Snake {
         /// Largest swing of the contact angle, rad.
         swing_rad: f64,
