@@ -74,6 +74,11 @@ pub struct Mark {
     pub helical_n: Option<f64>,
     /// State.
     pub state: BuckleState,
+    /// Mitchell's helical contact force per length at the node's compression `F`,
+    /// `r F^2 / (4 EI)` (N/m, `r` the radial clearance): where the compression exceeds the
+    /// helical onset (0 below it; None where the component cannot buckle). The wall force the
+    /// helix adds to a soft string's (docs/theory.md 7.4).
+    pub helical_wall_force_n_per_m: Option<f64>,
 }
 
 /// A contiguous buckled zone.
@@ -211,6 +216,13 @@ pub fn onset_at(
     Some((s.max(WU_VERTICAL_SINUSOIDAL * unit), h.max(WU_VERTICAL_HELICAL * unit)))
 }
 
+/// Mitchell's (1988) helical contact force per length of component `c` in a hole of
+/// `hole_diameter_m` under the compression `compression_n`: `r F^2 / (4 EI)`, N/m.
+pub fn mitchell_wall_force(c: &Component, hole_diameter_m: f64, compression_n: f64) -> f64 {
+    let r = (hole_diameter_m - c.body_od_m) / 2.0;
+    r * compression_n * compression_n / (4.0 * c.ei_nm2())
+}
+
 /// Marks at nodes given as `(md_m, distance from the bit m, effective axial force N tension
 /// positive)`, for `string` with its bit at the MD the distances are measured from.
 pub fn marks(
@@ -233,6 +245,7 @@ pub fn marks(
                     sinusoidal_n: None,
                     helical_n: None,
                     state: BuckleState::NotApplicable,
+                    helical_wall_force_n_per_m: None,
                 },
                 Some((fs, fh)) => Mark {
                     md_m: md,
@@ -246,6 +259,11 @@ pub fn marks(
                     } else {
                         BuckleState::None
                     },
+                    helical_wall_force_n_per_m: Some(if compression > fh {
+                        mitchell_wall_force(c, hole.diameter_at(md), compression)
+                    } else {
+                        0.0
+                    }),
                 },
             }
         })
@@ -550,6 +568,7 @@ mod tests {
             sinusoidal_n: Some(100.0),
             helical_n: Some(141.0),
             state: st,
+            helical_wall_force_n_per_m: None,
         };
         let m = [
             mk(10.0, BuckleState::None, 0.0),

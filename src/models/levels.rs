@@ -25,8 +25,9 @@ use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
 use crate::models::fem::solve::continuation;
+use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{solve, SolveControls, SolveError, SolveStats};
+use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
 use std::time::Instant;
@@ -209,6 +210,11 @@ fn fem_part(
         let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
         (model, sol)
     };
+    let (model, sol) = if matches!(model.top, TopCondition::Cut { .. }) {
+        (model, sol)
+    } else {
+        off_the_straight_branch(case, model, sol, ctl)
+    };
     let results = extract(&model, &sol, case.mud.density_kg_m3);
     let coupling = coupling_m.map(|s| nearest_node(&model, s));
     Ok(FemPart {
@@ -218,6 +224,126 @@ fn fem_part(
         results,
         coupling,
     })
+}
+
+/// Relative equilibrium (force imbalance over the largest force) a buckled re-solve must meet.
+pub const HELIX_EQUILIBRIUM: f64 = 1e-6;
+
+/// The converged solve `sol` of the whole-string model `model` of `case`, or, where it lies
+/// straight in runs compressed beyond the helical onset
+/// ([`crate::models::buckling::unbuckled_helical_runs`]), the re-solve from a helix along the
+/// wall there ([`helix::solve_from_helix`]) if that converges with global equilibrium within
+/// [`HELIX_EQUILIBRIUM`] of the largest force and penetration within the gap tolerance, and
+/// leaves a shorter length of such runs (the buckled equilibrium). Before the re-solve, the
+/// elements of the runs longer than an eighth of the helix pitch are split
+/// ([`helix::coarse_for_pitch`], [`refine::refined_model`]) and the straight string solved
+/// again on that mesh; the model returned is the one solved. The statistics add the first
+/// solves' work and say whether the helix was tried and kept ([`SolveStats::helix_restart`]).
+fn off_the_straight_branch(case: &Case, model: Model, sol: Solution, ctl: &SolveControls) -> (Model, Solution) {
+    if !sol.converged {
+        return (model, sol);
+    }
+    let results = extract(&model, &sol, case.mud.density_kg_m3);
+    let straight = node_runs(case, &model, &results);
+    if straight.is_empty() {
+        return (model, sol);
+    }
+    let axial: Vec<f64> = results.nodes.iter().map(|n| n.axial_force_n).collect();
+    let Some((split, h)) = helix::coarse_for_pitch(&model, &axial, &straight) else {
+        let sol = buckled_or_straight(case, &model, sol, &straight, &axial, ctl);
+        return (model, sol);
+    };
+    let fine = refine::refined_model(&model, &split, h);
+    let start = refine::carried_state(&model, &sol.state, &fine);
+    let mut consistent = fine.clone();
+    consistent.consistent_tangent = true;
+    let again = solve_interior_point_from(&consistent, start, ctl)
+        .ok()
+        .filter(|s| s.converged);
+    let Some(mut again) = again else {
+        let sol = buckled_or_straight(case, &model, sol, &straight, &axial, ctl);
+        return (model, sol);
+    };
+    again.stats.add_work(&sol.stats);
+    again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
+    let results = extract(&fine, &again, case.mud.density_kg_m3);
+    let straight = node_runs(case, &fine, &results);
+    let axial: Vec<f64> = results.nodes.iter().map(|n| n.axial_force_n).collect();
+    let sol = if straight.is_empty() {
+        again
+    } else {
+        buckled_or_straight(case, &fine, again, &straight, &axial, ctl)
+    };
+    (fine, sol)
+}
+
+/// The re-solve of the converged `sol` of `model` (of `case`) from a helix in the runs
+/// `straight` ([`helix::solve_from_helix`], `axial` the effective axial forces there, N) if it
+/// meets the acceptance of [`off_the_straight_branch`]; `sol` otherwise.
+fn buckled_or_straight(
+    case: &Case,
+    model: &Model,
+    mut sol: Solution,
+    straight: &[(usize, usize)],
+    axial: &[f64],
+    ctl: &SolveControls,
+) -> Solution {
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - sol.stats.seconds,
+        ..*ctl
+    };
+    let length = |runs: &[(usize, usize)]| -> f64 {
+        runs.iter()
+            .map(|&(a, b)| model.mesh.nodes[b].s_m - model.mesh.nodes[a].s_m)
+            .sum()
+    };
+    let accept = |h: &Solution| {
+        if !h.converged || h.stats.max_penetration > ctl.gap_tolerance {
+            return false;
+        }
+        let r = extract(model, h, case.mud.density_kg_m3);
+        let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+        let rest = length(&node_runs(case, model, &r));
+        tracing::info!(equilibrium = eq, straight_m = rest, "buckled re-solve converged");
+        eq <= HELIX_EQUILIBRIUM && rest < length(straight)
+    };
+    let (kept, work) = helix::solve_from_helix(model, &sol.state, axial, straight, &left, accept);
+    match kept {
+        Some(mut h) => {
+            // the kept solve's own work is in `work`
+            h.stats = SolveStats {
+                iterations: 0,
+                factorizations: 0,
+                seconds: 0.0,
+                helix_restart: Some(true),
+                wob_continuation_n: sol.stats.wob_continuation_n,
+                ..h.stats
+            };
+            h.stats.add_work(&sol.stats);
+            h.stats.add_work(&work);
+            h
+        }
+        None => {
+            sol.stats.add_work(&work);
+            sol.stats.helix_restart = Some(false);
+            sol
+        }
+    }
+}
+
+/// The runs of `results` (of `model`, the whole string of `case`) beyond the helical onset
+/// where the string lies straight, as node index ranges (from the bit, inclusive).
+fn node_runs(case: &Case, model: &Model, results: &SolveResults) -> Vec<(usize, usize)> {
+    let marks = stiff_marks(case, model, &results.nodes);
+    unbuckled_helical_runs(&marks, &results.nodes)
+        .into_iter()
+        .filter_map(|(top, bottom)| {
+            let inside: Vec<usize> = (0..results.nodes.len())
+                .filter(|&i| results.nodes[i].md_m >= top - 1e-9 && results.nodes[i].md_m <= bottom + 1e-9)
+                .collect();
+            Some((*inside.first()?, *inside.last()?))
+        })
+        .collect()
 }
 
 /// Run `case` at the level of `choice` with solver controls `ctl`.

@@ -25,6 +25,12 @@ pub const BUCKLING_COLUMNS: &str = "sinusoidal_onset_kN,helical_onset_kN,bucklin
 /// soft-string rows).
 pub const TILT_COLUMNS: &str = "tilt_high_deg,tilt_right_deg";
 
+/// Columns appended to `string.csv` after the tilt columns: Mitchell's helical contact force
+/// per length `r F^2 / (4 EI)` where the compression exceeds the helical onset (0 below it,
+/// empty where the component cannot buckle), N/m: the wall force a helix adds
+/// ([`crate::models::buckling::Mark::helical_wall_force_n_per_m`]).
+pub const HELIX_COLUMNS: &str = "helical_wall_force_N_per_m";
+
 /// Contacts reported in the summary: nodes with a normal force above this, N.
 pub const CONTACT_THRESHOLD_N: f64 = 1.0;
 
@@ -553,13 +559,17 @@ pub fn string_csv(case: &Case, s: &StringSolve) -> Result<String, String> {
     if rows.len() != s.marks.len() {
         return Err(format!("{} rows but {} buckling marks", rows.len(), s.marks.len()));
     }
-    let mut out = format!("{STRING_HEADER},{BUCKLING_COLUMNS},{TILT_COLUMNS}\n");
+    let mut out = format!("{STRING_HEADER},{BUCKLING_COLUMNS},{TILT_COLUMNS},{HELIX_COLUMNS}\n");
     for ((row, m), tilt) in rows.iter().zip(&s.marks).zip(&tilts) {
         out.push_str(row);
         out.push(',');
         out.push_str(&mark_cells(m)?);
         out.push(',');
         out.push_str(tilt);
+        out.push(',');
+        if let Some(w) = m.helical_wall_force_n_per_m {
+            out.push_str(&num(w, 2)?);
+        }
         out.push('\n');
     }
     Ok(out)

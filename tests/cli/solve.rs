@@ -60,7 +60,9 @@ fn fidelity_cli_levels_write_the_interface_files() {
         let mut lines = csv.lines();
         let header = lines.next().unwrap();
         assert!(header.starts_with("md_m,north_m,east_m,tvd_m,disp_high_mm,disp_right_mm,clearance_mm,contact_force_kN,contact_angle_deg,axial_force_kN,torque_kNm,bending_moment_kNm,von_mises_MPa,"));
-        assert!(header.ends_with(",sinusoidal_onset_kN,helical_onset_kN,buckling,tilt_high_deg,tilt_right_deg"));
+        assert!(header.ends_with(
+            ",sinusoidal_onset_kN,helical_onset_kN,buckling,tilt_high_deg,tilt_right_deg,helical_wall_force_N_per_m"
+        ));
         let n = header.split(',').count();
         let mut rows = 0;
         for l in lines {

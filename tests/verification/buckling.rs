@@ -185,58 +185,161 @@ fn post_buckled_pipe_lies_on_the_wall_beyond_the_helical_load() {
     assert!(spread > 60.0, "contact roll only {spread} deg beyond the helical load");
 }
 
-/// The stiff solve of a string of 5 in pipe compressed far beyond the helical onset in a
-/// near-vertical hole (0.5 deg, 100 kN on the bit, 8.5 in hole, no friction) converges to the
-/// straight pipe lying on the low side, an equilibrium past its stability limit: its wall force
-/// per length is the weight's lateral share, about 2 N/m (15 N/m over the 30 m above the bit,
-/// with the bit's end contact), where Mitchell's helical contact force `r F^2 / (4 EI)` is 14-80
-/// N/m (80 N/m there; asserted: below half of it). Reference: Mitchell (1988) for the size of the
-/// force missed. The outputs must say so: a warning naming the run beyond the helical onset
-/// where the contacts stay on one side (issue 16; no such warning on the example wells, whose
-/// answers are checked elsewhere).
-#[test]
-fn an_unbuckled_solve_beyond_the_helical_onset_is_flagged() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
-    use drillpath::models::levels::solve_string;
-    let survey = "md_m,inc_deg,azi_deg\n0,0,0\n10,0.5,0\n1000,0.5,0\n";
+/// The 5 in pipe body ([`DRILL_PIPE_BODY`]) below a 0.3 m bit (5 in, no stabilizer) in a
+/// straight 8.5 in hole `length_m` long of inclination `inc_deg` (a hole at 0.5 deg turns from
+/// vertical over the first 10 m; a steeper one starts at the surface), 1.2 sg mud, sliding
+/// with `wob_kn` on the bit and wall friction `friction`, elements of `element` (e.g. "1 m";
+/// None: the default mesh).
+fn straight_hole_case(inc_deg: f64, length_m: f64, wob_kn: f64, friction: f64, element: Option<&str>) -> Case {
+    let survey = if inc_deg < 1.0 {
+        format!("md_m,inc_deg,azi_deg\n0,0,0\n10,{inc_deg},0\n{length_m},{inc_deg},0\n")
+    } else {
+        format!("md_m,inc_deg,azi_deg\n0,{inc_deg},0\n{length_m},{inc_deg},0\n")
+    };
+    let mesh = element.map_or(String::new(), |e| format!("element_length = \"{e}\"\n"));
     let text = format!(
         r#"
 [well]
 survey = "survey.csv"
-hole = [{{ to_md = "1000 m", diameter = "8.5 in" }}]
+hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
 mode = "sliding"
-bit_md = "1000 m"
-wob = "100 kN"
-friction = 0.0
+bit_md = "{length_m} m"
+wob = "{wob_kn} kN"
+friction = {friction}
 [[string]]
 type = "bit"
 od = "5 in"
 length = "0.3 m"
 {DRILL_PIPE_BODY}[solver]
-element_length = "1 m"
-"#
+{mesh}"#
     );
-    let case = load_temp_case(survey, &text);
+    load_temp_case(&survey, &text)
+}
+
+/// The whole-string `solve` of `case` (with its outputs' warnings).
+fn whole_solve(case: &Case) -> drillpath::models::levels::StringSolve {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
     let ctl = SolveControls::from_settings(&case.solver);
-    let s = solve_string(
-        &case,
+    drillpath::models::levels::solve_string(
+        case,
         choose(Fidelity::Level(Level::Whole), Purpose::Solve),
         &ctl,
         &mut |_, _, _| {},
     )
-    .unwrap();
+    .unwrap()
+}
+
+/// Mean wall force per length (N/m) and mean compression (N) of the reported nodes of `s`
+/// strictly between `top_md` and `bottom_md` (m): the nodes' wall forces over the window's
+/// length.
+fn window(s: &drillpath::models::levels::StringSolve, top_md: f64, bottom_md: f64) -> (f64, f64) {
+    let sel: Vec<_> = s
+        .reported_nodes()
+        .iter()
+        .filter(|n| n.md_m > top_md && n.md_m < bottom_md)
+        .collect();
+    let wall = sel.iter().map(|n| n.contact_force_n).sum::<f64>() / (bottom_md - top_md);
+    let f = -sel.iter().map(|n| n.axial_force_n).sum::<f64>() / sel.len() as f64;
+    (wall, f)
+}
+
+/// Issue 16, the straight branch left: 5 in pipe compressed far beyond the helical onset in a
+/// near-vertical hole (0.5 deg, 100 kN on the bit, 8.5 in hole, no friction). The Newton solve
+/// first finds the straight pipe on the low side (about 2 N/m of wall force, an equilibrium past
+/// its stability limit); the solve then re-solves from a helix along the wall
+/// (`models::fem::solve::helix`) and keeps the buckled equilibrium. Reference: Mitchell (1988),
+/// helical contact force per length `w_c = r F^2 / (4 EI)` in a vertical hole; tolerance 15%
+/// (the issue) in two 100 m windows (compression about 87 and 40 kN: measured -7% and 0%).
+/// Equilibrium within 1e-6 of the largest force, penetration within the gap tolerance, and no
+/// warning of an unbuckled run.
+#[test]
+fn vertical_helix_wall_force_within_15_percent_of_mitchell() {
+    let case = straight_hole_case(0.5, 1000.0, 100.0, 0.0, Some("1 m"));
+    let s = whole_solve(&case);
     assert!(s.level.converged);
+    let fem = s.level.fem.as_ref().unwrap();
+    assert_eq!(fem.stats.helix_restart, Some(true));
+    let res = &fem.results;
+    assert!(res.force_imbalance_n.norm() / res.largest_force_n < 1e-6);
+    assert!(fem.stats.max_penetration <= case.solver.tolerance);
     let (ei, _, r) = pipe_properties();
-    let nodes = s.reported_nodes();
-    let near_bit: Vec<_> = nodes.iter().filter(|n| n.md_m > 960.0 && n.md_m < 990.0).collect();
-    let wall = near_bit.iter().map(|n| n.contact_force_n).sum::<f64>() / 30.0;
-    let f = -near_bit.iter().map(|n| n.axial_force_n).sum::<f64>() / near_bit.len() as f64;
+    for (a, b) in [(890.0, 990.0), (700.0, 800.0)] {
+        let (wall, f) = window(&s, a, b);
+        let mitchell = r * f * f / (4.0 * ei);
+        println!(
+            "{a}-{b} m: compression {:.1} kN, wall force {wall:.1} N/m, Mitchell {mitchell:.1} N/m",
+            f / 1e3
+        );
+        assert!((wall / mitchell - 1.0).abs() < 0.15, "{a}-{b} m: {wall} vs {mitchell}");
+    }
+    let w = s.warnings(&case);
+    assert!(!w.iter().any(|x| x.contains("unbuckled")), "{w:?}");
+}
+
+/// Issue 16, inclined and horizontal holes: 600 m of 5 in pipe in a straight hole at 90 and
+/// 60 deg from the surface, no friction, compressed uniformly (90 deg) by 280 and 460 kN (1.2
+/// and 2.0 x the Chen-Lin-Cheatham helical onset, 231 kN) or 300 kN at 60 deg, on the default
+/// mesh (3 m elements: the solve splits them to an eighth of the helix pitch, 2.3-1.8 m).
+/// Reference: Mitchell's helical contact force `w_c = r F^2 / (4 EI)` taken as the mean wall
+/// force per length in an inclined hole too: the helix's wall force far exceeds the weight's
+/// lateral share `w_b sin I` (241 N/m; w_c 700-1900 N/m), whose projection on the turning
+/// contact normal averages out over a pitch (Mitchell, "Simple frictional analysis of helical
+/// buckling of tubing", SPE Drilling Engineering 1986, the form for a helix that wraps fully
+/// round; \[uncertain] as a statement of that paper's inclined-hole result: the additive form
+/// `w_c + w_b sin I` of some torque-and-drag codes lies 11-34% above the measured means).
+/// Tolerance 15% over 100 m windows away from the ends; measured within 4%.
+#[test]
+fn inclined_helix_wall_force_within_15_percent_of_mitchell() {
+    let (ei, _, r) = pipe_properties();
+    for (inc, wob) in [(90.0, 280.0), (90.0, 460.0), (60.0, 300.0)] {
+        let case = straight_hole_case(inc, 600.0, wob, 0.0, None);
+        let t0 = std::time::Instant::now();
+        let s = whole_solve(&case);
+        let fem = s.level.fem.as_ref().unwrap();
+        assert!(s.level.converged, "{inc} deg, {wob} kN");
+        assert_eq!(fem.stats.helix_restart, Some(true), "{inc} deg, {wob} kN");
+        let res = &fem.results;
+        assert!(res.force_imbalance_n.norm() / res.largest_force_n < 1e-6);
+        assert!(fem.stats.max_penetration <= case.solver.tolerance);
+        for (a, b) in [(450.0, 550.0), (250.0, 350.0)] {
+            let (wall, f) = window(&s, a, b);
+            let mitchell = r * f * f / (4.0 * ei);
+            println!(
+                "{inc} deg, {wob} kN, {a}-{b} m: compression {:.1} kN, wall force {wall:.1} N/m, Mitchell {mitchell:.1} N/m ({} nodes, {:.2} s)",
+                f / 1e3,
+                fem.model.nodes(),
+                t0.elapsed().as_secs_f64()
+            );
+            assert!(
+                (wall / mitchell - 1.0).abs() < 0.15,
+                "{inc} deg {wob} kN {a}-{b} m: {wall} vs {mitchell}"
+            );
+        }
+    }
+}
+
+/// A limit (issue 16): with wall friction the re-solve from a helix does not converge (the
+/// friction path stops at about 0.9 of the friction in this case) and the answer stays the
+/// straight pipe past its stability limit: 5 in pipe at 100 kN in the near-vertical hole of
+/// [`vertical_helix_wall_force_within_15_percent_of_mitchell`] with friction 0.3. Its wall
+/// force per length is the weight's lateral share (about 4 N/m, below half Mitchell's `r F^2 /
+/// (4 EI)`, 68 N/m) and the outputs say so: a warning names the run beyond the helical onset
+/// where the contacts stay on one side (no such warning on the example wells, whose answers are
+/// checked elsewhere). Update this test when the helix is reached with friction.
+#[test]
+fn an_unbuckled_solve_beyond_the_helical_onset_is_flagged() {
+    let case = straight_hole_case(0.5, 1000.0, 100.0, 0.3, Some("1 m"));
+    let s = whole_solve(&case);
+    assert!(s.level.converged);
+    assert_eq!(s.level.fem.as_ref().unwrap().stats.helix_restart, Some(false));
+    let (ei, _, r) = pipe_properties();
+    let (wall, f) = window(&s, 890.0, 990.0);
     let mitchell = r * f * f / (4.0 * ei);
     println!(
-        "960-990 m: compression {:.1} kN, wall force {wall:.1} N/m, Mitchell {mitchell:.1} N/m",
+        "890-990 m: compression {:.1} kN, wall force {wall:.1} N/m, Mitchell {mitchell:.1} N/m",
         f / 1e3
     );
     assert!(

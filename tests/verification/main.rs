@@ -8,6 +8,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod acceptance_grid;
 mod architecture;
 mod blade;
 mod buckling;

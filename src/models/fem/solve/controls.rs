@@ -18,6 +18,12 @@ pub struct SolveControls {
     /// Wall-clock limit of one solve, s: a solve still iterating then stops unconverged
     /// ([`super::SolveStats::timed_out`]).
     pub time_limit_s: f64,
+    /// Pseudo-transient damping of the interior-point Newton, N/m: a stiffness added to both
+    /// lateral translations of every node, falling with the residual (`d_k = d_0 r_k / r_0`,
+    /// switched-evolution relaxation) so that it vanishes at convergence and leaves the
+    /// equilibrium unchanged. It makes the steps of an indefinite tangent (a string past its
+    /// buckling load) go downhill in energy; 0 (the default) for a plain Newton.
+    pub lateral_damping_n_per_m: f64,
 }
 
 impl SolveControls {
@@ -43,6 +49,7 @@ impl Default for SolveControls {
             method: Method::Newton,
             alpha: 0.7,
             time_limit_s: crate::case::solver::DEFAULT_TIME_LIMIT_S,
+            lateral_damping_n_per_m: 0.0,
         }
     }
 }

@@ -144,6 +144,9 @@ struct InteriorPointNewton<'a> {
     gaps: GapTreatment,
     /// The tangent and its factor.
     lin: MatrixAndFactor,
+    /// The outer residual of the first step (the reference of the pseudo-transient damping,
+    /// [`SolveControls::lateral_damping_n_per_m`]).
+    first_residual: Option<f64>,
 }
 
 impl<'a> InteriorPointNewton<'a> {
@@ -188,6 +191,7 @@ impl<'a> InteriorPointNewton<'a> {
             constrained,
             gaps,
             lin: MatrixAndFactor::for_model(model),
+            first_residual: None,
         }
     }
 
@@ -273,6 +277,7 @@ impl<'a> InteriorPointNewton<'a> {
         lz: &Linearization,
         stats: &mut SolveStats,
     ) -> Result<bool, SolveError> {
+        self.add_damping(lz.measures.rn);
         let model = self.model;
         let qidx = &self.contacts.qidx;
         // circle stiffness of the current contact forces
@@ -326,6 +331,23 @@ impl<'a> InteriorPointNewton<'a> {
             state.multipliers[i] = if rj > 1e-9 * self.scale { rj } else { 0.0 };
         }
         Ok(likely)
+    }
+
+    /// Add the pseudo-transient damping at the outer residual `rn` to both lateral
+    /// translations of every node ([`SolveControls::lateral_damping_n_per_m`]).
+    fn add_damping(&mut self, rn: f64) {
+        let d0 = self.ctl.lateral_damping_n_per_m;
+        if d0 <= 0.0 {
+            return;
+        }
+        let r0 = *self.first_residual.get_or_insert(rn);
+        let d = d0 * (rn / r0).min(1.0);
+        let sink = self.lin.sink();
+        for i in 0..self.model.nodes() {
+            for k in [1, 2] {
+                sink.add_block(&[self.model.dof(i, k)], &[d], 1);
+            }
+        }
     }
 
     /// The final evaluation of `state`, whose last evaluation is `ev`: contacts with force are

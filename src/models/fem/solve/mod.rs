@@ -28,6 +28,7 @@ pub mod continuation;
 pub mod controls;
 pub mod convergence;
 pub mod gap_springs;
+pub mod helix;
 pub mod hook_load_system;
 pub mod interior_point;
 pub mod interior_point_newton;

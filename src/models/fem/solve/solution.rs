@@ -29,6 +29,10 @@ pub struct SolveStats {
     /// share of the model's friction it reached (1 when the solution came from it); None when
     /// none ran or its frictionless start failed.
     pub friction_continuation: Option<f64>,
+    /// Whether a re-solve from a helix along the wall followed a converged solve that lay
+    /// straight beyond the helical onset (`models::levels`, [`super::helix`]): `Some(true)` kept
+    /// (the answer is the buckled string), `Some(false)` tried and not kept; None when none ran.
+    pub helix_restart: Option<bool>,
 }
 
 impl SolveStats {

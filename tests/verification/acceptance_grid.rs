@@ -1,0 +1,268 @@
+//! The acceptance grid of issue 16: `--fidelity whole` must converge (equilibrium within 1e-6
+//! of the largest force, no NaN) in every case where `soft` gives a non-negative hook load, on
+//! uphill laterals at 88, 90, 92, 95, 100, 110 and 120 deg, 1,000 and 2,000 m long, drilling at
+//! 20/60/120 kN and sliding at 20/60 kN, friction 0.2 and 0.35.
+//!
+//! The well ([`grid_case`]): vertical to 1,000 m, a 6 deg/30 m build (stations every 10 m) to
+//! the lateral's inclination, the lateral held there; 12.25 in casing to the landing point,
+//! 8.5 in open hole below; bit, 1/16 in under-gauge near-bit stabilizer, 54 m of 6.5 in
+//! collars, 5 in pipe with tool joints; 1.2 sg mud; drilling at 60 rpm and 12 m/h, sliding at
+//! 12 m/h; the default mesh (3 m pipe elements, 1 m in the assembly).
+//!
+//! The default test run solves [`SUBSET`] (cases that converge, a few seconds each). The whole
+//! grid runs with
+//! `cargo test --release --test verification acceptance_grid::full_grid -- --ignored --nocapture`
+//! (one line per case: soft hook load, whole converged, equilibrium, seconds, helix re-solve;
+//! the count at the end; it fails while a case with a non-negative soft hook load does not
+//! converge). With `DRILLPATH_GRID_CASES=<dir>` it also writes every case (`<dir>/<name>/
+//! case.toml` and `survey.csv`) so any build of the CLI can be timed on them
+//! (docs/performance.md, "Acceptance grid").
+
+use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
+use drillpath::models::fem::solve::SolveControls;
+use drillpath::models::levels::{run, solve_string};
+use std::fmt::Write;
+use std::time::Instant;
+
+use crate::common::{collar, load_temp_case, stabilizer, BIT, DRILL_PIPE};
+
+/// Inclinations of the grid's laterals, deg.
+pub const INCLINATIONS_DEG: [f64; 7] = [88.0, 90.0, 92.0, 95.0, 100.0, 110.0, 120.0];
+/// Lateral lengths, m.
+pub const LATERALS_M: [f64; 2] = [1000.0, 2000.0];
+/// Operations: mode and WOB, kN.
+pub const OPERATIONS: [(&str, f64); 5] = [
+    ("drilling", 20.0),
+    ("drilling", 60.0),
+    ("drilling", 120.0),
+    ("sliding", 20.0),
+    ("sliding", 60.0),
+];
+/// Wall friction coefficients.
+pub const FRICTIONS: [f64; 2] = [0.2, 0.35];
+
+/// One case of the grid.
+#[derive(Debug, Clone, Copy)]
+pub struct GridCase {
+    /// Lateral inclination, deg.
+    pub inc_deg: f64,
+    /// Lateral length, m.
+    pub lateral_m: f64,
+    /// `drilling` or `sliding`.
+    pub mode: &'static str,
+    /// WOB, kN.
+    pub wob_kn: f64,
+    /// Wall friction.
+    pub friction: f64,
+}
+
+impl GridCase {
+    /// A short name (directory of the written case).
+    pub fn name(&self) -> String {
+        format!(
+            "inc{}_lat{}_{}{}_mu{}",
+            self.inc_deg, self.lateral_m, self.mode, self.wob_kn, self.friction
+        )
+    }
+}
+
+/// The survey CSV and case file of `g` (module docs).
+pub fn grid_case(g: &GridCase) -> (String, String) {
+    let kop = 1000.0;
+    let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
+    let build = g.inc_deg / 6.0 * 30.0;
+    let n = (build / 10.0_f64).ceil() as usize;
+    for k in 1..=n {
+        let f = k as f64 / n as f64;
+        writeln!(csv, "{},{},0", kop + f * build, f * g.inc_deg).unwrap();
+    }
+    let landing = kop + build;
+    let td = landing + g.lateral_m;
+    writeln!(csv, "{td},{},0", g.inc_deg).unwrap();
+    let rpm = if g.mode == "drilling" { "rpm = 60\n" } else { "" };
+    let toml = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "{landing} m", diameter = "12.25 in" }}, {{ to_md = "{td} m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "{}"
+bit_md = "{td} m"
+wob = "{} kN"
+{rpm}rop = "12 m/h"
+friction = {}
+{BIT}{}{}{DRILL_PIPE}"#,
+        g.mode,
+        g.wob_kn,
+        g.friction,
+        stabilizer("8.4375 in"),
+        collar("54 m")
+    );
+    (csv, toml)
+}
+
+/// Every case of the grid, in order.
+pub fn grid() -> Vec<GridCase> {
+    let mut out = Vec::new();
+    for &inc_deg in &INCLINATIONS_DEG {
+        for &lateral_m in &LATERALS_M {
+            for &(mode, wob_kn) in &OPERATIONS {
+                for &friction in &FRICTIONS {
+                    out.push(GridCase {
+                        inc_deg,
+                        lateral_m,
+                        mode,
+                        wob_kn,
+                        friction,
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// What one grid case gave.
+pub struct Outcome {
+    /// The soft string's hook load, kN.
+    pub soft_hook_kn: f64,
+    /// The whole string converged with equilibrium within 1e-6 of the largest force and a
+    /// finite hook load.
+    pub converged: bool,
+    /// The whole string's hook load, kN (NaN without one).
+    pub whole_hook_kn: f64,
+    /// Wall-clock time of the whole-string `solve`, s.
+    pub seconds: f64,
+    /// Whether the helix re-solve ran and was kept.
+    pub helix: Option<bool>,
+}
+
+/// Solve `g` at `soft` and at `whole` (as `drillpath solve --fidelity whole` does).
+pub fn solve_grid_case(g: &GridCase) -> Outcome {
+    let (csv, toml) = grid_case(g);
+    let case: Case = load_temp_case(&csv, &toml);
+    let ctl = SolveControls::from_settings(&case.solver);
+    let soft = run(&case, choose(Fidelity::Level(Level::Soft), Purpose::Solve), &ctl).unwrap();
+    let t0 = Instant::now();
+    let whole = solve_string(
+        &case,
+        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
+        &ctl,
+        &mut |_, _, _| {},
+    );
+    let seconds = t0.elapsed().as_secs_f64();
+    let (converged, whole_hook_kn, helix) = match &whole {
+        Ok(s) => {
+            let fem = s.level.fem.as_ref().unwrap();
+            let r = &fem.results;
+            let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+            let hook = s.level.hook_load_n.unwrap_or(f64::NAN);
+            (
+                s.level.converged && eq < 1e-6 && hook.is_finite(),
+                hook / 1e3,
+                fem.stats.helix_restart,
+            )
+        }
+        Err(_) => (false, f64::NAN, None),
+    };
+    Outcome {
+        soft_hook_kn: soft.hook_load_n.unwrap() / 1e3,
+        converged,
+        whole_hook_kn,
+        seconds,
+        helix,
+    }
+}
+
+/// The cases of the default test run: one per inclination band and operation kind, each
+/// converging today with a non-negative soft hook load (1,000 m laterals).
+pub const SUBSET: [GridCase; 3] = [
+    GridCase {
+        inc_deg: 88.0,
+        lateral_m: 1000.0,
+        mode: "drilling",
+        wob_kn: 60.0,
+        friction: 0.2,
+    },
+    GridCase {
+        inc_deg: 92.0,
+        lateral_m: 1000.0,
+        mode: "sliding",
+        wob_kn: 20.0,
+        friction: 0.2,
+    },
+    GridCase {
+        inc_deg: 100.0,
+        lateral_m: 1000.0,
+        mode: "drilling",
+        wob_kn: 20.0,
+        friction: 0.35,
+    },
+];
+
+/// Reference: the acceptance criterion of issue 16 (converged, equilibrium within 1e-6 of the
+/// largest force, finite hook load) on [`SUBSET`], each with a non-negative soft hook load;
+/// and the whole string's hook load within 10% of the string's buoyed weight of the soft
+/// string's (the stiff string adds bending drag in the build; a loose check of the same
+/// physics).
+#[test]
+fn subset_of_the_grid_converges() {
+    for g in SUBSET {
+        let o = solve_grid_case(&g);
+        println!(
+            "{}: soft {:.1} kN, whole {} {:.1} kN in {:.2} s (helix {:?})",
+            g.name(),
+            o.soft_hook_kn,
+            o.converged,
+            o.whole_hook_kn,
+            o.seconds,
+            o.helix
+        );
+        assert!(o.soft_hook_kn >= 0.0, "{}: soft hook load {}", g.name(), o.soft_hook_kn);
+        assert!(o.converged, "{} did not converge", g.name());
+        // buoyed weight of about 3,600 m of 5 in pipe and 54 m of collars: > 800 kN
+        assert!((o.whole_hook_kn - o.soft_hook_kn).abs() < 80.0, "{}", g.name());
+    }
+}
+
+/// The whole grid (module docs for the command). Fails while a case with a non-negative soft
+/// hook load does not converge.
+#[test]
+#[ignore]
+fn full_grid() {
+    let write_to = std::env::var_os("DRILLPATH_GRID_CASES").map(std::path::PathBuf::from);
+    let (mut asked, mut ok) = (0, 0);
+    let mut missed = Vec::new();
+    for g in grid() {
+        if let Some(dir) = &write_to {
+            let (csv, toml) = grid_case(&g);
+            let d = dir.join(g.name());
+            std::fs::create_dir_all(&d).unwrap();
+            std::fs::write(d.join("survey.csv"), csv).unwrap();
+            std::fs::write(d.join("case.toml"), toml).unwrap();
+        }
+        let o = solve_grid_case(&g);
+        let applies = o.soft_hook_kn >= 0.0;
+        println!(
+            "GRID {} soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} applies {applies}",
+            g.name(),
+            o.soft_hook_kn,
+            o.converged,
+            o.whole_hook_kn,
+            o.seconds,
+            o.helix
+        );
+        if applies {
+            asked += 1;
+            if o.converged {
+                ok += 1;
+            } else {
+                missed.push(g.name());
+            }
+        }
+    }
+    println!("GRID {ok} of {asked} cases with a non-negative soft hook load converge");
+    assert!(missed.is_empty(), "not converged: {missed:?}");
+}
