@@ -18,6 +18,12 @@ pub struct SolveControls {
     /// Wall-clock limit of one solve, s: a solve still iterating then stops unconverged
     /// ([`super::SolveStats::timed_out`]).
     pub time_limit_s: f64,
+    /// The start is a converged solution carried onto a refined mesh
+    /// ([`crate::models::fem::refine`]): the interior point starts
+    /// [`super::interior_point::CARRIED_START_SHIFT_FACTOR`] times closer to the boundary and
+    /// makes no active-set step (the refined contact runs have pairs with force and gap both
+    /// near zero, which switch sides at every try).
+    pub carried_start: bool,
 }
 
 impl SolveControls {
@@ -43,6 +49,7 @@ impl Default for SolveControls {
             method: Method::Newton,
             alpha: 0.7,
             time_limit_s: crate::case::solver::DEFAULT_TIME_LIMIT_S,
+            carried_start: false,
         }
     }
 }
