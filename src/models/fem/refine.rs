@@ -140,9 +140,8 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
 /// The state of `prev` on `model` (a refinement of `prev_model`): an old node keeps its state;
 /// a new node lies on the cubic (Hermite) curve of its element through the end nodes'
 /// positions and section axes, its triad interpolated and turned onto that curve. The contact
-/// forces are spread along the runs ([`spread_run_forces`]; the total wall force is unchanged):
-/// a new node between two touching nodes takes its share of the run's line load, a new node
-/// beside a free node none.
+/// forces are spread along the runs, the total wall force unchanged: a new node between two
+/// touching nodes takes its share of the run's line load, a new node beside a free node none.
 pub fn carried_state(prev_model: &Model, prev: &State, model: &Model) -> State {
     let mut st = transport_mapped(prev_model, prev, model, |i| {
         source_by_distance(prev_model, model.mesh.nodes[i].s_m)
