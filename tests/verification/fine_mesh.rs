@@ -229,3 +229,55 @@ fn contact_refinement_puts_coarse_meshes_within_a_tenth_of_a_percent() {
         }
     }
 }
+
+#[test]
+fn carried_state_spreads_the_run_forces_and_keeps_the_total() {
+    // Reference: the plain solve of the pendulum BHA at the default 0.5 m mesh (collars lying on
+    // the low side between contacts). Carried onto its refined mesh, the contact forces must sum
+    // to the same total wall force (to 1e-12 relative: only redistributed), every new node of an
+    // element with both end nodes touching must carry force (its share of the run's line load)
+    // and every other new node none.
+    use drillpath::models::fem::bha::{bha_model, default_cut_m};
+    use drillpath::models::fem::refine::{
+        carried_state, refined_model, tangency_elements, CONTACT_FORCE_N, REFINED_FRACTION,
+    };
+    use drillpath::models::fem::solve::solve;
+    let case = case(&pendulum_with_sensor(), 0.5);
+    let (path, hole, bit) = (&case.well.path, &case.well.hole, case.operation.bit_md_m);
+    let cut = default_cut_m(
+        &case.string,
+        hole.diameter_at(bit),
+        path.point_at(bit).inc_rad,
+        case.mud.density_kg_m3,
+    );
+    let model = bha_model(&case, path, hole, bit, cut);
+    let sol = solve(&model, &SolveControls::from_settings(&case.solver)).unwrap();
+    assert!(sol.converged);
+    let h = REFINED_FRACTION * 0.5;
+    let split = tangency_elements(&model, &sol.state, case.string.bha_length_m(), h);
+    assert!(!split.is_empty(), "the pendulum has contact runs to refine");
+    let fine = refined_model(&model, &split, h);
+    let st = carried_state(&model, &sol.state, &fine);
+    let total = |m: &[f64]| m.iter().sum::<f64>();
+    let (before, after) = (total(&sol.state.multipliers), total(&st.multipliers));
+    assert!(
+        (after - before).abs() <= 1e-12 * before,
+        "total wall force {before} N -> {after} N"
+    );
+    let touching = |j: usize| sol.state.multipliers[j] > CONTACT_FORCE_N;
+    let mut spread = 0;
+    for (i, n) in fine.mesh.nodes.iter().enumerate() {
+        let Some(e) = (0..model.nodes() - 1)
+            .find(|&e| model.mesh.nodes[e].s_m + 1e-9 < n.s_m && n.s_m < model.mesh.nodes[e + 1].s_m - 1e-9)
+        else {
+            continue;
+        };
+        if touching(e) && touching(e + 1) {
+            assert!(st.multipliers[i] > 0.0, "new node at {:.2} m carries no force", n.s_m);
+            spread += 1;
+        } else {
+            assert_eq!(st.multipliers[i], 0.0, "new node at {:.2} m beside a free node", n.s_m);
+        }
+    }
+    assert!(spread > 0, "some split element lies on the wall");
+}

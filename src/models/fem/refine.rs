@@ -152,8 +152,9 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
 
 /// The state of `prev` on `model` (a refinement of `prev_model`): an old node keeps its state;
 /// a new node lies on the cubic (Hermite) curve of its element through the end nodes'
-/// positions and section axes, its triad interpolated and turned onto that curve, with no
-/// contact force (the end nodes keep theirs, so the total wall force is unchanged).
+/// positions and section axes, its triad interpolated and turned onto that curve. The contact
+/// forces are spread along the runs, the total wall force unchanged: a new node between two
+/// touching nodes takes its share of the run's line load, a new node beside a free node none.
 pub fn carried_state(prev_model: &Model, prev: &State, model: &Model) -> State {
     let mut st = transport_mapped(prev_model, prev, model, |i| {
         source_by_distance(prev_model, model.mesh.nodes[i].s_m)
@@ -173,7 +174,52 @@ pub fn carried_state(prev_model: &Model, prev: &State, model: &Model) -> State {
         st.triads[i] = turned_onto(&st.triads[i], &tangent);
         st.multipliers[i] = 0.0;
     }
+    spread_run_forces(prev_model, prev, model, &mut st);
     st
+}
+
+/// Half the length of the elements beside node `i` of `model` (its tributary length), m.
+fn tributary_m(model: &Model, i: usize) -> f64 {
+    let n = &model.mesh.nodes;
+    let below = if i > 0 { n[i - 1].s_m } else { n[i].s_m };
+    let above = if i + 1 < n.len() { n[i + 1].s_m } else { n[i].s_m };
+    0.5 * (above - below)
+}
+
+/// Spread the contact forces of `prev` (on `prev_model`) over the new nodes of `model` (a
+/// refinement) in `st`: a new node of an element whose end nodes both touch the wall (a collar
+/// lying on it) takes the smaller of the end nodes' line loads (force over tributary length)
+/// times its own tributary length, taken from the nearer end node, which keeps the rest (the
+/// concentrated part at a run's end). A start whose new nodes carry no force has the
+/// interior point build each refined run's forces from zero.
+fn spread_run_forces(prev_model: &Model, prev: &State, model: &Model, st: &mut State) {
+    let touching = |j: usize| prev.multipliers[j] > CONTACT_FORCE_N;
+    let line_load = |j: usize| prev.multipliers[j] / tributary_m(prev_model, j);
+    // the force given to new nodes, per old node
+    let mut given = vec![0.0; prev_model.nodes()];
+    // the new model's node of each old node that gave force
+    let mut old_at = Vec::new();
+    for i in 0..model.nodes() {
+        let Some(src) = source_by_distance(prev_model, model.mesh.nodes[i].s_m) else {
+            continue;
+        };
+        let (a, b) = (src.node, src.node + 1);
+        if src.weight <= 0.0 {
+            old_at.push((i, a));
+            continue;
+        }
+        if !(touching(a) && touching(b)) {
+            continue;
+        }
+        let f = line_load(a).min(line_load(b)) * tributary_m(model, i);
+        st.multipliers[i] = f;
+        given[if src.weight < 0.5 { a } else { b }] += f;
+    }
+    for (i, j) in old_at {
+        if given[j] > 0.0 {
+            st.multipliers[i] = (prev.multipliers[j] - given[j]).max(0.0);
+        }
+    }
 }
 
 /// Position and unit tangent at fraction `w` along the cubic through nodes `a` and `a + 1` of
@@ -237,6 +283,7 @@ pub fn solve_refined(
     fine.consistent_tangent = true;
     let rest = SolveControls {
         time_limit_s: ctl.time_limit_s - sol.stats.seconds,
+        carried_start: true,
         ..*ctl
     };
     match solve_holding_toolface(&mut fine, &rest, |m| solve_interior_point_from(m, state, &rest)) {

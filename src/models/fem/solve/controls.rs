@@ -24,6 +24,12 @@ pub struct SolveControls {
     /// equilibrium unchanged. It makes the steps of an indefinite tangent (a string past its
     /// buckling load) go downhill in energy; 0 (the default) for a plain Newton.
     pub lateral_damping_n_per_m: f64,
+    /// The start is a converged solution carried onto a refined mesh
+    /// ([`crate::models::fem::refine`]): the interior point starts
+    /// [`super::interior_point::CARRIED_START_SHIFT_FACTOR`] times closer to the boundary and
+    /// makes no active-set step (the refined contact runs have pairs with force and gap both
+    /// near zero, which switch sides at every try).
+    pub carried_start: bool,
 }
 
 impl SolveControls {
@@ -50,6 +56,7 @@ impl Default for SolveControls {
             alpha: 0.7,
             time_limit_s: crate::case::solver::DEFAULT_TIME_LIMIT_S,
             lateral_damping_n_per_m: 0.0,
+            carried_start: false,
         }
     }
 }

@@ -307,10 +307,12 @@ impl<'a> InteriorPointNewton<'a> {
             lam_prev: previous_multipliers(&lz.cols, qidx, &state.multipliers),
             clr: contact_clearances(&lz.cols, ev),
             dofs6: contact_dofs(model, &lz.cols),
+            carried_start: self.ctl.carried_start,
         };
         // the active-set step near convergence, not at the pins' switch (their prescribed
-        // move changes the contact set)
-        let try_active_set = stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL;
+        // move changes the contact set), nor on a refined mesh (its degenerate pairs switch)
+        let try_active_set =
+            stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL && !self.ctl.carried_start;
         let ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
         let cap = step_cap(model, ev, &ip.iterate.du, qidx);
         tracing::debug!(
