@@ -29,6 +29,10 @@ pub enum StiffOutcome {
         seconds: f64,
         /// How the converged solve started.
         start: Start,
+        /// Lock-up: the row's WOB gave the stiff string no equilibrium and its hook load turns
+        /// negative below that WOB, so these loads are at the largest WOB it delivers (its
+        /// hook load zero, found along the WOB path), N; None when they are at the row's WOB.
+        lock_up_wob_n: Option<f64>,
     },
     /// The solver stopped without meeting its criteria: no valid numbers.
     NotConverged {
@@ -46,6 +50,14 @@ impl StiffOutcome {
     pub fn loads(&self) -> Option<&RowLoads> {
         match self {
             StiffOutcome::Converged { loads, .. } => Some(loads),
+            _ => None,
+        }
+    }
+    /// The WOB the loads are at when the row locked up ([`StiffOutcome::Converged`]'s
+    /// `lock_up_wob_n`), N.
+    pub fn lock_up_wob_n(&self) -> Option<f64> {
+        match self {
+            StiffOutcome::Converged { lock_up_wob_n, .. } => *lock_up_wob_n,
             _ => None,
         }
     }

@@ -40,7 +40,7 @@ use crate::case::Case;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, SolveResults};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
+use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::levels::run as run_level;
 use crate::string::DrillString;
@@ -186,6 +186,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
                     sol.stats.iterations,
                     t0.elapsed().as_secs_f64(),
                     start,
+                    None,
                 );
                 return (out, Some((model, sol.state)));
             }
@@ -206,18 +207,54 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
                 iterations + sol.stats.iterations,
                 t0.elapsed().as_secs_f64(),
                 Start::Cold,
+                None,
             );
             (out, Some((model, sol.state)))
         }
-        Ok(sol) => (
-            StiffOutcome::NotConverged {
-                iterations: iterations + sol.stats.iterations,
-                residual: sol.stats.residual_history.last().copied().unwrap_or(f64::NAN),
-            },
-            None,
-        ),
+        Ok(sol) => {
+            let iterations = iterations + sol.stats.iterations;
+            if let Some(out) = at_lock_up(case, &model, &ctl, iterations, t0) {
+                return (out, None);
+            }
+            let residual = sol.stats.residual_history.last().copied().unwrap_or(f64::NAN);
+            (StiffOutcome::NotConverged { iterations, residual }, None)
+        }
         Err(e) => (StiffOutcome::Failed(e.to_string()), None),
     }
+}
+
+/// Lock-up as a row's answer: where the stiff solve of `model` (an on-bottom row of `case`,
+/// WOB-driven) found no equilibrium, the largest WOB with a non-negative hook load along the
+/// WOB path ([`continuation::wob_at_zero_hook_load`], the hook load within 1% of the row's
+/// WOB or 0.5 kN), and the string solved there: the row's loads at that WOB (the converged
+/// solve's; `iterations` before it added). None when the model is not WOB-driven, the hook
+/// load does not turn negative below the row's WOB, or the solve there does not converge.
+fn at_lock_up(
+    case: &Case,
+    model: &Model,
+    ctl: &SolveControls,
+    iterations: usize,
+    t0: std::time::Instant,
+) -> Option<StiffOutcome> {
+    if !continuation::applies(model) {
+        return None;
+    }
+    let tolerance = (0.01 * model.loads.wob_n).max(500.0);
+    let (wob, _) = continuation::wob_at_zero_hook_load(model, ctl, tolerance)?;
+    let mut c = case.clone();
+    c.operation.wob_n = wob;
+    let mut m = Model::from_case(&c);
+    let sol = solve_holding_toolface(&mut m, ctl, |m| solve(m, ctl)).ok()?;
+    if !sol.converged {
+        return None;
+    }
+    tracing::info!(
+        wob_n = wob,
+        "lock-up: the row's loads at the largest WOB the string delivers"
+    );
+    let seconds = t0.elapsed().as_secs_f64();
+    let its = iterations + sol.stats.iterations;
+    Some(converged(&c, &m, &sol, its, seconds, Start::Cold, Some(wob)))
 }
 
 fn top_radius(case: &Case) -> f64 {
@@ -232,6 +269,7 @@ fn converged(
     iterations: usize,
     seconds: f64,
     start: Start,
+    lock_up_wob_n: Option<f64>,
 ) -> StiffOutcome {
     let res = extract(model, sol, case.mud.density_kg_m3);
     let friction_torque_nm = rotating_friction_torque(model, &res, model.nodes() - 1);
@@ -252,6 +290,7 @@ fn converged(
         iterations,
         seconds,
         start,
+        lock_up_wob_n,
     }
 }
 
@@ -350,6 +389,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
         iterations,
         seconds: t0.elapsed().as_secs_f64(),
         start: Start::Cold,
+        lock_up_wob_n: None,
     }
 }
 

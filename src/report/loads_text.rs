@@ -169,6 +169,22 @@ fn print_stiff_summary(
             bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
         )?;
     }
+    let locked: Vec<String> = rows
+        .iter()
+        .filter_map(|r| {
+            let wob = r.stiff.as_ref()?.lock_up_wob_n()?;
+            let depth = units.depth().fmt(r.bit_md_m, 0);
+            Some(format!("{depth} {} at {}", r.mode.name(), units.force().fmt(wob, 1)))
+        })
+        .collect();
+    if !locked.is_empty() {
+        writeln!(
+            out,
+            "  WARNING: lock-up: {} stiff rows find no equilibrium at their WOB; their stiff numbers are at the largest WOB the string delivers, hook load zero (stiff_lock_up_wob_kN): {}",
+            locked.len(),
+            locked.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+        )?;
+    }
     Ok(())
 }
 

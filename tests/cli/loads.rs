@@ -189,14 +189,18 @@ fn fidelity_options_are_checked_and_reported() {
     let stdout = &out.stdout;
     assert!(stdout.contains("fidelity hybrid: requested"), "{stdout}");
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
-    assert!(csv.lines().next().unwrap().ends_with(",stiff_model"));
+    assert!(csv
+        .lines()
+        .next()
+        .unwrap()
+        .ends_with(",stiff_model,stiff_lock_up_wob_kN"));
     assert_eq!(
         csv.lines()
             .filter(|l| l.ends_with(",converged,") || l.contains(",converged,"))
             .count(),
         2 * 5
     );
-    assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid")), "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid,")), "{csv}");
     // [solver] fidelity = "whole" in the case runs the whole string; auto runs soft and says why
     let whole = format!("{}[solver]\nfidelity = \"whole\"\n", *CASE);
     std::fs::write(dir.path().join("case.toml"), &whole).unwrap();
@@ -215,7 +219,7 @@ fn fidelity_options_are_checked_and_reported() {
     );
     assert!(out.success(), "{}", out.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
-    assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole")), "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole,")), "{csv}");
     // stdout prints a second table with the stiff values: its last line (1,000 m) shows the
     // stiff trip-out hook load of loads.csv (reference: the CSV, to the printed 0.1 kN), which
     // differs from the soft one printed in the first table

@@ -105,3 +105,43 @@ fn beyond_lock_up_solve_answers_at_the_largest_wob_the_string_delivers() {
     assert!(hook >= 0.0 && hook < 0.02 * l.max_wob_n, "hook load {hook}");
     assert!(at > 0.8 * l.max_wob_n && at < l.max_wob_n, "{at} vs {}", l.max_wob_n);
 }
+
+#[test]
+fn beyond_lock_up_a_loads_row_answers_at_the_largest_wob_the_string_delivers() {
+    // The `loads` stiff row of the same slid horizontal asked for 114 kN (the whole string
+    // finds no equilibrium there): converged at the largest WOB with a non-negative hook load.
+    // References: the hook load there within 2% of that WOB of zero (the lock-up's own
+    // definition); the soft string (an independent model, without bending drag) not locked up
+    // at that WOB and locked up at 1.25 times it (the stiff string locks up a little earlier).
+    use drillpath::loads::row::StiffOutcome;
+    use drillpath::loads::stiff::stiff_row;
+    use drillpath::models::softstring;
+    let mut case = case(114.0);
+    case.solver.max_iterations = 100;
+    let (out, _) = stiff_row(&case, None);
+    let StiffOutcome::Converged {
+        loads, lock_up_wob_n, ..
+    } = &out
+    else {
+        panic!("not converged: {out:?}");
+    };
+    let wob = lock_up_wob_n.expect("the row flags its lock-up WOB");
+    let soft_hook = |wob_n: f64| {
+        let mut c = case.clone();
+        c.operation.wob_n = wob_n;
+        softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n
+    };
+    println!(
+        "row: lock-up at {:.1} kN, hook load {:.2} kN; soft hook load there {:.1} kN, at 1.25 x {:.1} kN",
+        wob / 1e3,
+        loads.hook_load_n / 1e3,
+        soft_hook(wob) / 1e3,
+        soft_hook(1.25 * wob) / 1e3
+    );
+    assert!(
+        loads.hook_load_n >= 0.0 && loads.hook_load_n < 0.02 * wob,
+        "{}",
+        loads.hook_load_n
+    );
+    assert!(soft_hook(wob) >= 0.0 && soft_hook(1.25 * wob) < 0.0, "{wob}");
+}
