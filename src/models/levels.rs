@@ -266,6 +266,7 @@ fn off_the_straight_branch(case: &Case, model: Model, sol: Solution, ctl: &Solve
     };
     again.stats.add_work(&sol.stats);
     again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
+    again.stats.friction_continuation = sol.stats.friction_continuation;
     let results = extract(&fine, &again, case.mud.density_kg_m3);
     let straight = node_runs(case, &fine, &results);
     let axial: Vec<f64> = results.nodes.iter().map(|n| n.axial_force_n).collect();
@@ -317,6 +318,7 @@ fn buckled_or_straight(
                 seconds: 0.0,
                 helix_restart: Some(true),
                 wob_continuation_n: sol.stats.wob_continuation_n,
+                friction_continuation: sol.stats.friction_continuation,
                 ..h.stats
             };
             h.stats.add_work(&sol.stats);
