@@ -29,6 +29,30 @@ pub const STEP_GROWTH: f64 = 1.5;
 /// string that cannot take more WOB, or a jump to another buckled shape) and stops.
 pub const MIN_STEP_FRACTION: f64 = 1e-3;
 
+/// How a path steps: its first step and smallest step (in the path parameter, which runs to
+/// 1), the iteration limit of one step, and the growth of the step after a converged one (a
+/// step that does not converge is halved).
+#[derive(Debug, Clone, Copy)]
+pub struct PathSteps {
+    /// First step.
+    pub first: f64,
+    /// Smallest step: below it the path stops.
+    pub smallest: f64,
+    /// Newton iterations allowed to one step.
+    pub step_iterations: usize,
+    /// Factor on the step after a converged one.
+    pub growth: f64,
+}
+
+/// The WOB and friction paths' steps: [`START_FRACTION`], [`MIN_STEP_FRACTION`],
+/// [`STEP_ITERATIONS`], [`STEP_GROWTH`].
+pub const CONTINUATION_STEPS: PathSteps = PathSteps {
+    first: START_FRACTION,
+    smallest: MIN_STEP_FRACTION,
+    step_iterations: STEP_ITERATIONS,
+    growth: STEP_GROWTH,
+};
+
 /// Whether the continuation applies to `model`: a WOB-driven model with a positive WOB.
 pub fn applies(model: &Model) -> bool {
     model.loads.hook_load_n.is_none() && model.loads.wob_n > 0.0
@@ -58,7 +82,7 @@ fn first_step(start: &Model, model: &Model, ctl: &SolveControls) -> Result<(Solu
 }
 
 /// `model` with its wall friction times `share`.
-fn with_friction(model: &Model, share: f64) -> Model {
+pub(crate) fn with_friction(model: &Model, share: f64) -> Model {
     let mut m = model.clone();
     m.friction.iter_mut().for_each(|f| *f *= share);
     m
@@ -82,6 +106,7 @@ pub fn solve_by_wob_continuation(model: &Model, ctl: &SolveControls) -> Result<O
         first,
         START_FRACTION,
         ctl,
+        CONTINUATION_STEPS,
         t0,
     );
     Ok(Some((sol, share * target)))
@@ -106,35 +131,35 @@ pub fn solve_by_friction_continuation(
         return Ok(None);
     }
     let at = |share: f64| with_friction(&consistent, share);
-    Ok(Some(follow_path(at, first, 0.0, ctl, t0)))
+    Ok(Some(follow_path(at, first, 0.0, ctl, CONTINUATION_STEPS, t0)))
 }
 
-/// Follow a path of models `at(t)` from `t = from` (whose solution is `first`) to `t = 1`:
-/// steps of [`START_FRACTION`] at first, each solved from the previous equilibrium within
-/// [`STEP_ITERATIONS`], halved after a failure and grown by [`STEP_GROWTH`] after a success,
-/// until `t = 1`, a step below [`MIN_STEP_FRACTION`], or `ctl`'s iteration limit (all steps
-/// together, `first`'s included) or time limit (from `t0`). Returns the last converged solution
-/// (flagged converged only at `t = 1`, its statistics the whole path's) and its `t`.
-fn follow_path(
+/// Follow a path of models `at(t)` from `t = from` (whose solution is `first`) to `t = 1` in
+/// the steps of `steps`, each solved from the previous equilibrium, until `t = 1`, a step
+/// below `steps.smallest`, or `ctl`'s iteration limit (all steps together, `first`'s included)
+/// or time limit (from `t0`). Returns the last converged solution (flagged converged only at
+/// `t = 1`, its statistics the whole path's) and its `t`.
+pub(crate) fn follow_path(
     at: impl Fn(f64) -> Model,
     first: Solution,
     from: f64,
     ctl: &SolveControls,
+    steps: PathSteps,
     t0: Instant,
 ) -> (Solution, f64) {
     let mut t = from;
     let mut sol = first;
     let mut iterations = sol.stats.iterations;
     let mut factorizations = sol.stats.factorizations;
-    let mut step = START_FRACTION;
-    while t < 1.0 && step >= MIN_STEP_FRACTION {
+    let mut step = steps.first;
+    while t < 1.0 && step >= steps.smallest {
         let elapsed = t0.elapsed().as_secs_f64();
         if iterations >= ctl.max_iterations || elapsed > ctl.time_limit_s {
             break;
         }
         let next = (t + step).min(1.0);
         let step_ctl = SolveControls {
-            max_iterations: STEP_ITERATIONS.min(ctl.max_iterations - iterations),
+            max_iterations: steps.step_iterations.min(ctl.max_iterations - iterations),
             time_limit_s: ctl.time_limit_s - elapsed,
             ..*ctl
         };
@@ -144,7 +169,7 @@ fn follow_path(
                 factorizations += s.stats.factorizations;
                 sol = s;
                 t = next;
-                step *= STEP_GROWTH;
+                step *= steps.growth;
             }
             Ok(s) => {
                 iterations += s.stats.iterations;

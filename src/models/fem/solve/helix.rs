@@ -16,6 +16,7 @@
 //! the caller accepts the result only if it converged and is buckled. [`coarse_for_pitch`]
 //! names the elements too long for the helix's pitch.
 
+use super::continuation::{follow_path, with_friction, PathSteps};
 use super::{solve_interior_point_from, Solution, SolveControls, SolveStats};
 use crate::geometry::Vec3;
 use crate::models::fem::model::{Model, State};
@@ -45,7 +46,7 @@ pub enum Shape {
 /// One way from the straight string to the buckled one: the start's shape, the
 /// pseudo-transient damping (a multiple of [`instability_stiffness`]) and whether friction is
 /// put on along a path (the buckled string solved without friction, then with fractions of it
-/// rising to the model's, [`FRICTION_STEP`]) or at once.
+/// rising to the model's, [`FRICTION_STEPS`]) or at once.
 #[derive(Debug, Clone, Copy)]
 pub struct Attempt {
     /// The start's shape.
@@ -70,9 +71,14 @@ pub const ATTEMPTS: [Attempt; 2] = [
     },
 ];
 
-/// The friction path: first step (fraction of the model's friction), smallest step (a step
-/// that fails is halved, one that converges doubles the next) and the iteration limit of a step.
-pub const FRICTION_STEP: (f64, f64, usize) = (0.25, 1.0 / 16.0, 40);
+/// The friction path's steps (in fractions of the model's friction): a quarter first, at least
+/// a sixteenth, 40 iterations a step, doubled after a converged step.
+pub const FRICTION_STEPS: PathSteps = PathSteps {
+    first: 0.25,
+    smallest: 1.0 / 16.0,
+    step_iterations: 40,
+    growth: 2.0,
+};
 
 /// Iteration limit of the attempt that puts the friction on at once.
 pub const DIRECT_ITERATIONS: usize = 100;
@@ -242,7 +248,7 @@ pub fn solve_from_helix(
                 max_iterations: ctl.max_iterations.min(DIRECT_ITERATIONS),
                 ..ctl
             };
-            solve_with_friction(model, 1.0, start, &direct, &mut work)
+            solve_at_once(model, start, &direct, &mut work)
         };
         if let Some(sol) = sol.filter(|s| s.converged && accept(s)) {
             return (Some(sol), work);
@@ -251,22 +257,14 @@ pub fn solve_from_helix(
     (None, work)
 }
 
-/// Solve `model` with `fraction` of its friction from `start` under `ctl` (consistent tangent),
-/// adding the work to `work`; None if the solve fails.
-fn solve_with_friction(
-    model: &Model,
-    fraction: f64,
-    start: State,
-    ctl: &SolveControls,
-    work: &mut SolveStats,
-) -> Option<Solution> {
+/// Solve `model` with its friction from `start` under `ctl` (consistent tangent), adding the
+/// work to `work`; None if the solve fails.
+fn solve_at_once(model: &Model, start: State, ctl: &SolveControls, work: &mut SolveStats) -> Option<Solution> {
     let mut m = model.clone();
     m.consistent_tangent = true;
-    m.friction.iter_mut().for_each(|f| *f *= fraction);
     let sol = solve_interior_point_from(&m, start, ctl).ok()?;
     work.add_work(&sol.stats);
     tracing::info!(
-        friction_fraction = fraction,
         converged = sol.converged,
         iterations = sol.stats.iterations,
         "re-solve from a buckled start"
@@ -274,31 +272,37 @@ fn solve_with_friction(
     Some(sol)
 }
 
-/// The friction path of [`Attempt::friction_path`] from `start` (adaptive steps,
-/// [`FRICTION_STEP`]): the converged solution with the model's friction, or None.
+/// The friction path of [`Attempt::friction_path`] from `start` ([`FRICTION_STEPS`], the
+/// continuation's path follower): the converged solution with the model's friction, or None;
+/// the work of every solve added to `work`.
 fn friction_path(model: &Model, start: State, ctl: &SolveControls, work: &mut SolveStats) -> Option<Solution> {
     let t0 = Instant::now();
-    let mut at = solve_with_friction(model, 0.0, start, ctl, work).filter(|s| s.converged)?;
-    let (first, smallest, iterations) = FRICTION_STEP;
-    let (mut k, mut step) = (0.0, first);
-    while k < 1.0 {
-        let left = ctl.time_limit_s - t0.elapsed().as_secs_f64();
-        if step < smallest || left <= 0.0 {
-            return None;
-        }
-        let next = (k + step).min(1.0);
-        let step_ctl = SolveControls {
-            max_iterations: iterations,
-            time_limit_s: left,
-            ..*ctl
-        };
-        match solve_with_friction(model, next, at.state.clone(), &step_ctl, work).filter(|s| s.converged) {
-            Some(sol) => {
-                (k, at) = (next, sol);
-                step *= 2.0;
-            }
-            None => step *= 0.5,
-        }
+    let mut consistent = model.clone();
+    consistent.consistent_tangent = true;
+    let first = solve_interior_point_from(&with_friction(&consistent, 0.0), start, ctl).ok()?;
+    if !first.converged {
+        work.add_work(&first.stats);
+        return None;
     }
-    Some(at)
+    // the steps bound the path (each at most `FRICTION_STEPS.step_iterations`, halved down to
+    // the smallest step) together with the time limit, not the solve's iteration limit
+    let path_ctl = SolveControls {
+        max_iterations: usize::MAX,
+        ..*ctl
+    };
+    let (sol, reached) = follow_path(
+        |t| with_friction(&consistent, t),
+        first,
+        0.0,
+        &path_ctl,
+        FRICTION_STEPS,
+        t0,
+    );
+    work.add_work(&sol.stats);
+    tracing::info!(
+        friction_fraction = reached,
+        iterations = sol.stats.iterations,
+        "friction path from a buckled start"
+    );
+    Some(sol).filter(|s| s.converged)
 }
