@@ -166,7 +166,7 @@ fn print_stiff_summary(
             out,
             "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
             bad.len(),
-            bad.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+            first_ten(&bad)
         )?;
     }
     let locked: Vec<String> = rows
@@ -182,10 +182,15 @@ fn print_stiff_summary(
             out,
             "  WARNING: lock-up: {} stiff rows find no equilibrium at their WOB; their stiff numbers are at the largest WOB the string delivers, hook load zero (stiff_lock_up_wob_kN): {}",
             locked.len(),
-            locked.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+            first_ten(&locked)
         )?;
     }
     Ok(())
+}
+
+/// The first ten of `rows` (a warning's list of rows), joined by commas.
+fn first_ten(rows: &[String]) -> String {
+    rows.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
 }
 
 /// The chart's table in `units`: per bit depth (at most about 40 lines) the hook loads of the
