@@ -403,6 +403,17 @@ pub struct BucklingSummary {
     pub zones: Vec<Zone>,
 }
 
+/// Total helical contact force of `marks` (nodes in order along the string), N: Mitchell's
+/// force per length ([`Mark::helical_wall_force_n_per_m`]) times each mark's tributary length,
+/// summed; the wall force the helix adds over the helically buckled intervals.
+pub fn helical_wall_force_n(marks: &[Mark]) -> f64 {
+    marks
+        .iter()
+        .zip(tributary(marks))
+        .map(|(m, l)| m.helical_wall_force_n_per_m.unwrap_or(0.0) * l)
+        .sum()
+}
+
 /// Tributary length (m) of each mark along the string: half the distance to each neighbour.
 fn tributary(marks: &[Mark]) -> Vec<f64> {
     (0..marks.len())
@@ -558,6 +569,27 @@ mod tests {
         assert_eq!(circular_spread_deg(&[170.0, 190.0, 180.0]), 20.0);
         assert_eq!(circular_spread_deg(&[350.0, 10.0]), 20.0);
         assert!((circular_spread_deg(&[0.0, 90.0, 180.0, 270.0]) - 270.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn helical_wall_force_sums_mitchell_over_the_tributary_lengths() {
+        // Reference: a uniform force per length w over marks every 2 m from 100 to 90 m MD, the
+        // end marks with half a spacing: the total is w times the 10 m they span (1e-12); marks
+        // without the helix (0 or None) add nothing.
+        let mk = |md: f64, w: Option<f64>| Mark {
+            md_m: md,
+            compression_n: 1.0,
+            sinusoidal_n: None,
+            helical_n: None,
+            state: BuckleState::None,
+            helical_wall_force_n_per_m: w,
+        };
+        let uniform: Vec<Mark> = (0..6).map(|k| mk(100.0 - 2.0 * k as f64, Some(250.0))).collect();
+        assert!((helical_wall_force_n(&uniform) - 2500.0).abs() < 1e-9);
+        let mut part = uniform.clone();
+        part.extend([mk(88.0, Some(0.0)), mk(86.0, None)]);
+        // the mark at 90 m now has a full 2 m tributary length, half of it beside a mark at 0
+        assert!((helical_wall_force_n(&part) - 2750.0).abs() < 1e-9);
     }
 
     #[test]

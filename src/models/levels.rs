@@ -28,6 +28,7 @@ use crate::models::fem::solve::continuation;
 use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
+use crate::models::soft_comparison::{soft_comparison, SoftComparison};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::string::DrillString;
 use std::time::Instant;
@@ -499,6 +500,8 @@ pub struct StringSolve {
     pub lock_up: Option<LockUp>,
     /// The survey sensors on the stiff part's reported nodes, with their sag angles.
     pub sensors: Vec<SensorResult>,
+    /// The soft string at the same WOB beside a converged `whole` or `hybrid` solve.
+    pub soft_comparison: Option<SoftComparison>,
 }
 
 impl StringSolve {
@@ -587,6 +590,7 @@ pub fn solve_string(
         .zip(last_reported_node)
         .map(|(part, last)| sensor_results(&case.string, &part.model, &part.results.nodes[..=last]))
         .unwrap_or_default();
+    let soft_comparison = beside_soft(case, &level);
     Ok(StringSolve {
         level,
         last_reported_node,
@@ -596,7 +600,22 @@ pub fn solve_string(
         yield_check,
         lock_up,
         sensors,
+        soft_comparison,
     })
+}
+
+/// The soft string beside `level`'s solve of `case`: for a converged `whole` or `hybrid` solve
+/// (the levels that give surface values from a stiff part), None otherwise.
+fn beside_soft(case: &Case, level: &LevelResult) -> Option<SoftComparison> {
+    if !matches!(level.choice.level, Level::Whole | Level::Hybrid) || !level.converged {
+        return None;
+    }
+    Some(soft_comparison(
+        case,
+        level.wob_n,
+        level.hook_load_n?,
+        level.surface_torque_nm?,
+    ))
 }
 
 /// The lock-up of `case` at the WOB `wob_n` (N) by the soft string's hook load there.

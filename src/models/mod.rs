@@ -5,6 +5,7 @@
 //! - [`fem`]: the stiff string (co-rotational beams and contact-friction gap elements);
 //! - [`levels`]: one static solve at a fidelity level (soft, bha, hybrid, whole);
 //! - [`buckling`]: sinusoidal and helical buckling onsets and the buckled intervals;
+//! - [`soft_comparison`]: the soft string beside a stiff solve's surface values;
 //! - [`diagnose`]: why a stiff solve may not converge (lock-up, helical buckling).
 
 pub mod bit;
@@ -13,4 +14,5 @@ pub mod checks;
 pub mod diagnose;
 pub mod fem;
 pub mod levels;
+pub mod soft_comparison;
 pub mod softstring;

@@ -7,6 +7,7 @@ use crate::case::{Case, Level};
 use crate::models::buckling::{summarize, Mark};
 use crate::models::fem::results::NodeResult;
 use crate::models::levels::{LevelResult, StringSolve};
+use crate::models::soft_comparison::SoftComparison;
 use crate::models::softstring::SoftStringResult;
 use crate::predict::steer::{RssSteering, SteadyTurn, Steering};
 use crate::string::RssSteer;
@@ -154,6 +155,35 @@ struct LockUpJson {
     results_at_wob_kN: Option<Finite>,
 }
 
+/// The `soft_string_comparison` key: the soft string at the same WOB beside a `whole` or
+/// `hybrid` solve (stiff minus soft: negative hook load difference = more drag in the stiff
+/// string).
+#[derive(Serialize)]
+#[allow(non_snake_case)]
+struct SoftComparisonJson {
+    wob_kN: Finite,
+    hook_load_kN: Finite,
+    surface_torque_kNm: Finite,
+    helical_length_m: Finite,
+    helical_wall_force_kN: Finite,
+    hook_load_difference_kN: Finite,
+    surface_torque_difference_kNm: Finite,
+}
+
+impl SoftComparisonJson {
+    fn of(c: &SoftComparison) -> SoftComparisonJson {
+        SoftComparisonJson {
+            wob_kN: Finite(c.wob_n / 1e3),
+            hook_load_kN: Finite(c.hook_load_n / 1e3),
+            surface_torque_kNm: Finite(c.surface_torque_nm / 1e3),
+            helical_length_m: Finite(c.helical_length_m),
+            helical_wall_force_kN: Finite(c.helical_wall_force_n / 1e3),
+            hook_load_difference_kN: Finite(c.hook_load_difference_n() / 1e3),
+            surface_torque_difference_kNm: Finite(c.surface_torque_difference_nm() / 1e3),
+        }
+    }
+}
+
 /// One entry of the `sensors` key: a survey sensor's sag angle.
 #[derive(Serialize)]
 struct SensorJson {
@@ -185,6 +215,7 @@ pub struct SolveSummary {
     steering: Option<SteeringJson>,
     rss_dogleg_deg_per_30m: Option<Finite>,
     rss: Option<RssJson>,
+    soft_string_comparison: Option<SoftComparisonJson>,
 }
 
 /// A dogleg rate split into build and right turn, deg/30 m.
@@ -394,6 +425,7 @@ impl SolveSummary {
             steering: None,
             rss_dogleg_deg_per_30m: None,
             rss: None,
+            soft_string_comparison: s.soft_comparison.as_ref().map(SoftComparisonJson::of),
             sensors: s
                 .sensors
                 .iter()

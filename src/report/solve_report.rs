@@ -12,6 +12,7 @@ use crate::models::buckling::{spans, BuckleState, Mark};
 use crate::models::fem::results::{NodeResult, SolveResults};
 use crate::models::fem::solve::SolveStats;
 use crate::models::levels::StringSolve;
+use crate::models::soft_comparison::SoftComparison;
 use crate::predict::steer::{RssSteering, Steering};
 
 /// Ids of the solve report's figures (the tests look for each).
@@ -118,6 +119,8 @@ pub struct ReportOptions {
     /// False when the model gives no hook load or surface torque (`bha`): the key results
     /// say "not computed" instead of showing `res`'s values (the axial force at the cut).
     pub no_surface_values: bool,
+    /// The soft string at the same WOB, shown beside the hook load and surface torque.
+    pub soft: Option<SoftComparison>,
 }
 
 /// The report's HTML text (`marks`: buckling marks at the nodes of `res`, may be empty;
@@ -198,9 +201,14 @@ fn key_results(
                 torque_unit.fmt(res.surface_torque_nm, 2)
             },
         ),
+    ];
+    if let Some(c) = &scope.soft {
+        kv.extend(soft_rows(c, units));
+    }
+    kv.extend([
         ("contact nodes".into(), contacts.len().to_string()),
         ("largest contact force".into(), force_unit.fmt(max_contact, 2)),
-    ];
+    ]);
     kv.push((
         "solver".into(),
         format!(
@@ -219,6 +227,37 @@ fn key_results(
         ),
     ));
     page.key_values(&kv);
+}
+
+/// The key-result rows of the soft string beside the stiff solve `c`.
+fn soft_rows(c: &SoftComparison, units: UnitSystem) -> [(String, String); 3] {
+    let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
+    [
+        (
+            "soft-string hook load at this WOB (stiff - soft)".into(),
+            format!(
+                "{} ({})",
+                force_unit.fmt(c.hook_load_n, 1),
+                force_unit.fmt(c.hook_load_difference_n(), 1)
+            ),
+        ),
+        (
+            "soft-string surface torque (stiff - soft)".into(),
+            format!(
+                "{} ({})",
+                torque_unit.fmt(c.surface_torque_nm, 2),
+                torque_unit.fmt(c.surface_torque_difference_nm(), 2)
+            ),
+        ),
+        (
+            "soft string: helically buckled length, Mitchell's helical wall force".into(),
+            format!(
+                "{}, {}",
+                depth_unit.fmt(c.helical_length_m, 1),
+                force_unit.fmt(c.helical_wall_force_n, 2)
+            ),
+        ),
+    ]
 }
 
 /// The contact zones in the shown bottom of the string (bit at `bit_md_m`): runs of
@@ -455,6 +494,7 @@ pub fn solve_html(
         let options = ReportOptions {
             units,
             note: (!warnings.is_empty()).then(|| warnings.trim_start().to_string()),
+            soft: s.soft_comparison,
             ..Default::default()
         };
         return html(case, &part.results, &s.marks, &part.stats, part.converged, &options);
@@ -491,6 +531,7 @@ pub fn solve_html(
         units,
         note: Some(note + &warnings),
         no_surface_values: !surface,
+        soft: s.soft_comparison,
     };
     html(case, &res, s.stiff_marks(), &part.stats, lr.converged, &options)
 }

@@ -6,6 +6,7 @@ use crate::case::{Case, Level};
 use crate::models::buckling::summarize;
 use crate::models::fem::results::BitResult;
 use crate::models::levels::StringSolve;
+use crate::models::soft_comparison::SoftComparison;
 use crate::predict::steer::{RssSteering, Steering};
 use std::io::Write;
 use std::path::Path;
@@ -218,6 +219,9 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
         force_unit.fmt(res.hook_load_n, 1),
         view.units.torque().fmt(res.surface_torque_nm, 2)
     )?;
+    if let Some(c) = &s.soft_comparison {
+        soft_line(out, c, view.units)?;
+    }
     let contacts: Vec<_> = res
         .nodes
         .iter()
@@ -291,6 +295,9 @@ fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
             "  surface: not computed (bha: the stiff model ends at the cut; use hybrid or whole)"
         )?,
     }
+    if let Some(c) = &s.soft_comparison {
+        soft_line(out, c, view.units)?;
+    }
     let b = summarize(&s.marks);
     writeln!(
         out,
@@ -301,4 +308,19 @@ fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
     )?;
     writeln!(out, "  time {:.4} s", lr.seconds)?;
     wrote_line(out, view)
+}
+
+/// The soft string beside the stiff solve `c`: its hook load and torque at the same WOB, the
+/// stiff-minus-soft differences, and its helically buckled length.
+fn soft_line(out: &mut impl Write, c: &SoftComparison, units: UnitSystem) -> std::io::Result<()> {
+    let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
+    writeln!(
+        out,
+        "  soft string at this WOB: hook load {} (stiff - soft {}), torque {} (stiff - soft {}), helical over {}",
+        force_unit.fmt(c.hook_load_n, 1),
+        force_unit.fmt(c.hook_load_difference_n(), 1),
+        torque_unit.fmt(c.surface_torque_nm, 2),
+        torque_unit.fmt(c.surface_torque_difference_nm(), 2),
+        depth_unit.fmt(c.helical_length_m, 1)
+    )
 }

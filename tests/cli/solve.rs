@@ -303,3 +303,50 @@ fn an_rss_reports_its_dogleg() {
         text.stdout
     );
 }
+
+#[test]
+fn whole_and_hybrid_solves_show_the_soft_string_beside_them() {
+    // Reference: the soft string run on its own (`--fidelity soft`, an independent run of the
+    // soft level) gives the hook load and surface torque that `soft_string_comparison` shows
+    // beside the whole and hybrid solves (the same WOB: the case's), to 1e-9 relative; the
+    // differences are the stiff values minus those (1e-9 kN); the key is null for `bha` and
+    // `soft`, whose surface values are not a stiff solve's.
+    let json = |fidelity: &str| -> serde_json::Value {
+        let out = run_in(
+            root(),
+            &["solve", "wells/seed-daqing/case.toml", "--fidelity", fidelity, "--json"],
+        );
+        assert!(out.success(), "{}", out.stderr);
+        serde_json::from_str(&out.stdout).unwrap()
+    };
+    let soft = json("soft");
+    let f = |v: &serde_json::Value| v.as_f64().unwrap();
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+    for fidelity in ["whole", "hybrid"] {
+        let s = json(fidelity);
+        let c = &s["soft_string_comparison"];
+        assert!(
+            close(f(&c["hook_load_kN"]), f(&soft["surface"]["hook_load_kN"])),
+            "{fidelity}: {c}"
+        );
+        assert!(
+            close(f(&c["surface_torque_kNm"]), f(&soft["surface"]["torque_kNm"])),
+            "{fidelity}: {c}"
+        );
+        assert!(close(f(&c["wob_kN"]), f(&s["bit"]["wob_kN"])), "{fidelity}: {c}");
+        let dh = f(&s["surface"]["hook_load_kN"]) - f(&c["hook_load_kN"]);
+        assert!((f(&c["hook_load_difference_kN"]) - dh).abs() < 1e-9, "{fidelity}: {c}");
+        let dt = f(&s["surface"]["torque_kNm"]) - f(&c["surface_torque_kNm"]);
+        assert!(
+            (f(&c["surface_torque_difference_kNm"]) - dt).abs() < 1e-9,
+            "{fidelity}: {c}"
+        );
+        assert_eq!(
+            f(&c["helical_wall_force_kN"]),
+            0.0,
+            "{fidelity}: no helix on this well: {c}"
+        );
+    }
+    assert!(json("bha")["soft_string_comparison"].is_null());
+    assert!(soft["soft_string_comparison"].is_null());
+}
