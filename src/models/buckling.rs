@@ -415,7 +415,7 @@ pub fn helical_wall_force_n(marks: &[Mark]) -> f64 {
 }
 
 /// Tributary length (m) of each mark along the string: half the distance to each neighbour.
-fn tributary(marks: &[Mark]) -> Vec<f64> {
+pub fn tributary(marks: &[Mark]) -> Vec<f64> {
     (0..marks.len())
         .map(|i| {
             let lo = if i > 0 {

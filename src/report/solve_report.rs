@@ -8,7 +8,7 @@ use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
 use super::solve_text::{rss_line, steering_line};
 use crate::case::{Case, Level};
-use crate::models::buckling::{spans, BuckleState, Mark};
+use crate::models::buckling::{spans, tributary, BuckleState, Mark};
 use crate::models::fem::results::{NodeResult, SolveResults};
 use crate::models::fem::solve::SolveStats;
 use crate::models::levels::StringSolve;
@@ -39,6 +39,47 @@ pub const BUCKLING_SERIES: [&str; 4] = [
 
 /// Onset curves are drawn up to this multiple of the largest compression.
 pub const ONSET_SHOWN_UP_TO: f64 = 2.0;
+
+/// Legend names of the helix marks on the contact-force plot (shown only where the string is
+/// helically buckled).
+pub const HELIX_SERIES: [&str; 2] = ["helical buckling", "helix wall force (Mitchell)"];
+
+/// The wall contact force chart: the normal force at each node of `res` along MD (display
+/// units `du`, `fu`) and, where `marks` (at the nodes of `res`, or empty) put the string beyond
+/// the helical onset, those intervals shaded and Mitchell's helical wall force per length
+/// times each node's tributary length: the force per node a helix along the wall would give.
+pub fn contact_force_chart(res: &SolveResults, marks: &[Mark], du: DisplayUnit, fu: DisplayUnit) -> Chart {
+    let along: Vec<(f64, f64)> = res
+        .nodes
+        .iter()
+        .map(|n| (du.show(n.md_m), fu.show(n.contact_force_n)))
+        .collect();
+    let c = Chart::new(
+        "Wall contact force",
+        &format!("MD [{}]", du.label),
+        &format!("contact force [{}]", fu.label),
+    )
+    .with(Series::new("contact force", along, Style::Line, 1))
+    .with_band(Band {
+        name: HELIX_SERIES[0].into(),
+        spans: spans(marks, BuckleState::Helical)
+            .into_iter()
+            .map(|(a, b)| (du.show(a), du.show(b)))
+            .collect(),
+        color: 1,
+    });
+    let helix: Vec<(f64, f64)> = marks
+        .iter()
+        .zip(tributary(marks))
+        .filter(|(m, _)| m.state == BuckleState::Helical)
+        .filter_map(|(m, l)| Some((du.show(m.md_m), fu.show(m.helical_wall_force_n_per_m? * l))))
+        .collect();
+    if helix.is_empty() {
+        c
+    } else {
+        c.with(Series::new(HELIX_SERIES[1], helix, Style::Points, 3))
+    }
+}
 
 /// The axial-force chart: the effective axial force along MD (display units `du`, `fu`), the
 /// buckled MD intervals of `marks` shaded (sinusoidal, helical; only where there are any) and
@@ -331,21 +372,11 @@ fn string_figures(
     let along = |f: &dyn Fn(&NodeResult) -> f64| -> Vec<(f64, f64)> {
         res.nodes.iter().map(|n| (depth_unit.show(n.md_m), f(n))).collect()
     };
-    let contact = Chart::new(
-        "Wall contact force",
-        &md_label,
-        &format!("contact force [{}]", force_unit.label),
-    )
-    .with(Series::new(
-        "contact force",
-        along(&|n| force_unit.show(n.contact_force_n)),
-        Style::Line,
-        1,
-    ));
+    let contact = contact_force_chart(res, marks, depth_unit, force_unit);
     page.figure(
         "contact-force",
         &render(&contact)?,
-        "normal force of the wall on the string at each node",
+        "normal force of the wall on the string at each node; where the string is helically buckled (shaded), the helix's wall force by Mitchell (r F^2/(4 EI) times the node's share of the string) for comparison",
     );
 
     let bha_len = shown_length_m(&case.string);

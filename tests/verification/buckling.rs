@@ -298,6 +298,17 @@ fn vertical_helix_wall_force_within_15_percent_of_mitchell() {
         (total_wall / c.helical_wall_force_n - 1.0).abs() < 0.15,
         "{total_wall} vs {c:?}"
     );
+    // the report's contact-force plot marks the helix: the helical intervals shaded and
+    // Mitchell's force per node, which sums to the stiff marks' helical wall force (1e-9)
+    use drillpath::report::display_units::UnitSystem;
+    use drillpath::report::plots::legend_names;
+    use drillpath::report::solve_report::{contact_force_chart, HELIX_SERIES};
+    let si = UnitSystem::Si;
+    let chart = contact_force_chart(&fem.results, &s.marks, si.depth(), si.force());
+    assert!(HELIX_SERIES.iter().all(|h| legend_names(&chart).contains(h)));
+    let per_node: f64 = chart.series[1].points.iter().map(|p| p.1).sum();
+    let total = drillpath::models::buckling::helical_wall_force_n(&s.marks) / 1e3;
+    assert!((per_node - total).abs() < 1e-9 * total, "{per_node} vs {total} kN");
 }
 
 /// Issue 16, inclined and horizontal holes: 600 m of 5 in pipe in a straight hole at 90 and
