@@ -33,6 +33,11 @@ pub enum StiffOutcome {
         /// negative below that WOB, so these loads are at the largest WOB it delivers (its
         /// hook load zero, found along the WOB path), N; None when they are at the row's WOB.
         lock_up_wob_n: Option<f64>,
+        /// Length of the stiff pipe compressed beyond the helical onset that the solve found
+        /// lying unbuckled on one side of the hole (the straight branch past its stability
+        /// limit, [`crate::models::buckling::unbuckled_helical_runs`]), m: there its wall force
+        /// and drag miss the helix's; 0 when there is none.
+        unbuckled_helical_m: f64,
     },
     /// The solver stopped without meeting its criteria: no valid numbers.
     NotConverged {
@@ -58,6 +63,16 @@ impl StiffOutcome {
     pub fn lock_up_wob_n(&self) -> Option<f64> {
         match self {
             StiffOutcome::Converged { lock_up_wob_n, .. } => *lock_up_wob_n,
+            _ => None,
+        }
+    }
+    /// The length of stiff pipe lying unbuckled beyond the helical onset when converged
+    /// ([`StiffOutcome::Converged`]'s `unbuckled_helical_m`), m.
+    pub fn unbuckled_helical_m(&self) -> Option<f64> {
+        match self {
+            StiffOutcome::Converged {
+                unbuckled_helical_m, ..
+            } => Some(*unbuckled_helical_m),
             _ => None,
         }
     }

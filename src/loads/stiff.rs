@@ -37,8 +37,9 @@ use super::row::{RowLoads, Start, StiffOutcome};
 use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
+use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
 use crate::models::fem::model::{Model, State};
-use crate::models::fem::results::{extract, SolveResults};
+use crate::models::fem::results::{extract, NodeResult, SolveResults};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
@@ -272,6 +273,7 @@ fn converged(
     lock_up_wob_n: Option<f64>,
 ) -> StiffOutcome {
     let res = extract(model, sol, case.mud.density_kg_m3);
+    let unbuckled_helical_m = unbuckled_length_m(case, model, &res.nodes);
     let friction_torque_nm = rotating_friction_torque(model, &res, model.nodes() - 1);
     let max_f = res.nodes.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     StiffOutcome::Converged {
@@ -291,7 +293,19 @@ fn converged(
         seconds,
         start,
         lock_up_wob_n,
+        unbuckled_helical_m,
     }
+}
+
+/// Total length (m) of the runs of `nodes` (results of `model`, from the bit up) compressed
+/// beyond the helical onset where the solved string lies unbuckled
+/// ([`unbuckled_helical_runs`]).
+fn unbuckled_length_m(case: &Case, model: &Model, nodes: &[NodeResult]) -> f64 {
+    let marks = stiff_marks(case, model, nodes);
+    unbuckled_helical_runs(&marks, nodes)
+        .iter()
+        .map(|(top, bottom)| bottom - top)
+        .sum()
 }
 
 /// Stiff outcomes of the five load cases ([`MODES`] order) for `case` with its string already
@@ -362,13 +376,17 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
     };
     // stiff results are reported up to the coupling node (above it the cut's clamp disturbs
     // them); the soft string above adds no torque without rotation
-    let (mut max_f, friction_torque) = lr.fem.as_ref().map_or((0.0, 0.0), |f| {
+    let (mut max_f, friction_torque, unbuckled_helical_m) = lr.fem.as_ref().map_or((0.0, 0.0, 0.0), |f| {
         let k = f.coupling.unwrap_or(f.model.nodes() - 1);
         let max_f = f.results.nodes[..=k]
             .iter()
             .map(|n| n.contact_force_n)
             .fold(0.0, f64::max);
-        (max_f, rotating_friction_torque(&f.model, &f.results, k))
+        (
+            max_f,
+            rotating_friction_torque(&f.model, &f.results, k),
+            unbuckled_length_m(case, &f.model, &f.results.nodes[..=k]),
+        )
     });
     if let Some(s) = &lr.soft {
         max_f = max_f.max(soft_loads(s, &case.string, case.operation.bit_md_m).max_contact_force_n);
@@ -390,6 +408,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
         seconds: t0.elapsed().as_secs_f64(),
         start: Start::Cold,
         lock_up_wob_n: None,
+        unbuckled_helical_m,
     }
 }
 

@@ -185,6 +185,26 @@ fn print_stiff_summary(
             first_ten(&locked)
         )?;
     }
+    let unbuckled: Vec<String> = rows
+        .iter()
+        .filter_map(|r| {
+            let length = r.stiff.as_ref()?.unbuckled_helical_m().filter(|l| *l > 0.0)?;
+            let depth = units.depth().fmt(r.bit_md_m, 0);
+            Some(format!(
+                "{depth} {} over {}",
+                r.mode.name(),
+                units.depth().fmt(length, 0)
+            ))
+        })
+        .collect();
+    if !unbuckled.is_empty() {
+        writeln!(
+            out,
+            "  WARNING: {} stiff rows find the pipe unbuckled where it is compressed beyond the helical onset (stiff_unbuckled_helical_m): their stiff hook load and torque miss the helix's wall force and drag there; treat them with caution: {}",
+            unbuckled.len(),
+            first_ten(&unbuckled)
+        )?;
+    }
     Ok(())
 }
 

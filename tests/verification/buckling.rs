@@ -385,3 +385,39 @@ fn an_unbuckled_solve_beyond_the_helical_onset_is_flagged() {
         "{w:?}"
     );
 }
+
+/// `loads` flags its stiff rows on the straight branch too (it does not re-solve from a helix):
+/// the sliding row of the case of [`an_unbuckled_solve_beyond_the_helical_onset_is_flagged`]
+/// (friction 0.3) and of the frictionless one (which `solve` re-solves into a helix) converge to
+/// the straight pipe and give `stiff_unbuckled_helical_m` > 0. Reference: the helically
+/// buckled length of the same solve's marks (the compression beyond the helical onset, the
+/// interval the straight pipe lies unbuckled over), within the one-node spacing of the mark runs
+/// (5 m); and 0 on a string in tension (the same hole pulled up: trip-out row at 0 WOB).
+#[test]
+fn a_loads_row_on_the_straight_branch_is_flagged() {
+    use drillpath::loads::row::StiffOutcome;
+    use drillpath::loads::stiff::stiff_row;
+    use drillpath::models::buckling::summarize;
+    for friction in [0.3, 0.0] {
+        let case = straight_hole_case(0.5, 1000.0, 100.0, friction, Some("1 m"));
+        let (out, solved) = stiff_row(&case, None);
+        let unbuckled = out.unbuckled_helical_m().expect("converged");
+        // the marks of the row's own converged state (its axial force)
+        let (model, state) = solved.expect("converged");
+        let ctl = SolveControls::from_settings(&case.solver);
+        let sol = solve_interior_point_from(&model, state, &ctl).unwrap();
+        assert!(sol.converged);
+        let res = extract(&model, &sol, case.mud.density_kg_m3);
+        let helical = summarize(&stiff_marks(&case, &model, &res.nodes)).helical_length_m;
+        println!("friction {friction}: unbuckled {unbuckled:.1} m, helical {helical:.1} m");
+        assert!(
+            helical > 100.0 && (unbuckled - helical).abs() < 5.0,
+            "{unbuckled} vs {helical}"
+        );
+    }
+    let mut case = straight_hole_case(0.5, 1000.0, 0.0, 0.3, Some("1 m"));
+    case.operation.mode = drillpath::case::Mode::TripOut;
+    let (out, _) = stiff_row(&case, None);
+    assert!(matches!(out, StiffOutcome::Converged { .. }), "{out:?}");
+    assert_eq!(out.unbuckled_helical_m(), Some(0.0));
+}
