@@ -30,5 +30,6 @@ mod softstring;
 mod solver;
 mod spreadsheet;
 mod steering;
+mod steering_pads;
 mod tracking;
 mod witsml;
