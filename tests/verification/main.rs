@@ -23,6 +23,7 @@ mod loads;
 mod mwd_sag;
 mod paper;
 mod predict;
+mod reactive_torque;
 mod rss;
 mod slack_off;
 mod sliding;
