@@ -123,8 +123,7 @@ impl DrillString {
             .iter()
             .enumerate()
             .filter(|(_, c)| c.kind == ComponentKind::Stabilizer)
-            .filter(|(_, c)| c.bottom_m + c.length_m / 2.0 < bend.to_bit_m)
-            .last()
+            .rfind(|(_, c)| c.bottom_m + c.length_m / 2.0 < bend.to_bit_m)
             .map(|(k, _)| k)
     }
     /// The blade OD of the bent housing's pad stabilizer ([`DrillString::pad_index`]), m.
