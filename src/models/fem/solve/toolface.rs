@@ -80,17 +80,19 @@ pub fn solve_holding_toolface(
     let set = model.loads.toolface_rad;
     let sol = first(model)?;
     let mut iterations = sol.stats.iterations;
-    let mut sol = hold(model, ctl, sol, set, &mut iterations)?;
-    let mut turn = None;
+    // the first turn from the first state (its kink at the caller's guess, e.g. the last
+    // step's turned kink), so that a good guess costs one hold
+    let mut turn = model.reactive_turn(&sol).filter(|_| sol.converged);
+    let mut sol = hold(model, ctl, sol, set - turn.map_or(0.0, |t| t.turn_rad), &mut iterations)?;
     for _ in 0..MAX_REACTIVE_ROUNDS {
+        let Some(last) = turn else {
+            break;
+        };
         let Some(t) = model.reactive_turn(&sol).filter(|_| sol.converged) else {
             break;
         };
-        let last = turn
-            .map(|u: crate::models::fem::reactive::ReactiveTurn| u.turn_rad)
-            .unwrap_or(0.0);
         turn = Some(t);
-        if (t.turn_rad - last).abs() <= TOOLFACE_TOLERANCE_RAD {
+        if (t.turn_rad - last.turn_rad).abs() <= TOOLFACE_TOLERANCE_RAD {
             break;
         }
         sol = hold(model, ctl, sol, set - t.turn_rad, &mut iterations)?;
