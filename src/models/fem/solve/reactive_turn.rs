@@ -12,7 +12,7 @@ impl Model {
     /// `μ N r` of its contacts (not the bit's gauge, which turns with the shaft), the torque left enters the string at the bend and falls by each
     /// contact's capacity above it; the turn is the twist `∫ T / (G J) ds` of the model's
     /// elements from the bend to where the torque is taken up, continued above a cut model's
-    /// top along [`ReactiveTorque::string`] (a whole string's top, the rotary table, holds the
+    /// top along [`crate::models::fem::reactive::ReactiveTorque::string`] (a whole string's top, the rotary table, holds the
     /// rest).
     pub fn reactive_turn(&self, sol: &Solution) -> Option<ReactiveTurn> {
         let r = self.reactive.as_ref()?;
