@@ -83,6 +83,10 @@ pub struct Operation {
     /// ([`crate::geometry::frame::toolface_direction`]). Fixed when sliding; a rotating string
     /// turns it (docs/theory.md, "Bent motors").
     pub toolface_rad: f64,
+    /// Let the motor's reactive torque turn a sliding bent housing's toolface to the left
+    /// (docs/theory.md 9.9, "Reactive torque"; off by default: the toolface is the one held
+    /// downhole).
+    pub reactive_torque: bool,
 }
 
 impl Operation {
@@ -220,6 +224,7 @@ mod tests {
             friction: 0.25,
             bit_torque_nm: None,
             viscous_torque: false,
+            reactive_torque: false,
             toolface_rad: 0.0,
         }
     }

@@ -78,6 +78,12 @@ pub struct TendencyArgs {
     /// case's WOB x 0.5, 1, 1.5].
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub wobs: Option<String>,
+    /// Diametral under-gauges of a bent motor's pad stabilizer (below the bend) for the
+    /// capability sweep, comma-separated (bare numbers in inches, e.g. "0,0.125"), each from 0
+    /// (full gauge) to the hole less the pad's body OD [default: 0, 1/16, 1/8, 1/4 in and the
+    /// case's own; none without a pad].
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub pads: Option<String>,
     /// Inclinations of the rotary sweep, comma-separated (bare numbers in deg), each in [0, 120]
     /// [default: 0 to 90 deg by 15].
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]

@@ -54,7 +54,10 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
     if !s.level.converged && !a.allow_unconverged {
         bail!("{}", not_converged_message(&a, &case, &s));
     }
-    let steering = crate::predict::steer::steering(&case, &SolveControls::from_settings(&case.solver));
+    let steering = crate::predict::steer::steering(&case, &SolveControls::from_settings(&case.solver)).map(|mut st| {
+        st.reactive_turn = s.level.fem.as_ref().and_then(|p| p.stats.reactive_turn);
+        st
+    });
     let rss = crate::predict::steer::rss_steering(&case, &SolveControls::from_settings(&case.solver));
     let summary = json_text(
         &SolveSummary::new(&case, &s)

@@ -5,10 +5,11 @@
 use super::args::TendencyArgs;
 use super::outputs::{names, Outputs};
 use super::progress::Progress;
+use crate::case::Case;
 use crate::error::InputError;
 use crate::io::case_toml::{load_case, CaseOverrides};
 use crate::models::fem::solve::SolveControls;
-use crate::predict::tendency::{run_sweep, TendencyGrid};
+use crate::predict::tendency::{pad_hole_diameter_m, run_sweep, TendencyGrid};
 use crate::report::tendency_output::{tendency_csv, tendency_svg, tendency_text};
 use crate::string::MAX_BEND_ANGLE_RAD;
 use crate::units::{parse_quantity, Dimension};
@@ -58,9 +59,44 @@ fn show(x: f64, dim: Dimension) -> String {
     let v = match dim {
         Dimension::Angle => x.to_degrees(),
         Dimension::Force => x / 1e3,
+        Dimension::Length => x / 0.0254,
         _ => x,
     };
     crate::units::message_number(v)
+}
+
+/// Default diametral under-gauges of the pad stabilizer swept, m: full gauge, 1/16, 1/8 and
+/// 1/4 in.
+const DEFAULT_PAD_UNDER_GAUGES_M: [f64; 4] = [0.0, 0.0625 * 0.0254, 0.125 * 0.0254, 0.25 * 0.0254];
+
+/// The pad stabilizer's blade ODs of the capability sweep, m, from `--pads` (diametral
+/// under-gauges, bare numbers in inches, each from 0 to the hole less the pad's body OD); by
+/// default full gauge, 1/16, 1/8 and 1/4 in under gauge and the case's own, in increasing
+/// under-gauge; empty without a pad. `--pads` on an RSS or a motor without a pad is an error.
+fn pads(case: &Case, text: Option<&str>, rss: bool) -> Result<Vec<f64>, InputError> {
+    let (Some(hole), Some(k)) = (pad_hole_diameter_m(case), case.string.pad_index()) else {
+        return match (text, rss) {
+            (None, _) => Ok(Vec::new()),
+            (Some(_), true) => Err(InputError::option(
+                "--pads",
+                "the string's steering tool is an RSS: pads are a bent motor's",
+            )),
+            (Some(_), false) => Err(InputError::option(
+                "--pads",
+                "the motor has no pad stabilizer (a `stabilizer` component below the bend)",
+            )),
+        };
+    };
+    let pad = &case.string.components[k];
+    let mut default = DEFAULT_PAD_UNDER_GAUGES_M.to_vec();
+    let own = hole - pad.contact_od_m;
+    if !default.iter().any(|u| (u - own).abs() < 1e-9) && own >= 0.0 {
+        default.push(own);
+        default.sort_by(f64::total_cmp);
+    }
+    let hi = hole - pad.body_od_m;
+    let unders = list("--pads", text, Dimension::Length, "in", (0.0, hi), default)?;
+    Ok(unders.iter().map(|u| hole - u).collect())
 }
 
 /// Run `drillpath tendency`.
@@ -125,6 +161,7 @@ pub fn run(a: TendencyArgs, quiet: bool) -> anyhow::Result<()> {
         (0.0, deg(120.0)),
         (0..=6).map(|k| deg(15.0 * k as f64)).collect(),
     )?;
+    let pad_ods_m = pads(&case, a.pads.as_deref(), rss)?;
     if a.threads == Some(0) {
         return Err(InputError::option("--threads", "at least one thread").into());
     }
@@ -134,9 +171,11 @@ pub fn run(a: TendencyArgs, quiet: bool) -> anyhow::Result<()> {
     let grid = TendencyGrid {
         settings,
         wobs_n,
+        pad_ods_m,
         incs_rad,
     };
-    let n = grid.settings.len() * grid.wobs_n.len() + grid.incs_rad.len() * grid.wobs_n.len();
+    let n =
+        grid.settings.len() * grid.wobs_n.len() * grid.pad_ods_m.len().max(1) + grid.incs_rad.len() * grid.wobs_n.len();
     let progress = Progress::new(n as u64, &format!("tendency {}", a.case.display()), quiet);
     let done = AtomicU64::new(0);
     let tick = || {

@@ -485,6 +485,7 @@ fn read_operation(s: &Section, path: &WellPath, hole: &HoleSize, ov: &CaseOverri
         bit_torque_nm: bit_torque,
         viscous_torque: viscous,
         toolface_rad: super::motor_toml::read_toolface(s)?,
+        reactive_torque: s.boolean("reactive_torque")?.unwrap_or(false),
     })
 }
 
@@ -555,6 +556,7 @@ const OPERATION_KEYS: &[&str] = &[
     "bit_torque",
     "viscous_torque",
     "toolface",
+    "reactive_torque",
 ];
 /// Keys accepted in the formation table (checked before any is read, so a typo is named).
 const FORMATION_KEYS: &[&str] = &["from_md", "to_md", "rock_anisotropy", "dip", "dip_direction"];

@@ -320,6 +320,7 @@ fn buckled_or_straight(
                 helix_restart: Some(true),
                 wob_continuation_n: sol.stats.wob_continuation_n,
                 friction_continuation: sol.stats.friction_continuation,
+                reactive_turn: sol.stats.reactive_turn,
                 ..h.stats
             };
             h.stats.add_work(&sol.stats);

@@ -200,6 +200,9 @@ pub struct Steering {
     /// The motor yield (sliding at the operation's toolface) and the rotating tendency, or
     /// why they were not computed.
     pub tendencies: Result<(SteadyTurn, SteadyTurn), String>,
+    /// The turn of the toolface by the motor's reactive torque in the case's own solve
+    /// (`[operation] reactive_torque`, sliding; None otherwise): set by the caller that solved it.
+    pub reactive_turn: Option<crate::models::fem::reactive::ReactiveTurn>,
 }
 
 /// The motor yield and the rotating tendency of `case`'s bent housing (None for a straight
@@ -234,6 +237,7 @@ pub fn steering(case: &Case, ctl: &SolveControls) -> Option<Steering> {
         magnetic: inc < MAGNETIC_TOOLFACE_BELOW_RAD,
         rotating_toolfaces: ROTATING_TOOLFACES,
         tendencies,
+        reactive_turn: None,
     })
 }
 

@@ -4,7 +4,7 @@
 //!
 //! Two sweeps: the **capability**, the dogleg the tool gives against its setting (a bent
 //! housing's bend angle, sliding at the operation's toolface; an RSS's steering ratio, rotating)
-//! for several WOBs at the case's hole; and the **rotary** tendency, the assembly rotating
+//! for several WOBs (and a bent housing's pad stabilizer ODs) at the case's hole; and the **rotary** tendency, the assembly rotating
 //! without steering (a bent housing turning with the string, an RSS neutral) against the
 //! inclination of a straight hole, for the same WOBs.
 
@@ -42,6 +42,9 @@ pub struct TendencyGrid {
     pub settings: Vec<f64>,
     /// Weights on bit, N (both sweeps).
     pub wobs_n: Vec<f64>,
+    /// Blade ODs of the bent housing's pad stabilizer in the capability sweep, m (empty: the
+    /// case's pad, or none).
+    pub pad_ods_m: Vec<f64>,
     /// Inclinations of the rotary sweep, rad.
     pub incs_rad: Vec<f64>,
 }
@@ -57,6 +60,11 @@ pub struct TendencyPoint {
     pub ratio: Option<f64>,
     /// Weight on bit, N.
     pub wob_n: f64,
+    /// Blade OD of the bent housing's pad stabilizer, m (None without one).
+    pub pad_od_m: Option<f64>,
+    /// Diametral under-gauge of the pad: the hole's diameter at the pad less its blade OD, m
+    /// (None without a pad).
+    pub pad_under_gauge_m: Option<f64>,
     /// Inclination of the hole at the bit, rad.
     pub inc_rad: f64,
     /// The string rotates (else it slides).
@@ -84,6 +92,23 @@ fn with_bend(case: &Case, angle_rad: f64) -> Case {
         if let Some(b) = comp.bend {
             comp.bend = (angle_rad > 0.0).then_some(MotorBend { angle_rad, ..b });
         }
+    }
+    c
+}
+
+/// The hole's diameter at the middle of the bent housing's pad stabilizer, m (None without a
+/// pad: [`crate::string::DrillString::pad_index`]).
+pub fn pad_hole_diameter_m(case: &Case) -> Option<f64> {
+    let c = &case.string.components[case.string.pad_index()?];
+    let md = case.operation.bit_md_m - (c.bottom_m + c.length_m / 2.0);
+    Some(case.well.hole.diameter_at(md))
+}
+
+/// `case` with its pad stabilizer's blade OD `pad_od_m` (m; None: as it is).
+fn with_pad(case: &Case, pad_od_m: Option<f64>) -> Case {
+    let mut c = case.clone();
+    if let Some(d) = pad_od_m {
+        c.string = c.string.with_pad_od(d);
     }
     c
 }
@@ -120,36 +145,47 @@ fn operated(case: &Case, wob_n: f64, rotating: bool) -> Case {
     c
 }
 
-/// The points of `grid` for `case` (capability first, then rotary), each with the case to
-/// solve; an error when the string has no steering tool.
+/// The points of `grid` for `case` (capability first, by WOB, pad OD and setting; then rotary,
+/// by WOB and inclination, at the case's pad), each with the case to solve; an error when the
+/// string has no steering tool.
 pub fn sweep_cases(case: &Case, grid: &TendencyGrid) -> Result<Vec<(TendencyPoint, Case)>, String> {
     let bend = tool(case)?;
     let here = case.well.path.point_at(case.operation.bit_md_m).inc_rad;
     let tf = case.operation.toolface_rad;
-    let point = |sweep, bend_rad, ratio, wob_n, inc_rad, rotating| TendencyPoint {
+    let hole = pad_hole_diameter_m(case);
+    let point = |sweep, bend_rad, ratio, (wob_n, pad): (f64, Option<f64>), inc_rad, rotating| TendencyPoint {
         sweep,
         bend_rad,
         ratio,
         wob_n,
+        pad_od_m: pad,
+        pad_under_gauge_m: pad.zip(hole).map(|(p, h)| h - p),
         inc_rad,
         rotating,
         toolface_rad: tf,
         turn: Err(String::new()),
     };
+    let own = case.string.pad_od_m();
+    let pads: Vec<Option<f64>> = match (bend, grid.pad_ods_m.is_empty() || own.is_none()) {
+        (Some(_), false) => grid.pad_ods_m.iter().map(|&d| Some(d)).collect(),
+        _ => vec![own],
+    };
     let mut out = Vec::new();
     for &w in &grid.wobs_n {
-        for &s in &grid.settings {
-            out.push(match bend {
-                Some(_) => (
-                    point(Sweep::Capability, Some(s), None, w, here, false),
-                    operated(&with_bend(case, s), w, false),
-                ),
-                None => {
-                    let mut c = operated(case, w, true);
-                    c.string = c.string.with_rss_ratio(s);
-                    (point(Sweep::Capability, None, Some(s), w, here, true), c)
-                }
-            });
+        for &pad in &pads {
+            for &s in &grid.settings {
+                out.push(match bend {
+                    Some(_) => (
+                        point(Sweep::Capability, Some(s), None, (w, pad), here, false),
+                        operated(&with_bend(&with_pad(case, pad), s), w, false),
+                    ),
+                    None => {
+                        let mut c = operated(case, w, true);
+                        c.string = c.string.with_rss_ratio(s);
+                        (point(Sweep::Capability, None, Some(s), (w, pad), here, true), c)
+                    }
+                });
+            }
         }
     }
     for &w in &grid.wobs_n {
@@ -162,7 +198,7 @@ pub fn sweep_cases(case: &Case, grid: &TendencyGrid) -> Result<Vec<(TendencyPoin
                     (None, Some(0.0))
                 }
             };
-            out.push((point(Sweep::Rotary, b, r, w, inc, true), c));
+            out.push((point(Sweep::Rotary, b, r, (w, own), inc, true), c));
         }
     }
     Ok(out)

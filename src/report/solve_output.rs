@@ -236,6 +236,7 @@ impl TurnRateJson {
 
 /// The `steering` key: the bent housing and how its tendencies were computed.
 #[derive(Serialize)]
+#[allow(non_snake_case)]
 struct SteeringJson {
     bend_angle_deg: Finite,
     bend_to_bit_m: Finite,
@@ -245,6 +246,10 @@ struct SteeringJson {
     motor_yield_rate_deg_per_30m: Option<TurnRateJson>,
     rotating_toolfaces: usize,
     not_computed: Option<String>,
+    reactive_torque_kNm: Option<Finite>,
+    reactive_toolface_turn_deg: Option<Finite>,
+    effective_toolface_deg: Option<Finite>,
+    reactive_torque_held_m: Option<Finite>,
 }
 
 /// The `rss` key: the rotary steerable system and its steering tendency.
@@ -460,6 +465,12 @@ impl SolveSummary {
             motor_yield_rate_deg_per_30m: ok.map(|(y, _)| TurnRateJson::of(y)),
             rotating_toolfaces: st.rotating_toolfaces,
             not_computed: st.tendencies.as_ref().err().cloned(),
+            reactive_torque_kNm: st.reactive_turn.map(|t| Finite(t.torque_nm / 1e3)),
+            reactive_toolface_turn_deg: st.reactive_turn.map(|t| Finite(t.turn_rad.to_degrees())),
+            effective_toolface_deg: st
+                .reactive_turn
+                .map(|t| Finite((st.toolface_rad - t.turn_rad).to_degrees().rem_euclid(360.0))),
+            reactive_torque_held_m: st.reactive_turn.and_then(|t| t.held_m.map(Finite)),
         });
         self
     }

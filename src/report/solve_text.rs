@@ -124,6 +124,19 @@ pub fn steering_line(st: &Steering, units: UnitSystem) -> String {
         fixed(st.toolface_rad.to_degrees(), 1),
         if st.magnetic { "magnetic" } else { "gravity" }
     );
+    let head = match st.reactive_turn {
+        Some(t) => format!(
+            "{head}, turned {} deg left by the motor's reactive torque {} kN.m (drilling at {} deg{})",
+            fixed(t.turn_rad.to_degrees(), 1),
+            fixed(t.torque_nm / 1e3, 2),
+            fixed((st.toolface_rad - t.turn_rad).to_degrees().rem_euclid(360.0), 1),
+            match t.held_m {
+                Some(h) => format!("; the wall holds it within {} of the bit", units.depth().fmt(h, 0)),
+                None => "; the wall does not hold it: the rotary table does".to_string(),
+            }
+        ),
+        None => head,
+    };
     match &st.tendencies {
         Ok((y, r)) => format!(
             "{head}; motor yield sliding {} (build {}, right {}); rotating tendency build {}, right {} ({} toolfaces)",

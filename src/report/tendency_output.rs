@@ -14,10 +14,11 @@ fn deg30(k: f64) -> f64 {
 
 /// Header of `tendency.csv`.
 pub const TENDENCY_HEADER: &str =
-    "sweep,bend_deg,ratio,wob_kN,inc_deg,mode,toolface_deg,build_deg_per_30m,right_deg_per_30m,dogleg_deg_per_30m,note";
+    "sweep,bend_deg,ratio,wob_kN,inc_deg,mode,toolface_deg,build_deg_per_30m,right_deg_per_30m,dogleg_deg_per_30m,note,pad_od_in,pad_under_gauge_in";
 
 /// `tendency.csv`: one row per point (the rates empty and the reason in `note` where the steady
-/// dogleg was not found; `bend_deg` empty for an RSS, `ratio` for a bent housing).
+/// dogleg was not found; `bend_deg` empty for an RSS, `ratio` for a bent housing; the pad
+/// columns, in inches, empty without a pad stabilizer below the bend).
 pub fn tendency_csv(points: &[TendencyPoint]) -> Result<String, String> {
     let mut out = String::from(TENDENCY_HEADER);
     out.push('\n');
@@ -35,8 +36,9 @@ pub fn tendency_csv(points: &[TendencyPoint]) -> Result<String, String> {
             ),
             Err(e) => (",,".to_string(), format!("\"{}\"", e.replace('"', "'"))),
         };
+        let inch = |v: Option<f64>| opt(v.map(|x| x / 0.0254), 4);
         out.push_str(&format!(
-            "{},{},{},{},{},{},{},{rates},{note}\n",
+            "{},{},{},{},{},{},{},{rates},{note},{},{}\n",
             p.sweep.name(),
             opt(p.bend_rad.map(f64::to_degrees), 3)?,
             opt(p.ratio, 3)?,
@@ -44,6 +46,8 @@ pub fn tendency_csv(points: &[TendencyPoint]) -> Result<String, String> {
             num(p.inc_rad.to_degrees(), 2)?,
             if p.rotating { "rotate" } else { "slide" },
             num(p.toolface_rad.to_degrees(), 2)?,
+            inch(p.pad_od_m)?,
+            inch(p.pad_under_gauge_m)?,
         ));
     }
     Ok(out)
@@ -54,7 +58,39 @@ fn setting(p: &TendencyPoint) -> f64 {
     p.bend_rad.map(f64::to_degrees).or(p.ratio).unwrap_or(0.0)
 }
 
-/// The series of `sweep`'s points, one per WOB: (x of a point, y of its steady turn).
+/// The lines of `sweep`'s points: the distinct (WOB N, pad under-gauge m) in the points' order.
+fn lines(points: &[TendencyPoint], sweep: Sweep) -> Vec<(f64, Option<f64>)> {
+    let mut out: Vec<(f64, Option<f64>)> = Vec::new();
+    for p in points.iter().filter(|p| p.sweep == sweep) {
+        if !out.iter().any(|l| on_line(p, l)) {
+            out.push((p.wob_n, p.pad_under_gauge_m));
+        }
+    }
+    out
+}
+
+/// True when `p` is on the line (WOB, pad under-gauge) `l`.
+fn on_line(p: &TendencyPoint, l: &(f64, Option<f64>)) -> bool {
+    let pad = match (p.pad_under_gauge_m, l.1) {
+        (Some(a), Some(b)) => (a - b).abs() < 1e-9,
+        (a, b) => a.is_none() && b.is_none(),
+    };
+    (p.wob_n - l.0).abs() < 1e-6 && pad
+}
+
+/// The name of a line: its WOB, and its pad's under-gauge when `pads` (more than one in the
+/// sweep).
+fn line_name(l: &(f64, Option<f64>), pads: bool) -> String {
+    let wob = format!("WOB {:.0} kN", l.0 / 1e3);
+    match l.1 {
+        Some(u) if pads && u.abs() < 1e-9 => format!("{wob}, pad full gauge"),
+        Some(u) if pads => format!("{wob}, pad {} in under gauge", crate::units::message_number(u / 0.0254)),
+        _ => wob,
+    }
+}
+
+/// The series of `sweep`'s points, one per line of [`lines`]: (x of a point, y of its steady
+/// turn). With several pads, a pad's lines share a colour and each WOB has its style.
 fn per_wob(
     points: &[TendencyPoint],
     sweep: Sweep,
@@ -62,18 +98,27 @@ fn per_wob(
     y: fn(f64, f64) -> f64,
     label: &str,
 ) -> Vec<Series> {
+    let ls = lines(points, sweep);
+    let mut pads: Vec<Option<f64>> = Vec::new();
     let mut wobs: Vec<f64> = Vec::new();
-    for p in points.iter().filter(|p| p.sweep == sweep) {
-        if !wobs.iter().any(|w| (w - p.wob_n).abs() < 1e-6) {
-            wobs.push(p.wob_n);
+    for l in &ls {
+        if !pads.iter().any(|p| {
+            p.zip(l.1)
+                .map_or(p.is_none() && l.1.is_none(), |(a, b)| (a - b).abs() < 1e-9)
+        }) {
+            pads.push(l.1);
+        }
+        if !wobs.iter().any(|w| (w - l.0).abs() < 1e-6) {
+            wobs.push(l.0);
         }
     }
-    wobs.iter()
+    let several = pads.len() > 1;
+    ls.iter()
         .enumerate()
-        .map(|(k, &w)| {
+        .map(|(k, l)| {
             let pts = points
                 .iter()
-                .filter(|p| p.sweep == sweep && (p.wob_n - w).abs() < 1e-6)
+                .filter(|p| p.sweep == sweep && on_line(p, l))
                 .filter_map(|p| {
                     p.turn
                         .as_ref()
@@ -81,7 +126,15 @@ fn per_wob(
                         .map(|t| (x(p), y(deg30(t.build_rad_per_m), deg30(t.right_rad_per_m))))
                 })
                 .collect();
-            Series::new(&format!("{label}WOB {:.0} kN", w / 1e3), pts, Style::LinePoints, k)
+            let (style, color) = if several {
+                let w = wobs.iter().position(|w| (w - l.0).abs() < 1e-6).unwrap_or(0);
+                let styles = [Style::Thin, Style::Line, Style::LinePoints, Style::Points];
+                let c = pads.iter().position(|p| *p == l.1).unwrap_or(0);
+                (styles[w % styles.len()], c)
+            } else {
+                (Style::LinePoints, k)
+            };
+            Series::new(&format!("{label}{}", line_name(l, several)), pts, style, color)
         })
         .collect()
 }
@@ -145,16 +198,12 @@ pub fn tendency_text(points: &[TendencyPoint], rss: bool) -> String {
     let fmt = |v: Option<f64>| v.map(|x| format!("{x:+.2}")).unwrap_or_else(|| "-".into());
     for sweep in [Sweep::Capability, Sweep::Rotary] {
         let ps: Vec<&TendencyPoint> = points.iter().filter(|p| p.sweep == sweep).collect();
-        let mut wobs: Vec<f64> = Vec::new();
-        for p in &ps {
-            if !wobs.iter().any(|w| (w - p.wob_n).abs() < 1e-6) {
-                wobs.push(p.wob_n);
-            }
-        }
-        for w in wobs {
+        let ls = lines(points, sweep);
+        let pads = sweep == Sweep::Capability && ls.iter().any(|l| l.1.is_some());
+        for l in ls {
             let cells: Vec<String> = ps
                 .iter()
-                .filter(|p| (p.wob_n - w).abs() < 1e-6)
+                .filter(|p| on_line(p, &l))
                 .map(|p| {
                     let t = p.turn.as_ref().ok();
                     match sweep {
@@ -183,8 +232,8 @@ pub fn tendency_text(points: &[TendencyPoint], rss: bool) -> String {
                 Sweep::Rotary => "rotary build/right",
             };
             out.push_str(&format!(
-                "  {head} at WOB {:.0} kN (deg/30 m): {}\n",
-                w / 1e3,
+                "  {head} at {} (deg/30 m): {}\n",
+                line_name(&l, pads),
                 cells.join(", ")
             ));
         }

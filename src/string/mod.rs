@@ -115,6 +115,30 @@ impl DrillString {
         }
         s
     }
+    /// The index of the pad stabilizer of the bent housing: the `stabilizer` component nearest
+    /// the bend whose middle lies below it (None without a bend or without such a stabilizer).
+    pub fn pad_index(&self) -> Option<usize> {
+        let bend = self.bend()?;
+        self.components
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| c.kind == ComponentKind::Stabilizer)
+            .rfind(|(_, c)| c.bottom_m + c.length_m / 2.0 < bend.to_bit_m)
+            .map(|(k, _)| k)
+    }
+    /// The blade OD of the bent housing's pad stabilizer ([`DrillString::pad_index`]), m.
+    pub fn pad_od_m(&self) -> Option<f64> {
+        self.pad_index().map(|k| self.components[k].contact_od_m)
+    }
+    /// The string with the blade OD of its pad stabilizer set to `od_m` (m; no effect without
+    /// a pad).
+    pub fn with_pad_od(&self, od_m: f64) -> DrillString {
+        let mut s = self.clone();
+        if let Some(k) = self.pad_index() {
+            s.components[k].contact_od_m = od_m;
+        }
+        s
+    }
     /// Distances from the bit of stabilizer contact points (mid-length), m.
     pub fn stabilizer_contacts_m(&self) -> Vec<f64> {
         self.components

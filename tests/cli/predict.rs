@@ -483,3 +483,40 @@ fn backanalyze_writes_a_fitted_case_that_runs_and_a_report_in_the_units_asked() 
         "report not in oilfield units"
     );
 }
+
+/// The kick-off of `wells/horizontal/landing.toml` (docs/guide.md, "Example wells"): its slide
+/// sheet slides at toolface 135 deg off the vertical hole (magnetic: toward azimuth 135 below 5
+/// deg at the bend) and hands over to the high side (gravity toolface 0) once the hole at the bend
+/// is past 5 deg. Reference: the plan's direction, azimuth 135 deg: the predicted hole keeps it
+/// within 0.5 deg from 1,094 m (5.3 deg) to 1,110 m while the inclination rises past 5 deg.
+#[test]
+fn landing_example_kicks_off_toward_the_plan() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p");
+    let r = crate::common::run_ok(
+        crate::common::root(),
+        &[
+            "predict",
+            "wells/horizontal/landing.toml",
+            "--from",
+            "1080",
+            "--to",
+            "1110",
+            "--step",
+            "2",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    let csv = std::fs::read_to_string(out.join("trajectory.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').take(3).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let last = rows.last().unwrap();
+    assert!(last[1] > 6.0, "{}", r.stdout);
+    for row in rows.iter().filter(|r| r[0] >= 1094.0) {
+        assert!((row[2] - 135.0).abs() < 0.5, "{row:?}\n{csv}");
+    }
+}

@@ -350,3 +350,50 @@ fn whole_and_hybrid_solves_show_the_soft_string_beside_them() {
     assert!(json("bha")["soft_string_comparison"].is_null());
     assert!(soft["soft_string_comparison"].is_null());
 }
+
+/// The motor's reactive torque in `solve`'s outputs (docs/guide.md "Bent motors", "Reactive
+/// torque"): `wells/horizontal/steered.toml` sliding with `reactive_torque = true` and a 6 kN.m
+/// motor torque turns the toolface left: `reactive_toolface_turn_deg` > 0, the effective toolface
+/// the set one less it (mod 360, to the JSON's round-off), the torque the given one, and the
+/// `bent motor:` line says so; without the option (the example as it is) the keys are `null`.
+#[test]
+fn the_reactive_torque_turns_the_toolface_in_solve() {
+    let dir = tempfile::tempdir().unwrap();
+    for f in ["survey.csv", "slides.csv"] {
+        std::fs::copy(root().join("wells/horizontal").join(f), dir.path().join(f)).unwrap();
+    }
+    let case = std::fs::read_to_string(root().join("wells/horizontal/steered.toml"))
+        .unwrap()
+        .replace(
+            "mode = \"drilling\"",
+            "mode = \"sliding\"\nreactive_torque = true\nbit_torque = \"6 kN.m\"\ntoolface = \"30 deg\"",
+        );
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let out = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "bha", "--json"]);
+    assert!(out.success(), "{}", out.stderr);
+    let j: serde_json::Value = serde_json::from_str(&out.stdout).unwrap();
+    let st = &j["steering"];
+    let turn = st["reactive_toolface_turn_deg"].as_f64().unwrap();
+    let eff = st["effective_toolface_deg"].as_f64().unwrap();
+    assert!(turn > 0.0, "{st}");
+    assert!(((30.0 - turn).rem_euclid(360.0) - eff).abs() < 1e-9, "{st}");
+    assert!((st["reactive_torque_kNm"].as_f64().unwrap() - 6.0).abs() < 1e-9);
+    let text = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "bha"]);
+    assert!(
+        text.stdout.contains("left by the motor's reactive torque 6.00 kN.m"),
+        "{}",
+        text.stdout
+    );
+    let off = run_in(
+        root(),
+        &["solve", "wells/horizontal/steered.toml", "--fidelity", "bha", "--json"],
+    );
+    let j: serde_json::Value = serde_json::from_str(&off.stdout).unwrap();
+    for key in [
+        "reactive_toolface_turn_deg",
+        "effective_toolface_deg",
+        "reactive_torque_kNm",
+    ] {
+        assert!(j["steering"][key].is_null(), "{key}");
+    }
+}

@@ -18,7 +18,7 @@ fn rows(csv: &str) -> Vec<std::collections::HashMap<String, String>> {
 }
 
 /// The table is right for one point: the capability row of `wells/horizontal/steered.toml`'s own
-/// bend (1.5 deg) and WOB (60 kN) is `solve`'s motor yield, and the rotary row at the case's
+/// bend (1.5 deg), WOB (60 kN) and pad (8.375 in, 1/8 in under gauge) is `solve`'s motor yield, and the rotary row at the case's
 /// inclination at the bit (92.5 deg) its rotating tendency (the same steady dogleg of the same
 /// assembly; equal to the CSV's 4 decimals, 1e-4 deg/30 m). The chart has both panels and a
 /// line per WOB; the RSS example sweeps ratios.
@@ -40,8 +40,11 @@ fn the_table_matches_a_single_solve() {
     let r = rows(&csv);
     let cap = r
         .iter()
-        .find(|r| r["sweep"] == "capability" && r["bend_deg"] == "1.500")
+        .find(|r| r["sweep"] == "capability" && r["bend_deg"] == "1.500" && r["pad_under_gauge_in"] == "0.1250")
         .unwrap();
+    assert_eq!(cap["pad_od_in"], "8.3750");
+    // the default pads: full gauge, 1/16, 1/8, 1/4 in under gauge, each bend
+    assert_eq!(r.iter().filter(|r| r["sweep"] == "capability").count(), 2 * 4, "{csv}");
     let y: f64 = cap["dogleg_deg_per_30m"].parse().unwrap();
     assert!(
         (y - s["motor_yield_deg_per_30m"].as_f64().unwrap()).abs() < 1e-4,
@@ -83,7 +86,13 @@ fn bad_tendency_options_are_named() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("t");
     let o = out.to_str().unwrap();
-    let cases: [(&str, &[&str], &[&str]); 7] = [
+    let cases: [(&str, &[&str], &[&str]); 9] = [
+        (
+            "wells/horizontal/steered.toml",
+            &["--pads", "0,2"],
+            &["--pads", "outside [0, 1.75]"],
+        ),
+        ("wells/horizontal/rss.toml", &["--pads", "0.125"], &["--pads", "RSS"]),
         (
             "wells/horizontal/steered.toml",
             &["--bends", "5"],

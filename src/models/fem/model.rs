@@ -183,6 +183,9 @@ pub struct Model {
     pub top: TopCondition,
     /// The bent housing's kink in the unloaded axis (None: a straight string).
     pub kink: Option<Kink>,
+    /// The motor's reactive torque turning a sliding bent housing's toolface (None: off,
+    /// [`super::reactive`]).
+    pub reactive: Option<super::reactive::ReactiveTorque>,
 }
 
 /// Mechanical state of the string: what a solve finds, what a warm start carries.
@@ -271,14 +274,16 @@ impl Model {
         let mesh = build_mesh(string, &case.solver, case.mud.density_kg_m3, &|s| {
             hole.diameter_at(bit_md_m - s)
         });
-        Model::new(
+        let mut model = Model::new(
             path.clone(),
             hole.clone(),
             mesh,
             bit_md_m,
             loads_from_case(case),
             |md| hole.friction_at(md).unwrap_or(case.operation.friction),
-        )
+        );
+        model.reactive = super::reactive::reactive_torque(case, string, bit_md_m);
+        model
     }
 
     /// Build from parts; `friction_at(md)` gives the wall friction coefficient. `path` is in
@@ -344,6 +349,7 @@ impl Model {
             consistent_tangent: false,
             top: TopCondition::Surface,
             kink,
+            reactive: None,
         }
     }
 

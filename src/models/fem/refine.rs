@@ -141,6 +141,7 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
         friction_of,
     );
     out.top = model.top;
+    out.reactive = model.reactive.clone();
     if let Some(k) = model.kink {
         // the bent housing turned as in `model` (its toolface held against the twist)
         out.turn_kink(k.orientation_rad);

@@ -35,6 +35,7 @@ pub mod interior_point_newton;
 pub mod matrix_and_factor;
 pub mod modified_newton_gap_forces;
 pub mod pins;
+pub mod reactive_turn;
 pub mod solution;
 pub mod start;
 pub mod step_caps;

@@ -33,6 +33,9 @@ pub struct SolveStats {
     /// straight beyond the helical onset (`models::levels`, [`super::helix`]): `Some(true)` kept
     /// (the answer is the buckled string), `Some(false)` tried and not kept; None when none ran.
     pub helix_restart: Option<bool>,
+    /// The turn of a sliding bent housing's toolface by the motor's reactive torque that the
+    /// solve held it at ([`super::toolface::solve_holding_toolface`]); None when off.
+    pub reactive_turn: Option<crate::models::fem::reactive::ReactiveTurn>,
 }
 
 impl SolveStats {

@@ -57,22 +57,61 @@ pub const TOOLFACE_TOLERANCE_RAD: f64 = 0.005 * std::f64::consts::PI / 180.0;
 /// Solves [`solve_holding_toolface`] may add to turn the housing.
 pub const MAX_TOOLFACE_SOLVES: usize = 10;
 
+/// Rounds of [`solve_holding_toolface`]'s fixed point on the reactive torque's turn: the
+/// turn depends on the contacts, which depend on the toolface.
+pub const MAX_REACTIVE_ROUNDS: usize = 4;
+
 /// Solve `model` (by `first`, from its own start) and, for a bent housing, turn its kink about
 /// the unloaded triads until the housing's toolface in the solved state
 /// ([`Model::housing_toolface`]) is the model's `loads.toolface_rad` within
 /// [`TOOLFACE_TOLERANCE_RAD`], each further solve warm-started from the last: the string
 /// twists under torque (the bit's, the wall's friction), which turns the housing, and the
-/// toolface a driller sets and reads is the one downhole. A straight string is solved once.
-/// Returns the last solution (not converged when a turned solve did not converge), its
-/// iteration count that of all the solves.
+/// toolface a driller sets and reads is the one downhole. With the motor's reactive torque on
+/// ([`Model::reactive`]) the housing is held at the toolface less the turn
+/// ([`Model::reactive_turn`]) of the solved state, repeated until the turn changes by less
+/// than the tolerance (at most [`MAX_REACTIVE_ROUNDS`]); the turn is in the statistics. A
+/// straight string is solved once. Returns the last solution (not converged when a turned
+/// solve did not converge), its iteration count that of all the solves.
 pub fn solve_holding_toolface(
     model: &mut Model,
     ctl: &SolveControls,
     first: impl FnOnce(&Model) -> Result<Solution, SolveError>,
 ) -> Result<Solution, SolveError> {
-    let mut sol = first(model)?;
-    let target = model.loads.toolface_rad;
+    let set = model.loads.toolface_rad;
+    let sol = first(model)?;
     let mut iterations = sol.stats.iterations;
+    // the first turn from the first state (its kink at the caller's guess, e.g. the last
+    // step's turned kink), so that a good guess costs one hold
+    let mut turn = model.reactive_turn(&sol).filter(|_| sol.converged);
+    let mut sol = hold(model, ctl, sol, set - turn.map_or(0.0, |t| t.turn_rad), &mut iterations)?;
+    for _ in 0..MAX_REACTIVE_ROUNDS {
+        let Some(last) = turn else {
+            break;
+        };
+        let Some(t) = model.reactive_turn(&sol).filter(|_| sol.converged) else {
+            break;
+        };
+        turn = Some(t);
+        if (t.turn_rad - last.turn_rad).abs() <= TOOLFACE_TOLERANCE_RAD {
+            break;
+        }
+        sol = hold(model, ctl, sol, set - t.turn_rad, &mut iterations)?;
+    }
+    sol.stats.iterations = iterations;
+    sol.stats.reactive_turn = turn;
+    Ok(sol)
+}
+
+/// Turn `model`'s kink until the housing's toolface in the solution is `target` (rad) within
+/// [`TOOLFACE_TOLERANCE_RAD`], from `sol` (at most [`MAX_TOOLFACE_SOLVES`] solves, each
+/// warm-started from the last, their iterations added to `iterations`).
+fn hold(
+    model: &mut Model,
+    ctl: &SolveControls,
+    mut sol: Solution,
+    target: f64,
+    iterations: &mut usize,
+) -> Result<Solution, SolveError> {
     for _ in 0..MAX_TOOLFACE_SOLVES {
         let (Some(k), Some(actual)) = (model.kink, model.housing_toolface(&sol.state)) else {
             break;
@@ -91,8 +130,7 @@ pub fn solve_holding_toolface(
             Ok(s) if s.converged => s,
             _ => solve(model, ctl)?,
         };
-        iterations += sol.stats.iterations;
+        *iterations += sol.stats.iterations;
     }
-    sol.stats.iterations = iterations;
     Ok(sol)
 }
