@@ -2,33 +2,34 @@
 //! bit at `s`, apply the bit-rock law, extend the hole by one minimum-curvature arc to the
 //! drilling direction, move the bit, re-solve warm-started from the previous state.
 
+mod bit;
 mod hole;
 mod ripple;
 mod step;
 
+pub use bit::{bit_action, StateStart, Warm, OWN_WARM_MAX_ITERATIONS};
+pub(crate) use bit::{solve_bit, BitSolve};
 pub use hole::{hole_for_prediction, hole_to};
 pub use ripple::{
     ripple_safe_step_m, RIPPLE_FAIL_DEG, RIPPLE_GROWTH, RIPPLE_GROWTH_LENGTH_M, RIPPLE_STEPS_PER_WAVELENGTH,
     RIPPLE_WARN_DEG, RIPPLE_WINDOW_M,
 };
 pub use step::{
-    bit_action, DIRECTION_TOLERANCE_RAD, MAX_DIRECTION_ITERATIONS, MAX_TURN_CHANGE_RAD, TURN_PERTURBATION_RAD,
-    TURN_TOLERANCE_RAD,
+    DIRECTION_TOLERANCE_RAD, MAX_DIRECTION_ITERATIONS, MAX_TURN_CHANGE_RAD, TURN_PERTURBATION_RAD, TURN_TOLERANCE_RAD,
 };
 
 use super::law::deviation;
 use crate::case::{BitRock, Case};
 use crate::geometry::{Frame, HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::default_cut_m;
-use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::BitResult;
 use crate::models::fem::solve::SolveControls;
 use hole::PredictedHole;
 use nalgebra::Matrix2;
 use ripple::RippleWatch;
+use std::cell::RefCell;
 use std::time::Instant;
 use step::{backtracking_step, implicit_step, StepOutcome};
-pub(crate) use step::{solve_bit, BitSolve};
 
 pub use crate::case::bit_rock::MIN_STEP_M;
 
@@ -330,8 +331,8 @@ pub fn check_step_count(from_md_m: f64, to_md_m: f64, step_m: f64) -> Result<(),
     Ok(())
 }
 
-/// Warm-start memory between calls: the last model and its solved state.
-pub type WarmStart = Option<(Model, State)>;
+/// Warm-start memory between calls: the last solved string.
+pub type WarmStart = Option<Warm>;
 
 /// Predict from the end of `start` (the hole drilled so far; its last station is the bit) to
 /// `to_md_m`, with the law parameters of `bit_rock` (the case's unless overridden, for
@@ -380,7 +381,7 @@ pub fn predict_from(
     let mut s = from;
     let start_case = steered_at(case, s);
     let faces = crate::predict::revolution::toolfaces(&start_case);
-    let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
+    let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, (warm, &None), ctl, &faces)?;
     let mut iterations = first.iterations;
     let dofs = first.model.dofs();
     let mut records = vec![(
@@ -390,7 +391,7 @@ pub fn predict_from(
         first.iterations,
         StepSteer::of_case(&start_case),
     )];
-    *warm = Some((first.model, first.state));
+    *warm = Some(first.into_warm());
     let start_warm = warm.clone();
     let mut hole_pred = PredictedHole {
         measured: start.stations().to_vec(),
@@ -422,9 +423,24 @@ pub fn predict_from(
         };
         // residual: drilling direction at the new bit position minus the actual chord, in the
         // reference frame (rad)
+        // the last evaluation of this step: where the other states of a revolution start
+        let latest: RefCell<WarmStart> = RefCell::new(None);
         let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
             let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
-            let sol = solve_bit(&step_case, bit_rock, &p, &hole, s1, cut, warm, ctl, &faces)?;
+            let sol = solve_bit(
+                &step_case,
+                bit_rock,
+                &p,
+                &hole,
+                s1,
+                cut,
+                (warm, &latest.borrow()),
+                ctl,
+                &faces,
+            )?;
+            if let Some(w) = sol.warm_copy() {
+                *latest.borrow_mut() = Some(w);
+            }
             let d = sol.direction;
             let chord = (p.point_at(s1).position - x0).normalize();
             let (dh, dr) = deviation(&reference, &d);
@@ -484,7 +500,7 @@ pub fn predict_from(
         s = s1;
         records.push((s, sol1.bit, dir, step_iterations, steer));
         on_step(s);
-        *warm = Some((sol1.model, sol1.state));
+        *warm = Some(sol1.into_warm());
     }
     ripple.warn_at_end();
     let steps = step_records(records, &path);
