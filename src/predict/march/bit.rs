@@ -77,8 +77,8 @@ impl BitSolve {
         }
     }
 
-    /// A copy of the solve as a warm start (None for one state: nothing beyond the model and
-    /// state a caller keeps anyway).
+    /// A copy of the solve as a warm start for the other states (None for one state: there
+    /// are none).
     pub(crate) fn warm_copy(&self) -> Option<Warm> {
         (!self.others.is_empty()).then(|| Warm {
             model: self.model.clone(),

@@ -438,9 +438,7 @@ pub fn predict_from(
                 ctl,
                 &faces,
             )?;
-            if let Some(w) = sol.warm_copy() {
-                *latest.borrow_mut() = Some(w);
-            }
+            *latest.borrow_mut() = sol.warm_copy();
             let d = sol.direction;
             let chord = (p.point_at(s1).position - x0).normalize();
             let (dh, dr) = deviation(&reference, &d);
@@ -449,35 +447,24 @@ pub fn predict_from(
         };
         // predictor: the previous step's turn per length (constant curvature), except after
         // the first step, whose turn is the start transient
-        let turn = if hole_pred.chords.len() >= 2 {
-            [last_turn[0] * ds / last_ds, last_turn[1] * ds / last_ds]
-        } else {
-            [0.0f64; 2]
+        let turn = match hole_pred.chords.len() >= 2 {
+            true => [last_turn[0] * ds / last_ds, last_turn[1] * ds / last_ds],
+            false => [0.0f64; 2],
         };
         let outcome = match step_with_retry(&eval, turn, &mut jac, warm, s1, bent) {
             Ok(o) if o.converged => o,
             failed => {
                 // a failed implicit step, or a string solve that failed on the way: a shorter step
                 if ds / 2.0 >= MIN_STEP_M {
-                    match &failed {
-                        Ok(_) => tracing::info!(md = s1, step = ds / 2.0, "implicit step failed; halving the step"),
-                        Err(e) => tracing::info!(md = s1, step = ds / 2.0, error = %e, "halving the step"),
-                    }
-                    cur_step = ds / 2.0;
-                    jac = None;
+                    log_halving(&failed, s1, ds / 2.0);
+                    (cur_step, jac) = (ds / 2.0, None);
                     continue;
                 }
                 return Err(failed_step_error(failed, s1, ds, ripple.hint()));
             }
         };
-        let StepOutcome {
-            turn,
-            path: p1,
-            solve: sol1,
-            direction: dir,
-            iterations: step_iterations,
-            ..
-        } = outcome;
+        let (turn, p1, sol1) = (outcome.turn, outcome.path, outcome.solve);
+        let (dir, step_iterations) = (outcome.direction, outcome.iterations);
         iterations += step_iterations;
         cur_step = (cur_step * 2.0).min(step);
         last_turn = turn;
@@ -516,6 +503,15 @@ pub fn predict_from(
         start_warm,
         ripple_deg: ripple.now.0.to_degrees(),
     })
+}
+
+/// Log why the step ending at `md_m` is retried at half its length, `half_m` (m): the implicit
+/// step `failed` did not converge, or a string solve on the way failed.
+fn log_halving(failed: &Result<StepOutcome, PredictError>, md_m: f64, half_m: f64) {
+    match failed {
+        Ok(_) => tracing::info!(md = md_m, step = half_m, "implicit step failed; halving the step"),
+        Err(e) => tracing::info!(md = md_m, step = half_m, error = %e, "halving the step"),
+    }
 }
 
 /// Restart the ripple watch `ripple` at `s` (m MD; step `step`, m) when the steering of the
