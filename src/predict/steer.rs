@@ -120,10 +120,10 @@ pub fn steady_turn_at(
     let mut eval = |k: [f64; 2], warm: &mut WarmStart| -> Result<[f64; 2], PredictError> {
         let curvature = frame.h * k[0] + frame.r * k[1];
         let path = arc_hole(md, &frame.t, &curvature, cut + ARC_MARGIN_M)?;
-        let sol = solve_bit(case, bit_rock, &path, &hole, md, cut, warm, ctl, faces)?;
+        let sol = solve_bit(case, bit_rock, &path, &hole, md, cut, (warm, &None), ctl, faces)?;
         solves += faces.len();
         let (dh, dr) = deviation(&path.frame_at(md), &sol.direction);
-        *warm = Some((sol.model, sol.state));
+        *warm = Some(sol.into_warm());
         Ok([dh, dr])
     };
     let mut k = [0.0f64; 2];

@@ -2,33 +2,34 @@
 //! bit at `s`, apply the bit-rock law, extend the hole by one minimum-curvature arc to the
 //! drilling direction, move the bit, re-solve warm-started from the previous state.
 
+mod bit;
 mod hole;
 mod ripple;
 mod step;
 
+pub use bit::{bit_action, StateStart, Warm, OWN_WARM_MAX_ITERATIONS};
+pub(crate) use bit::{solve_bit, BitSolve};
 pub use hole::{hole_for_prediction, hole_to};
 pub use ripple::{
     ripple_safe_step_m, RIPPLE_FAIL_DEG, RIPPLE_GROWTH, RIPPLE_GROWTH_LENGTH_M, RIPPLE_STEPS_PER_WAVELENGTH,
     RIPPLE_WARN_DEG, RIPPLE_WINDOW_M,
 };
 pub use step::{
-    bit_action, DIRECTION_TOLERANCE_RAD, MAX_DIRECTION_ITERATIONS, MAX_TURN_CHANGE_RAD, TURN_PERTURBATION_RAD,
-    TURN_TOLERANCE_RAD,
+    DIRECTION_TOLERANCE_RAD, MAX_DIRECTION_ITERATIONS, MAX_TURN_CHANGE_RAD, TURN_PERTURBATION_RAD, TURN_TOLERANCE_RAD,
 };
 
 use super::law::deviation;
 use crate::case::{BitRock, Case};
 use crate::geometry::{Frame, HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::default_cut_m;
-use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::BitResult;
 use crate::models::fem::solve::SolveControls;
 use hole::PredictedHole;
 use nalgebra::Matrix2;
 use ripple::RippleWatch;
+use std::cell::RefCell;
 use std::time::Instant;
 use step::{backtracking_step, implicit_step, StepOutcome};
-pub(crate) use step::{solve_bit, BitSolve};
 
 pub use crate::case::bit_rock::MIN_STEP_M;
 
@@ -330,8 +331,8 @@ pub fn check_step_count(from_md_m: f64, to_md_m: f64, step_m: f64) -> Result<(),
     Ok(())
 }
 
-/// Warm-start memory between calls: the last model and its solved state.
-pub type WarmStart = Option<(Model, State)>;
+/// Warm-start memory between calls: the last solved string.
+pub type WarmStart = Option<Warm>;
 
 /// Predict from the end of `start` (the hole drilled so far; its last station is the bit) to
 /// `to_md_m`, with the law parameters of `bit_rock` (the case's unless overridden, for
@@ -380,7 +381,7 @@ pub fn predict_from(
     let mut s = from;
     let start_case = steered_at(case, s);
     let faces = crate::predict::revolution::toolfaces(&start_case);
-    let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, warm, ctl, &faces)?;
+    let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, (warm, &None), ctl, &faces)?;
     let mut iterations = first.iterations;
     let dofs = first.model.dofs();
     let mut records = vec![(
@@ -390,7 +391,7 @@ pub fn predict_from(
         first.iterations,
         StepSteer::of_case(&start_case),
     )];
-    *warm = Some((first.model, first.state));
+    *warm = Some(first.into_warm());
     let start_warm = warm.clone();
     let mut hole_pred = PredictedHole {
         measured: start.stations().to_vec(),
@@ -422,9 +423,22 @@ pub fn predict_from(
         };
         // residual: drilling direction at the new bit position minus the actual chord, in the
         // reference frame (rad)
+        // the last evaluation of this step: where the other states of a revolution start
+        let latest: RefCell<WarmStart> = RefCell::new(None);
         let eval = |turn: [f64; 2], warm: &WarmStart| -> Result<(WellPath, BitSolve, [f64; 2], Vec3), PredictError> {
             let p = hole_pred.path_with(Some((s1, chord_of(turn))))?;
-            let sol = solve_bit(&step_case, bit_rock, &p, &hole, s1, cut, warm, ctl, &faces)?;
+            let sol = solve_bit(
+                &step_case,
+                bit_rock,
+                &p,
+                &hole,
+                s1,
+                cut,
+                (warm, &latest.borrow()),
+                ctl,
+                &faces,
+            )?;
+            *latest.borrow_mut() = sol.warm_copy();
             let d = sol.direction;
             let chord = (p.point_at(s1).position - x0).normalize();
             let (dh, dr) = deviation(&reference, &d);
@@ -433,35 +447,24 @@ pub fn predict_from(
         };
         // predictor: the previous step's turn per length (constant curvature), except after
         // the first step, whose turn is the start transient
-        let turn = if hole_pred.chords.len() >= 2 {
-            [last_turn[0] * ds / last_ds, last_turn[1] * ds / last_ds]
-        } else {
-            [0.0f64; 2]
+        let turn = match hole_pred.chords.len() >= 2 {
+            true => [last_turn[0] * ds / last_ds, last_turn[1] * ds / last_ds],
+            false => [0.0f64; 2],
         };
         let outcome = match step_with_retry(&eval, turn, &mut jac, warm, s1, bent) {
             Ok(o) if o.converged => o,
             failed => {
                 // a failed implicit step, or a string solve that failed on the way: a shorter step
                 if ds / 2.0 >= MIN_STEP_M {
-                    match &failed {
-                        Ok(_) => tracing::info!(md = s1, step = ds / 2.0, "implicit step failed; halving the step"),
-                        Err(e) => tracing::info!(md = s1, step = ds / 2.0, error = %e, "halving the step"),
-                    }
-                    cur_step = ds / 2.0;
-                    jac = None;
+                    log_halving(&failed, s1, ds / 2.0);
+                    (cur_step, jac) = (ds / 2.0, None);
                     continue;
                 }
                 return Err(failed_step_error(failed, s1, ds, ripple.hint()));
             }
         };
-        let StepOutcome {
-            turn,
-            path: p1,
-            solve: sol1,
-            direction: dir,
-            iterations: step_iterations,
-            ..
-        } = outcome;
+        let (turn, p1, sol1) = (outcome.turn, outcome.path, outcome.solve);
+        let (dir, step_iterations) = (outcome.direction, outcome.iterations);
         iterations += step_iterations;
         cur_step = (cur_step * 2.0).min(step);
         last_turn = turn;
@@ -484,7 +487,7 @@ pub fn predict_from(
         s = s1;
         records.push((s, sol1.bit, dir, step_iterations, steer));
         on_step(s);
-        *warm = Some((sol1.model, sol1.state));
+        *warm = Some(sol1.into_warm());
     }
     ripple.warn_at_end();
     let steps = step_records(records, &path);
@@ -500,6 +503,15 @@ pub fn predict_from(
         start_warm,
         ripple_deg: ripple.now.0.to_degrees(),
     })
+}
+
+/// Log why the step ending at `md_m` is retried at half its length, `half_m` (m): the implicit
+/// step `failed` did not converge, or a string solve on the way failed.
+fn log_halving(failed: &Result<StepOutcome, PredictError>, md_m: f64, half_m: f64) {
+    match failed {
+        Ok(_) => tracing::info!(md = md_m, step = half_m, "implicit step failed; halving the step"),
+        Err(e) => tracing::info!(md = md_m, step = half_m, error = %e, "halving the step"),
+    }
 }
 
 /// Restart the ripple watch `ripple` at `s` (m MD; step `step`, m) when the steering of the
