@@ -33,6 +33,10 @@ pub struct SolveStats {
     /// straight beyond the helical onset (`models::levels`, [`super::helix`]): `Some(true)` kept
     /// (the answer is the buckled string), `Some(false)` tried and not kept; None when none ran.
     pub helix_restart: Option<bool>,
+    /// Whether a whole-string solve that found no equilibrium was solved again from its buckled
+    /// shape (`models::buckled_start`): `Some(true)` kept (the answer came from it),
+    /// `Some(false)` tried and not kept; None when none ran.
+    pub buckled_start: Option<bool>,
 }
 
 impl SolveStats {
