@@ -10,11 +10,13 @@
 //!
 //! [`solve_from_buckled_start`] runs after those stages fail: the soft string of the case (its
 //! friction, motion and WOB) gives the axial force at the model's nodes and the runs beyond
-//! the helical onset ([`soft_helical_runs`]); the cold start is moved onto a helix along the
-//! wall there ([`helix::helical_start`]) and solved with the pseudo-transient lateral damping
-//! that vanishes with the residual ([`helix::solve_from_helix`]). A result is kept only if it
-//! converged with global equilibrium within [`EQUILIBRIUM`] of the largest force and
-//! penetration within the gap tolerance.
+//! the helical onset ([`soft_helical_runs`]); the cold start is solved with a pseudo-transient
+//! lateral damping held full until the residual is small ([`Strategy::Damped`]), then, if that
+//! fails, moved onto a helix along the wall there and solved as the helix re-solve is
+//! ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result is kept only if it
+//! converged with global equilibrium within [`EQUILIBRIUM`] of the largest force, penetration
+//! within the gap tolerance and a hook load not below zero. A case whose soft string is locked
+//! up is left to the lock-up answer.
 
 use crate::case::Case;
 use crate::models::buckling::{marks, BuckleState, MIN_HELICAL_RUN_M};
@@ -31,9 +33,13 @@ pub const EQUILIBRIUM: f64 = 1e-6;
 /// The soft string's effective axial force at each node of `model` (the whole string of
 /// `case`, N, tension positive, bit first; linear between the soft-string points) and the
 /// runs of nodes (index ranges from the bit, inclusive) where it is beyond the helical onset
-/// over at least [`MIN_HELICAL_RUN_M`].
+/// over at least [`MIN_HELICAL_RUN_M`]; none where the soft string is locked up (its hook load
+/// below zero: the lock-up is the answer, `models::levels`).
 pub fn soft_helical_runs(case: &Case, model: &Model) -> (Vec<f64>, Vec<(usize, usize)>) {
     let soft = softstring::from_case(case, softstring::segment_length_m(&case.solver));
+    if soft.hook_load_n < 0.0 {
+        return (Vec::new(), Vec::new());
+    }
     let pts = &soft.points;
     // points run from the bit upward: MD falls
     let at = |md: f64| -> f64 {
@@ -126,7 +132,9 @@ pub fn solve_from_buckled_start_by(
     }
     let t0 = Instant::now();
     let accept = |h: &Solution| {
-        if !h.converged || h.stats.max_penetration > ctl.gap_tolerance {
+        // a negative hook load (the surface pushing) is a lock-up, not an answer
+        let pushed = model.loads.hook_load_n.is_none() && h.state.hook_load_n < 0.0;
+        if !h.converged || h.stats.max_penetration > ctl.gap_tolerance || pushed {
             return false;
         }
         let r = extract(model, h, case.mud.density_kg_m3);
