@@ -104,6 +104,10 @@ pub enum Strategy {
 /// ([`SolveControls::damping_reference_residual`]).
 pub const DAMPING_REFERENCE_RESIDUAL: f64 = 1e-3;
 
+/// Iteration limit of [`Strategy::Damped`], in `max_iterations`: a pseudo-transient iteration
+/// moves slowly while its damping is full (the rescued grid cases take 190-440 iterations).
+pub const DAMPED_ITERATION_FACTOR: usize = 3;
+
 /// The strategies [`solve_from_buckled_start`] tries, in order (the cheaper first).
 pub const STRATEGIES: [Strategy; 2] = [Strategy::Damped, Strategy::Helix];
 
@@ -170,8 +174,9 @@ pub fn solve_from_buckled_start_by(
             h.stats.seconds = 0.0;
             h.stats.add_work(&sol.stats);
             h.stats.add_work(&work);
-            h.stats.wob_continuation_n = sol.stats.wob_continuation_n;
-            h.stats.friction_continuation = sol.stats.friction_continuation;
+            // the answer did not come from the paths that ran before
+            h.stats.wob_continuation_n = None;
+            h.stats.friction_continuation = None;
             h.stats.buckled_start = Some(true);
             return h;
         }
@@ -181,8 +186,8 @@ pub fn solve_from_buckled_start_by(
     sol
 }
 
-/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` with the
-/// lateral damping of [`helix::instability_stiffness`] in `runs` (`axial` the soft string's
+/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` (its
+/// iteration limit times [`DAMPED_ITERATION_FACTOR`]) with the lateral damping of [`helix::instability_stiffness`] in `runs` (`axial` the soft string's
 /// axial forces at the nodes, N); the solution if `accept` takes it, and the work.
 fn damped(
     model: &Model,
@@ -195,6 +200,7 @@ fn damped(
     let mut m = model.clone();
     m.consistent_tangent = true;
     let c = SolveControls {
+        max_iterations: DAMPED_ITERATION_FACTOR * ctl.max_iterations,
         lateral_damping_n_per_m: helix::instability_stiffness(model, axial, runs),
         damping_reference_residual: DAMPING_REFERENCE_RESIDUAL,
         ..*ctl

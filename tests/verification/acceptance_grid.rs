@@ -277,6 +277,7 @@ fn buckled_start_rescues_the_helix_above_the_kick_off() {
     let sol = solve_from_buckled_start_by(&case, &model, direct, &ctl, &[Strategy::Damped]);
     assert!(sol.converged, "the re-solve from the buckled shape did not converge");
     assert_eq!(sol.stats.buckled_start, Some(true));
+    assert_eq!(sol.stats.friction_continuation, None);
     assert!(sol.stats.max_penetration <= case.solver.tolerance);
     let r = extract(&model, &sol, case.mud.density_kg_m3);
     let eq = r.force_imbalance_n.norm() / r.largest_force_n;
