@@ -85,7 +85,9 @@ pub fn stop_phrase(
             100.0 * share
         )
     });
-    let paths: Vec<String> = wob_path.into_iter().chain(friction_path).collect();
+    let buckled = (stats.buckled_start == Some(false))
+        .then(|| "a re-solve from the buckled shape (damped; a helix along the wall)".to_string());
+    let paths: Vec<String> = wob_path.into_iter().chain(friction_path).chain(buckled).collect();
     let path = if paths.is_empty() {
         format!(" (the limit, `[solver] max_iterations` = {})", ctl.max_iterations)
     } else {
@@ -221,6 +223,14 @@ weight = "29 kg/m"
         assert_eq!(
             stop_phrase(&stats, &ctl),
             "in 420 iterations, with a WOB continuation from 10% of the WOB that reached 50.0 of 60.0 kN, then a friction continuation from zero that reached 57% of the wall friction (each stage limited by `[solver] max_iterations` = 300)"
+        );
+        stats.buckled_start = Some(false);
+        assert!(
+            stop_phrase(&stats, &ctl).contains(
+                "wall friction, then a re-solve from the buckled shape (damped; a helix along the wall) (each stage"
+            ),
+            "{}",
+            stop_phrase(&stats, &ctl)
         );
     }
 }

@@ -18,6 +18,7 @@
 
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
+use crate::models::buckled_start;
 use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
@@ -203,12 +204,14 @@ fn fem_part(
     coupling_m: Option<f64>,
 ) -> Result<FemPart, SolveError> {
     // a bent housing is held at its toolface against the string's twist (a straight string is
-    // solved once)
+    // solved once); a whole string that finds no equilibrium is solved again from its buckled
+    // shape
+    let first = |m: &Model| solve(m, ctl).map(|s| buckled_start::solve_from_buckled_start(case, m, s, ctl));
     let (model, sol) = if case.solver.refine_contacts {
         let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
-        refine::solve_refined(model, ctl, case.string.bha_length_m(), h)?
+        refine::solve_refined_by(model, ctl, case.string.bha_length_m(), h, first)?
     } else {
-        let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
+        let sol = solve_holding_toolface(&mut model, ctl, first)?;
         (model, sol)
     };
     let (model, sol) = if matches!(model.top, TopCondition::Cut { .. }) {
@@ -227,8 +230,12 @@ fn fem_part(
     })
 }
 
+/// The warning of an answer that came from the re-solve from the buckled shape
+/// ([`buckled_start`]).
+pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium, and the hook load of another buckled shape can differ by about 10% (a known limit, docs/guide.md)";
+
 /// Relative equilibrium (force imbalance over the largest force) a buckled re-solve must meet.
-pub const HELIX_EQUILIBRIUM: f64 = 1e-6;
+pub const HELIX_EQUILIBRIUM: f64 = buckled_start::EQUILIBRIUM;
 
 /// The converged solve `sol` of the whole-string model `model` of `case`, or, where it lies
 /// straight in runs compressed beyond the helical onset
@@ -268,6 +275,7 @@ fn off_the_straight_branch(case: &Case, model: Model, sol: Solution, ctl: &Solve
     again.stats.add_work(&sol.stats);
     again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
     again.stats.friction_continuation = sol.stats.friction_continuation;
+    again.stats.buckled_start = sol.stats.buckled_start;
     let results = extract(&fine, &again, case.mud.density_kg_m3);
     let straight = node_runs(case, &fine, &results);
     let axial: Vec<f64> = results.nodes.iter().map(|n| n.axial_force_n).collect();
@@ -321,6 +329,7 @@ fn buckled_or_straight(
                 wob_continuation_n: sol.stats.wob_continuation_n,
                 friction_continuation: sol.stats.friction_continuation,
                 reactive_turn: sol.stats.reactive_turn,
+                buckled_start: sol.stats.buckled_start,
                 ..h.stats
             };
             h.stats.add_work(&sol.stats);
@@ -512,6 +521,14 @@ impl StringSolve {
         w.extend(self.yield_check.and_then(|y| y.warning()));
         if let Some(l) = &self.lock_up {
             w.push(l.warning(case.operation.mode.name()));
+        }
+        if self
+            .level
+            .fem
+            .as_ref()
+            .is_some_and(|p| p.stats.buckled_start == Some(true))
+        {
+            w.push(BUCKLED_START_WARNING.to_string());
         }
         let runs = unbuckled_helical_runs(self.stiff_marks(), self.reported_nodes());
         if !runs.is_empty() {

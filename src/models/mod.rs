@@ -9,6 +9,7 @@
 //! - [`diagnose`]: why a stiff solve may not converge (lock-up, helical buckling).
 
 pub mod bit;
+pub mod buckled_start;
 pub mod buckling;
 pub mod checks;
 pub mod diagnose;

@@ -97,6 +97,9 @@ struct SolverJson {
     /// Whether the solution came from the friction continuation; absent for the soft string.
     #[serde(skip_serializing_if = "Option::is_none")]
     friction_continuation: Option<bool>,
+    /// True when the answer came from the re-solve from the buckled shape; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    buckled_start: Option<bool>,
 }
 
 /// The `fidelity` key: the level asked for and run, and what it does not compute.
@@ -346,6 +349,7 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             max_penetration_rel: Some(Finite(p.stats.max_penetration)),
             stabilizer_contact: Some(case.solver.stabilizer_contact.name()),
             friction_continuation: Some(p.converged && p.stats.friction_continuation.is_some()),
+            buckled_start: (p.converged && p.stats.buckled_start == Some(true)).then_some(true),
         },
         None => SolverJson {
             converged: true,
@@ -358,6 +362,7 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             max_penetration_rel: None,
             stabilizer_contact: None,
             friction_continuation: None,
+            buckled_start: None,
         },
     }
 }

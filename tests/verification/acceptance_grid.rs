@@ -19,12 +19,16 @@
 //! (docs/performance.md, "Acceptance grid").
 
 use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
-use drillpath::models::fem::solve::SolveControls;
+use drillpath::models::buckled_start::{solve_from_buckled_start_by, Strategy};
+use drillpath::models::fem::model::Model;
+use drillpath::models::fem::results::extract;
+use drillpath::models::fem::solve::{solve_interior_point, SolveControls, DIRECT_BEFORE_CONTINUATION};
 use drillpath::models::levels::{run, solve_string};
+use drillpath::models::softstring;
 use std::fmt::Write;
 use std::time::Instant;
 
-use crate::common::{collar, load_temp_case, stabilizer, BIT, DRILL_PIPE};
+use crate::common::{collar, load_temp_case, pipe_properties, stabilizer, BIT, DRILL_PIPE};
 
 /// Inclinations of the grid's laterals, deg.
 pub const INCLINATIONS_DEG: [f64; 7] = [88.0, 90.0, 92.0, 95.0, 100.0, 110.0, 120.0];
@@ -68,7 +72,12 @@ impl GridCase {
 
 /// The survey CSV and case file of `g` (module docs).
 pub fn grid_case(g: &GridCase) -> (String, String) {
-    let kop = 1000.0;
+    well_case(g, 1000.0)
+}
+
+/// The survey CSV and case file of `g` with the kick-off point at `kop` (m MD) in place of the
+/// grid's 1,000 m.
+pub fn well_case(g: &GridCase, kop: f64) -> (String, String) {
     let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
     let build = g.inc_deg / 6.0 * 30.0;
     let n = (build / 10.0_f64).ceil() as usize;
@@ -137,6 +146,8 @@ pub struct Outcome {
     pub seconds: f64,
     /// Whether the helix re-solve ran and was kept.
     pub helix: Option<bool>,
+    /// Whether the re-solve from the buckled shape ran and was kept.
+    pub buckled_start: Option<bool>,
 }
 
 /// Solve `g` at `soft` and at `whole` (as `drillpath solve --fidelity whole` does).
@@ -153,7 +164,7 @@ pub fn solve_grid_case(g: &GridCase) -> Outcome {
         &mut |_, _, _| {},
     );
     let seconds = t0.elapsed().as_secs_f64();
-    let (converged, whole_hook_kn, helix) = match &whole {
+    let (converged, whole_hook_kn, helix, buckled_start) = match &whole {
         Ok(s) => {
             let fem = s.level.fem.as_ref().unwrap();
             let r = &fem.results;
@@ -163,9 +174,10 @@ pub fn solve_grid_case(g: &GridCase) -> Outcome {
                 s.level.converged && eq < 1e-6 && hook.is_finite(),
                 hook / 1e3,
                 fem.stats.helix_restart,
+                fem.stats.buckled_start,
             )
         }
-        Err(_) => (false, f64::NAN, None),
+        Err(_) => (false, f64::NAN, None, None),
     };
     Outcome {
         soft_hook_kn: soft.hook_load_n.unwrap() / 1e3,
@@ -173,6 +185,7 @@ pub fn solve_grid_case(g: &GridCase) -> Outcome {
         whole_hook_kn,
         seconds,
         helix,
+        buckled_start,
     }
 }
 
@@ -227,6 +240,70 @@ fn subset_of_the_grid_converges() {
     }
 }
 
+/// The grid's failure in small (issue 16, docs/theory.md 7.5): the well of [`grid_case`] with
+/// its kick-off at 500 m, a 300 m lateral at 90 deg, sliding with 30 kN and wall friction 0.35.
+/// The slack-off compresses the vertical pipe above the kick-off (12.25 in casing) to about
+/// 90 kN, four times its helical onset (23 kN); the direct solve does not converge (nor, measured
+/// with the CLI, do the WOB and friction paths after it: 16 s, exit 2), the damped re-solve from
+/// the buckled shape ([`Strategy::Damped`]) does (about 100 iterations). References: global
+/// equilibrium within 1e-6 of the largest force and penetration within the gap tolerance; the
+/// vertical pipe buckled: its mean wall force per length over 300-480 m MD (compression 27-85 kN,
+/// where straight pipe touches nowhere) between 0.4 and 1.15 of Mitchell's helical contact force
+/// `w_c = r F^2 / (4 EI)` at its mean compression (`r` the tool joints' radial clearance; measured
+/// 0.6-0.8: near the onset the helix is not fully developed); the hook load below the soft
+/// string's (44.6 kN) by the helix's drag (measured 33.6 kN).
+#[test]
+fn buckled_start_rescues_the_helix_above_the_kick_off() {
+    let g = GridCase {
+        inc_deg: 90.0,
+        lateral_m: 300.0,
+        mode: "sliding",
+        wob_kn: 30.0,
+        friction: 0.35,
+    };
+    let (csv, toml) = well_case(&g, 500.0);
+    let case: Case = load_temp_case(&csv, &toml);
+    let ctl = SolveControls::from_settings(&case.solver);
+    let model = Model::from_case(&case);
+    let first = SolveControls {
+        max_iterations: DIRECT_BEFORE_CONTINUATION,
+        ..ctl
+    };
+    let direct = solve_interior_point(&model, &first).unwrap();
+    assert!(
+        !direct.converged,
+        "the direct solve converged: the case no longer needs the re-solve"
+    );
+    let sol = solve_from_buckled_start_by(&case, &model, direct, &ctl, &[Strategy::Damped]);
+    assert!(sol.converged, "the re-solve from the buckled shape did not converge");
+    assert_eq!(sol.stats.buckled_start, Some(true));
+    assert_eq!(sol.stats.friction_continuation, None);
+    assert!(sol.stats.max_penetration <= case.solver.tolerance);
+    let r = extract(&model, &sol, case.mud.density_kg_m3);
+    let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+    assert!(eq < 1e-6, "equilibrium {eq}");
+    let (ei, _, _) = pipe_properties();
+    let r_joint = (12.25 - 6.625) * 0.0254 / 2.0;
+    let sel: Vec<_> = r.nodes.iter().filter(|n| n.md_m > 300.0 && n.md_m < 480.0).collect();
+    let wall = sel.iter().map(|n| n.contact_force_n).sum::<f64>() / 180.0;
+    let f = -sel.iter().map(|n| n.axial_force_n).sum::<f64>() / sel.len() as f64;
+    let mitchell = r_joint * f * f / (4.0 * ei);
+    println!(
+        "wall {wall:.1} N/m, Mitchell {mitchell:.1} N/m at {:.1} kN; hook {:.1} kN; {} iterations",
+        f / 1e3,
+        r.hook_load_n / 1e3,
+        sol.stats.iterations
+    );
+    assert!(wall > 0.4 * mitchell && wall < 1.15 * mitchell, "{wall} vs {mitchell}");
+    let soft = softstring::from_case(&case, softstring::segment_length_m(&case.solver));
+    assert!(
+        r.hook_load_n < soft.hook_load_n,
+        "{} vs {}",
+        r.hook_load_n,
+        soft.hook_load_n
+    );
+}
+
 /// The whole grid (module docs for the command). Fails while a case with a non-negative soft
 /// hook load does not converge.
 #[test]
@@ -246,13 +323,14 @@ fn full_grid() {
         let o = solve_grid_case(&g);
         let applies = o.soft_hook_kn >= 0.0;
         println!(
-            "GRID {} soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} applies {applies}",
+            "GRID {} soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} applies {applies}",
             g.name(),
             o.soft_hook_kn,
             o.converged,
             o.whole_hook_kn,
             o.seconds,
-            o.helix
+            o.helix,
+            o.buckled_start
         );
         if applies {
             asked += 1;

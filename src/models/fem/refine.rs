@@ -268,8 +268,19 @@ pub fn solve_refined(
     bha_top_m: f64,
     h_m: f64,
 ) -> Result<(Model, Solution), SolveError> {
+    solve_refined_by(model, ctl, bha_top_m, h_m, |m| solve(m, ctl))
+}
+
+/// [`solve_refined`] with the first (cold) solve made by `first`.
+pub fn solve_refined_by(
+    model: Model,
+    ctl: &SolveControls,
+    bha_top_m: f64,
+    h_m: f64,
+    first: impl FnOnce(&Model) -> Result<Solution, SolveError>,
+) -> Result<(Model, Solution), SolveError> {
     let mut model = model;
-    let sol = solve_holding_toolface(&mut model, ctl, |m| solve(m, ctl))?;
+    let sol = solve_holding_toolface(&mut model, ctl, first)?;
     if !sol.converged || ctl.method != Method::Newton {
         return Ok((model, sol));
     }
@@ -292,6 +303,7 @@ pub fn solve_refined(
             again.stats.add_work(&sol.stats);
             again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
             again.stats.friction_continuation = sol.stats.friction_continuation;
+            again.stats.buckled_start = sol.stats.buckled_start;
             Ok((fine, again))
         }
         other => {

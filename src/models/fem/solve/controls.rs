@@ -24,6 +24,10 @@ pub struct SolveControls {
     /// equilibrium unchanged. It makes the steps of an indefinite tangent (a string past its
     /// buckling load) go downhill in energy; 0 (the default) for a plain Newton.
     pub lateral_damping_n_per_m: f64,
+    /// Relative outer residual at and above which the pseudo-transient damping is full: below
+    /// it the damping falls in proportion to the residual (`d_k = d_0 min(1, r_k / r_ref)`);
+    /// 0 (the default) takes the first step's residual as `r_ref`.
+    pub damping_reference_residual: f64,
     /// The start is a converged solution carried onto a refined mesh
     /// ([`crate::models::fem::refine`]): the interior point starts
     /// [`super::interior_point::CARRIED_START_SHIFT_FACTOR`] times closer to the boundary and
@@ -56,6 +60,7 @@ impl Default for SolveControls {
             alpha: 0.7,
             time_limit_s: crate::case::solver::DEFAULT_TIME_LIMIT_S,
             lateral_damping_n_per_m: 0.0,
+            damping_reference_residual: 0.0,
             carried_start: false,
         }
     }

@@ -336,14 +336,19 @@ impl<'a> InteriorPointNewton<'a> {
     }
 
     /// Add the pseudo-transient damping at the outer residual `rn` to both lateral
-    /// translations of every node ([`SolveControls::lateral_damping_n_per_m`]).
+    /// translations of every node ([`SolveControls::lateral_damping_n_per_m`],
+    /// [`SolveControls::damping_reference_residual`]).
     fn add_damping(&mut self, rn: f64) {
         let d0 = self.ctl.lateral_damping_n_per_m;
         if d0 <= 0.0 {
             return;
         }
-        let r0 = *self.first_residual.get_or_insert(rn);
-        let d = d0 * (rn / r0).min(1.0);
+        let first = *self.first_residual.get_or_insert(rn);
+        let r_ref = match self.ctl.damping_reference_residual {
+            r if r > 0.0 => r,
+            _ => first,
+        };
+        let d = d0 * (rn / r_ref).min(1.0);
         let sink = self.lin.sink();
         for i in 0..self.model.nodes() {
             for k in [1, 2] {

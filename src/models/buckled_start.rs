@@ -1,0 +1,214 @@
+//! A whole-string solve that found no equilibrium, started again from the buckled shape
+//! (issue 16; docs/theory.md 7.5).
+//!
+//! The failures of the acceptance grid's uphill laterals are the pipe above the kick-off
+//! point: a vertical section in large casing that the lateral's WOB and weight compress far
+//! beyond the helical onset (a floor of `5.55 (EI w_b^2)^(1/3)` there). Its straight shape on
+//! the hole axis is an equilibrium past its stability limit with no lateral restoring load,
+//! and the contact Newton from it (the direct solve, the WOB and friction paths) wanders: the
+//! residual stays at 1e-4 to 1e-2 of the load scale with the worst node in that section.
+//!
+//! [`solve_from_buckled_start`] runs after those stages fail: the soft string of the case (its
+//! friction, motion and WOB) gives the axial force at the model's nodes and the runs beyond
+//! the helical onset ([`soft_helical_runs`]); the cold start is solved with a pseudo-transient
+//! lateral damping held full until the residual is small ([`Strategy::Damped`]), then, if that
+//! fails, moved onto a helix along the wall there and solved as the helix re-solve is
+//! ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result is kept only if it
+//! converged with global equilibrium within [`EQUILIBRIUM`] of the largest force, penetration
+//! within the gap tolerance and a hook load not below zero. A case whose soft string is locked
+//! up is left to the lock-up answer.
+
+use crate::case::Case;
+use crate::models::buckling::{marks, BuckleState, MIN_HELICAL_RUN_M};
+use crate::models::fem::model::{Model, State, TopCondition};
+use crate::models::fem::results::extract;
+use crate::models::fem::solve::start::cold_start;
+use crate::models::fem::solve::{helix, solve_interior_point_from, Solution, SolveControls, SolveStats};
+use crate::models::softstring;
+use std::time::Instant;
+
+/// Relative equilibrium (force imbalance over the largest force) a re-solve must meet.
+pub const EQUILIBRIUM: f64 = 1e-6;
+
+/// The soft string's effective axial force at each node of `model` (the whole string of
+/// `case`, N, tension positive, bit first; linear between the soft-string points) and the
+/// runs of nodes (index ranges from the bit, inclusive) where it is beyond the helical onset
+/// over at least [`MIN_HELICAL_RUN_M`]; none where the soft string is locked up (its hook load
+/// below zero: the lock-up is the answer, `models::levels`).
+pub fn soft_helical_runs(case: &Case, model: &Model) -> (Vec<f64>, Vec<(usize, usize)>) {
+    let soft = softstring::from_case(case, softstring::segment_length_m(&case.solver));
+    if soft.hook_load_n < 0.0 {
+        return (Vec::new(), Vec::new());
+    }
+    let pts = &soft.points;
+    // points run from the bit upward: MD falls
+    let at = |md: f64| -> f64 {
+        let k = pts.partition_point(|p| p.md_m > md);
+        if k == 0 {
+            return pts[0].tension_n;
+        }
+        if k >= pts.len() {
+            return pts[pts.len() - 1].tension_n;
+        }
+        let (a, b) = (&pts[k - 1], &pts[k]);
+        let f = if a.md_m > b.md_m {
+            (a.md_m - md) / (a.md_m - b.md_m)
+        } else {
+            0.0
+        };
+        a.tension_n + f * (b.tension_n - a.tension_n)
+    };
+    let axial: Vec<f64> = model.md_ref.iter().map(|&md| at(md)).collect();
+    let nodes = (0..model.nodes()).map(|i| (model.md_ref[i], model.mesh.nodes[i].s_m, axial[i]));
+    let m = marks(
+        nodes,
+        &case.string,
+        &case.well.path,
+        &case.well.hole,
+        case.mud.density_kg_m3,
+    );
+    let mut runs = Vec::new();
+    let mut first: Option<usize> = None;
+    for i in 0..=m.len() {
+        let helical = m.get(i).is_some_and(|k| k.state == BuckleState::Helical);
+        match (helical, first) {
+            (true, None) => first = Some(i),
+            (false, Some(a)) => {
+                let b = i - 1;
+                if model.mesh.nodes[b].s_m - model.mesh.nodes[a].s_m >= MIN_HELICAL_RUN_M {
+                    runs.push((a, b));
+                }
+                first = None;
+            }
+            _ => {}
+        }
+    }
+    (axial, runs)
+}
+
+/// One way from the cold start to the buckled equilibrium (docs/performance.md, "Acceptance
+/// grid", measures them against each other).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Strategy {
+    /// Pseudo-transient continuation alone: the cold start solved with the lateral damping
+    /// [`helix::instability_stiffness`] of the soft string's helical runs, falling with the
+    /// residual ([`SolveControls::lateral_damping_n_per_m`]).
+    Damped,
+    /// The cold start moved onto a helix along the wall in the soft string's helical runs and
+    /// solved as the helix re-solve does ([`helix::solve_from_helix`]: damped, the friction at
+    /// once, then along a friction path).
+    Helix,
+}
+
+/// Relative outer residual above which the damping of [`Strategy::Damped`] is full
+/// ([`SolveControls::damping_reference_residual`]).
+pub const DAMPING_REFERENCE_RESIDUAL: f64 = 1e-3;
+
+/// Iteration limit of [`Strategy::Damped`], in `max_iterations`: a pseudo-transient iteration
+/// moves slowly while its damping is full (the rescued grid cases take 190-440 iterations).
+pub const DAMPED_ITERATION_FACTOR: usize = 3;
+
+/// The strategies [`solve_from_buckled_start`] tries, in order (the cheaper first).
+pub const STRATEGIES: [Strategy; 2] = [Strategy::Damped, Strategy::Helix];
+
+/// The solve `sol` of `model` (of `case`) if it converged, ran out of time, or `model` is not
+/// the whole string; otherwise the re-solve from the buckled start (module docs) by each of
+/// [`STRATEGIES`] in turn, the first kept, else `sol` with their work added
+/// ([`SolveStats::buckled_start`] says which).
+pub fn solve_from_buckled_start(case: &Case, model: &Model, sol: Solution, ctl: &SolveControls) -> Solution {
+    solve_from_buckled_start_by(case, model, sol, ctl, &STRATEGIES)
+}
+
+/// [`solve_from_buckled_start`] with the strategies `strategies`.
+pub fn solve_from_buckled_start_by(
+    case: &Case,
+    model: &Model,
+    mut sol: Solution,
+    ctl: &SolveControls,
+    strategies: &[Strategy],
+) -> Solution {
+    if sol.converged || sol.stats.timed_out || matches!(model.top, TopCondition::Cut { .. }) {
+        return sol;
+    }
+    let (axial, runs) = soft_helical_runs(case, model);
+    if runs.is_empty() {
+        return sol;
+    }
+    let t0 = Instant::now();
+    let accept = |h: &Solution| {
+        // a negative hook load (the surface pushing) is a lock-up, not an answer
+        let pushed = model.loads.hook_load_n.is_none() && h.state.hook_load_n < 0.0;
+        if !h.converged || h.stats.max_penetration > ctl.gap_tolerance || pushed {
+            return false;
+        }
+        let r = extract(model, h, case.mud.density_kg_m3);
+        let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+        tracing::info!(equilibrium = eq, "re-solve from a buckled start converged");
+        eq <= EQUILIBRIUM
+    };
+    let mut work = SolveStats::default();
+    for &strategy in strategies {
+        let left = SolveControls {
+            time_limit_s: ctl.time_limit_s - sol.stats.seconds - t0.elapsed().as_secs_f64(),
+            ..*ctl
+        };
+        if left.time_limit_s <= 0.0 {
+            break;
+        }
+        let start = cold_start(model);
+        let (kept, w) = match strategy {
+            Strategy::Damped => damped(model, start, &axial, &runs, &left, accept),
+            Strategy::Helix => helix::solve_from_helix(model, &start, &axial, &runs, &left, accept),
+        };
+        work.add_work(&w);
+        tracing::info!(
+            ?strategy,
+            kept = kept.is_some(),
+            iterations = w.iterations,
+            "re-solve from a buckled start"
+        );
+        if let Some(mut h) = kept {
+            // the kept solve's own work is in `work`
+            h.stats.iterations = 0;
+            h.stats.factorizations = 0;
+            h.stats.seconds = 0.0;
+            h.stats.add_work(&sol.stats);
+            h.stats.add_work(&work);
+            // the answer did not come from the paths that ran before
+            h.stats.wob_continuation_n = None;
+            h.stats.friction_continuation = None;
+            h.stats.buckled_start = Some(true);
+            return h;
+        }
+    }
+    sol.stats.add_work(&work);
+    sol.stats.buckled_start = Some(false);
+    sol
+}
+
+/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` (its
+/// iteration limit times [`DAMPED_ITERATION_FACTOR`]) with the lateral damping of [`helix::instability_stiffness`] in `runs` (`axial` the soft string's
+/// axial forces at the nodes, N); the solution if `accept` takes it, and the work.
+fn damped(
+    model: &Model,
+    start: State,
+    axial: &[f64],
+    runs: &[(usize, usize)],
+    ctl: &SolveControls,
+    accept: impl Fn(&Solution) -> bool,
+) -> (Option<Solution>, SolveStats) {
+    let mut m = model.clone();
+    m.consistent_tangent = true;
+    let c = SolveControls {
+        max_iterations: DAMPED_ITERATION_FACTOR * ctl.max_iterations,
+        lateral_damping_n_per_m: helix::instability_stiffness(model, axial, runs),
+        damping_reference_residual: DAMPING_REFERENCE_RESIDUAL,
+        ..*ctl
+    };
+    let mut work = SolveStats::default();
+    let Ok(sol) = solve_interior_point_from(&m, start, &c) else {
+        return (None, work);
+    };
+    work.add_work(&sol.stats);
+    (Some(sol).filter(|s| s.converged && accept(s)), work)
+}
