@@ -94,6 +94,7 @@ pub fn richardson(
                 direction: p.tangent,
                 iterations: r.iterations,
                 steer: r.steer,
+                reactive_turn_rad: r.reactive_turn_rad,
             }
         })
         .collect();

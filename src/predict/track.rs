@@ -23,6 +23,9 @@ pub struct TrajectoryRow {
     pub bit: BitResult,
     /// How a bent housing drilled the step ending here or next (None: a straight string).
     pub steer: Option<StepSteer>,
+    /// The reactive torque's turn of the toolface in that step, rad
+    /// ([`StepRecord::reactive_turn_rad`]).
+    pub reactive_turn_rad: Option<f64>,
 }
 
 impl TrajectoryRow {
@@ -63,8 +66,13 @@ pub fn bit_at(steps: &[StepRecord], md_m: f64) -> BitResult {
 
 /// How the step ending at or next after `md_m` was drilled (the last step's beyond the end).
 pub fn steer_at(steps: &[StepRecord], md_m: f64) -> Option<StepSteer> {
+    step_at(steps, md_m).and_then(|r| r.steer)
+}
+
+/// The step ending at or next after `md_m` (the last step beyond the end).
+fn step_at(steps: &[StepRecord], md_m: f64) -> Option<&StepRecord> {
     let k = steps.partition_point(|r| r.md_m < md_m - 1e-9);
-    steps.get(k).or(steps.last()).and_then(|r| r.steer)
+    steps.get(k).or(steps.last())
 }
 
 /// Output rows: every solved step, plus every measured station of `measured` within the
@@ -95,6 +103,7 @@ pub fn trajectory_rows(pred: &Prediction, measured: Option<&WellPath>) -> Vec<Tr
                 measured: meas,
                 bit: bit_at(&pred.steps, md),
                 steer: steer_at(&pred.steps, md),
+                reactive_turn_rad: step_at(&pred.steps, md).and_then(|r| r.reactive_turn_rad),
             }
         })
         .collect()

@@ -85,11 +85,24 @@ pub fn forecast_csv(f: &Forecast) -> Result<String, String> {
     out.push(',');
     out.push_str(STEERING_COLUMNS);
     out.push('\n');
+    let reactive = f.rows.iter().any(|r| r.reactive_turn_rad.is_some());
+    if reactive {
+        out.truncate(out.len() - 1);
+        out.push(',');
+        out.push_str(REACTIVE_COLUMN);
+        out.push('\n');
+    }
     for (line, r) in lines.zip(&f.rows) {
-        let cells = match r.steer {
+        let mut cells = match r.steer {
             Some(st) => format!("{},{}", st.mode_name(), num(st.toolface_rad.to_degrees(), 2)?),
             None => ",".to_string(),
         };
+        if reactive {
+            cells.push(',');
+            if let Some(t) = r.reactive_turn_rad {
+                cells.push_str(&num(t.to_degrees(), 3)?);
+            }
+        }
         out.push_str(line);
         out.push(',');
         out.push_str(&cells);
@@ -97,6 +110,11 @@ pub fn forecast_csv(f: &Forecast) -> Result<String, String> {
     }
     Ok(out)
 }
+
+/// The column `trajectory.csv` ends with when `[operation] reactive_torque` is on and a step
+/// slides: the turn to the left of the toolface by the motor's reactive torque in the step's
+/// solve, deg (the toolface drilled is `toolface_deg` less it; empty for rotating steps).
+pub const REACTIVE_COLUMN: &str = "reactive_toolface_turn_deg";
 
 /// Columns `trajectory.csv` of `predict` ends with for a string with a bent housing: how the
 /// step ending at the row (or next) was drilled, `slide` or `rotate`, and the toolface set, deg

@@ -520,3 +520,66 @@ fn landing_example_kicks_off_toward_the_plan() {
         assert!((row[2] - 135.0).abs() < 0.5, "{row:?}\n{csv}");
     }
 }
+
+/// The reactive torque along a prediction (docs/guide.md, `trajectory.csv`): with
+/// `reactive_torque = true` on the sliding bent motor of `wells/horizontal/steered.toml` (6 kN.m,
+/// toolface 30 deg, below the slide sheet's intervals) `trajectory.csv` ends with
+/// `reactive_toolface_turn_deg`, positive on every sliding row, its first row (the start's
+/// solve) the turn `solve --fidelity bha` reports at the same bit MD (reference: that command,
+/// to the CSV's 0.001 deg); without the option the column is absent.
+#[test]
+fn a_sliding_prediction_lists_the_reactive_turn_per_step() {
+    let root = crate::common::root();
+    let dir = TempDir::new().unwrap();
+    for f in ["survey.csv", "slides.csv"] {
+        std::fs::copy(root.join("wells/horizontal").join(f), dir.path().join(f)).unwrap();
+    }
+    let case = std::fs::read_to_string(root.join("wells/horizontal/steered.toml"))
+        .unwrap()
+        .replace(
+            "mode = \"drilling\"",
+            "mode = \"sliding\"\nreactive_torque = true\nbit_torque = \"6 kN.m\"\ntoolface = \"30 deg\"",
+        );
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let args = ["predict", "case.toml", "--from", "3000", "--to", "3005", "--out", "out"];
+    let out = run_in(dir.path(), &args);
+    assert!(out.success(), "{}", out.stderr);
+    let csv = std::fs::read_to_string(dir.path().join("out/trajectory.csv")).unwrap();
+    assert!(
+        csv.lines()
+            .next()
+            .unwrap()
+            .ends_with(",mode,toolface_deg,reactive_toolface_turn_deg"),
+        "{csv}"
+    );
+    let turns: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+        .collect();
+    assert!(turns.len() >= 5 && turns.iter().all(|t| *t > 0.0), "{csv}");
+    let solve = run_in(
+        dir.path(),
+        &["solve", "case.toml", "--bit-md", "3000", "--fidelity", "bha", "--json"],
+    );
+    let j: serde_json::Value = serde_json::from_str(&solve.stdout).unwrap();
+    let turn = j["steering"]["reactive_toolface_turn_deg"].as_f64().unwrap();
+    assert!((turns[0] - turn).abs() <= 0.0005 + 1e-9, "{} vs {turn}", turns[0]);
+    let plain = dir.path().join("plain");
+    let off = run_in(
+        &root,
+        &[
+            "predict",
+            "wells/horizontal/steered.toml",
+            "--from",
+            "2900",
+            "--to",
+            "2902",
+            "--out",
+            plain.to_str().unwrap(),
+        ],
+    );
+    assert!(off.success(), "{}", off.stderr);
+    let csv = std::fs::read_to_string(plain.join("trajectory.csv")).unwrap();
+    assert!(csv.lines().next().unwrap().ends_with(",mode,toolface_deg"), "{csv}");
+}

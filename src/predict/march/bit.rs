@@ -65,6 +65,9 @@ pub(crate) struct BitSolve {
     pub(crate) direction: Vec3,
     /// Newton iterations of the solves.
     pub(crate) iterations: usize,
+    /// The turn of a sliding bent housing's toolface by the motor's reactive torque, rad
+    /// (the first state's; None when `reactive_torque` is off or the string rotates).
+    pub(crate) reactive_turn_rad: Option<f64>,
 }
 
 impl BitSolve {
@@ -205,6 +208,7 @@ struct StateSolve {
     state: State,
     bit: BitResult,
     iterations: usize,
+    reactive_turn_rad: Option<f64>,
 }
 
 /// Solve `c` (the case at the state `st`: the RSS neutral or not; `case` gives the mud and the
@@ -245,6 +249,7 @@ fn solve_state(
         .map(|x| x.sag_rad);
     Ok(StateSolve {
         model,
+        reactive_turn_rad: sol.stats.reactive_turn.map(|t| t.turn_rad),
         state: sol.state,
         bit,
         iterations: sol.stats.iterations,
@@ -321,6 +326,7 @@ pub(crate) fn solve_bit(
         })
         .collect();
     Ok(BitSolve {
+        reactive_turn_rad: first.reactive_turn_rad,
         model: first.model,
         state: first.state,
         others,

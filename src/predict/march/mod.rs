@@ -133,6 +133,9 @@ pub struct StepRecord {
     /// How a bent housing or a rotary steerable system drilled the step (None: a string with
     /// neither).
     pub steer: Option<StepSteer>,
+    /// The turn to the left of a sliding bent housing's toolface by the motor's reactive
+    /// torque in this step's solve, rad (None: `reactive_torque` off, or the string rotates).
+    pub reactive_turn_rad: Option<f64>,
 }
 
 /// How a bent housing (or a rotary steerable system) drills: sliding at a toolface or rotating.
@@ -390,6 +393,7 @@ pub fn predict_from(
         first.direction,
         first.iterations,
         StepSteer::of_case(&start_case),
+        first.reactive_turn_rad,
     )];
     *warm = Some(first.into_warm());
     let start_warm = warm.clone();
@@ -485,7 +489,7 @@ pub fn predict_from(
         check_on_earth(&p1, s1)?;
         path = p1;
         s = s1;
-        records.push((s, sol1.bit, dir, step_iterations, steer));
+        records.push((s, sol1.bit, dir, step_iterations, steer, sol1.reactive_turn_rad));
         on_step(s);
         *warm = Some(sol1.into_warm());
     }
@@ -616,11 +620,12 @@ fn failed_step_error(failed: Result<StepOutcome, PredictError>, md_m: f64, step_
 }
 
 /// The step records on the final hole `path` from (bit MD, bit results, drilling direction,
-/// iterations, how a bent housing drilled it) per solved step.
+/// iterations, how a bent housing drilled it, the reactive torque's toolface turn) per solved
+/// step.
 fn step_records(records: Vec<StepData>, path: &WellPath) -> Vec<StepRecord> {
     records
         .into_iter()
-        .map(|(md, bit, direction, iterations, steer)| {
+        .map(|(md, bit, direction, iterations, steer, reactive_turn_rad)| {
             let p = path.point_at(md);
             StepRecord {
                 md_m: md,
@@ -631,14 +636,15 @@ fn step_records(records: Vec<StepData>, path: &WellPath) -> Vec<StepRecord> {
                 direction,
                 iterations,
                 steer,
+                reactive_turn_rad,
             }
         })
         .collect()
 }
 
 /// What the march keeps of a solved step: bit MD, bit results, drilling direction, iterations,
-/// how a bent housing drilled it.
-type StepData = (f64, BitResult, Vec3, usize, Option<StepSteer>);
+/// how a bent housing drilled it, the reactive torque's toolface turn (rad).
+type StepData = (f64, BitResult, Vec3, usize, Option<StepSteer>, Option<f64>);
 
 /// `case` drilling as its steering plan says at `md_m` (its own operation where no interval
 /// covers it).
