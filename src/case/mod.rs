@@ -78,12 +78,19 @@ impl Case {
     /// rotating (drilling at the case's rpm, 60 rpm when it gives none); a rotary steerable
     /// system at the interval's ratio when it gives one.
     pub fn steered(&self, iv: &SteeringInterval) -> Case {
-        let mut c = self.clone();
+        let mut c = self.on_bottom(iv.rotating);
         c.operation.toolface_rad = iv.toolface_rad;
         if let Some(r) = iv.ratio {
             c.string = c.string.with_rss_ratio(r);
         }
-        if iv.rotating {
+        c
+    }
+
+    /// This case drilling on bottom: rotating (mode `drilling` at the case's rpm,
+    /// [`DEFAULT_ROTATING_RPM`] when it gives none) or sliding.
+    pub fn on_bottom(&self, rotating: bool) -> Case {
+        let mut c = self.clone();
+        if rotating {
             c.operation.mode = Mode::Drilling;
             if c.operation.rpm <= 0.0 {
                 c.operation.rpm = DEFAULT_ROTATING_RPM;

@@ -501,6 +501,7 @@ pub fn known_keys() -> Vec<&'static str> {
         FORMATION_KEYS,
         BIT_ROCK_KEYS,
         super::string_toml::COMPONENT_KEYS,
+        super::rss_toml::RSS_KEYS,
         super::solver_toml::SOLVER_KEYS,
         super::tracking_toml::TRACKING_KEYS,
         super::steering_toml::STEERING_KEYS,

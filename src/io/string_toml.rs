@@ -2,6 +2,7 @@
 //! ([`crate::string::DrillString`]), every value checked and named on error, the topmost
 //! length filled to the surface, and the fit of each component in its hole.
 
+use super::rss_toml::RSS_KEYS;
 use super::toml_reader::Section;
 use crate::case::fit::first_misfit;
 use crate::case::{Mud, Operation};
@@ -15,7 +16,8 @@ use crate::units::{Dimension as D, G};
 /// Default joint spacing of pipe with tool joints, m (30 ft).
 pub const DEFAULT_JOINT_LENGTH_M: f64 = 9.144;
 
-/// Keys accepted in a `[[string]]` component.
+/// Keys accepted in a `[[string]]` component besides the rotary steerable system's
+/// ([`RSS_KEYS`], [`component_keys`]).
 pub(crate) const COMPONENT_KEYS: &[&str] = &[
     "type",
     "name",
@@ -38,13 +40,12 @@ pub(crate) const COMPONENT_KEYS: &[&str] = &[
     "gauge_length",
     "bend_angle",
     "bend_to_bit",
-    "rss_type",
-    "pad_force",
-    "pad_position",
-    "deflection_angle",
-    "hinge_position",
-    "ratio",
 ];
+
+/// Every key accepted in a `[[string]]` component: [`COMPONENT_KEYS`] and [`RSS_KEYS`].
+pub(crate) fn component_keys() -> Vec<&'static str> {
+    [COMPONENT_KEYS, RSS_KEYS].concat()
+}
 
 /// The string of the `[[string]]` tables `secs` (`top`: the case's top table, for errors about
 /// the whole string), checked against the hole `hole` with the bit at `op`'s bit MD in mud `mud`.
@@ -116,7 +117,7 @@ pub fn read_string(
 /// its length to fill to the surface), its bottom `bottom_m` above the bit; with whether the
 /// length was given (0 when not).
 fn read_component(c: &Section, k: usize, last: bool, mud: &Mud, bottom_m: f64) -> InputResult<(Component, bool)> {
-    c.check_known(COMPONENT_KEYS)?;
+    c.check_known(&component_keys())?;
     let kind = read_kind(c, k)?;
     let name = c.string("name")?.unwrap_or_else(|| kind.name().to_string());
     let (od, body, id) = read_diameters(c, kind)?;

@@ -588,7 +588,8 @@ mod tests {
         assert!((helical_wall_force_n(&uniform) - 2500.0).abs() < 1e-9);
         let mut part = uniform.clone();
         part.extend([mk(88.0, Some(0.0)), mk(86.0, None)]);
-        // the mark at 90 m now has a full 2 m tributary length, half of it beside a mark at 0
+        // with the two marks below, the mark at 90 m has a full 2 m tributary length, half of it
+        // beside the mark at 0
         assert!((helical_wall_force_n(&part) - 2750.0).abs() < 1e-9);
     }
 

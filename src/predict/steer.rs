@@ -6,7 +6,7 @@
 
 use super::law::deviation;
 use super::march::{hole_for_prediction, solve_bit, PredictError, WarmStart};
-use crate::case::{BitRock, Case, Mode};
+use crate::case::{BitRock, Case};
 use crate::geometry::frame::{inc_azi, MAGNETIC_TOOLFACE_BELOW_RAD};
 use crate::geometry::{Station, Survey, Vec3, WellPath};
 use crate::models::fem::bha::default_cut_m;
@@ -205,6 +205,19 @@ pub struct Steering {
     pub reactive_turn: Option<crate::models::fem::reactive::ReactiveTurn>,
 }
 
+/// Why `case`'s steady dogleg cannot be computed: off bottom (no WOB to drill with), or a hook
+/// load given instead of the WOB; None when it can.
+fn not_drillable(case: &Case) -> Option<String> {
+    let op = &case.operation;
+    if !op.mode.on_bottom() {
+        Some(format!("off bottom (mode {}): no WOB to drill with", op.mode.name()))
+    } else if op.hook_load_n.is_some() {
+        Some("the hook load is given instead of the WOB".to_string())
+    } else {
+        None
+    }
+}
+
 /// The motor yield and the rotating tendency of `case`'s bent housing (None for a straight
 /// string): [`steady_turn`] with the string sliding at the operation's toolface, and rotating
 /// at the case's rotary speed ([`crate::case::DEFAULT_ROTATING_RPM`] when it gives none). Not computed (the
@@ -215,21 +228,11 @@ pub fn steering(case: &Case, ctl: &SolveControls) -> Option<Steering> {
     let op = &case.operation;
     let md_bend = op.bit_md_m - bend.to_bit_m;
     let inc = case.well.path.point_at(md_bend.max(case.well.path.md_start())).inc_rad;
-    let tendencies = if !op.mode.on_bottom() {
-        Err(format!("off bottom (mode {}): no WOB to drill with", op.mode.name()))
-    } else if op.hook_load_n.is_some() {
-        Err("the hook load is given instead of the WOB".to_string())
-    } else {
-        let mut slide = case.clone();
-        slide.operation.mode = Mode::Sliding;
-        let mut rotate = case.clone();
-        rotate.operation.mode = Mode::Drilling;
-        if rotate.operation.rpm <= 0.0 {
-            rotate.operation.rpm = crate::case::DEFAULT_ROTATING_RPM;
-        }
-        steady_turn(&slide, &case.bit_rock, ctl)
-            .and_then(|a| Ok((a, steady_turn(&rotate, &case.bit_rock, ctl)?)))
-            .map_err(|e| e.to_string())
+    let tendencies = match not_drillable(case) {
+        Some(why) => Err(why),
+        None => steady_turn(&case.on_bottom(false), &case.bit_rock, ctl)
+            .and_then(|a| Ok((a, steady_turn(&case.on_bottom(true), &case.bit_rock, ctl)?)))
+            .map_err(|e| e.to_string()),
     };
     Some(Steering {
         bend,
@@ -268,17 +271,9 @@ pub fn rss_steering(case: &Case, ctl: &SolveControls) -> Option<RssSteering> {
     let op = &case.operation;
     let md_tool = op.bit_md_m - tool.position_to_bit_m();
     let inc = case.well.path.point_at(md_tool.max(case.well.path.md_start())).inc_rad;
-    let tendency = if !op.mode.on_bottom() {
-        Err(format!("off bottom (mode {}): no WOB to drill with", op.mode.name()))
-    } else if op.hook_load_n.is_some() {
-        Err("the hook load is given instead of the WOB".to_string())
-    } else {
-        let mut rotate = case.clone();
-        rotate.operation.mode = Mode::Drilling;
-        if rotate.operation.rpm <= 0.0 {
-            rotate.operation.rpm = crate::case::DEFAULT_ROTATING_RPM;
-        }
-        steady_turn(&rotate, &case.bit_rock, ctl).map_err(|e| e.to_string())
+    let tendency = match not_drillable(case) {
+        Some(why) => Err(why),
+        None => steady_turn(&case.on_bottom(true), &case.bit_rock, ctl).map_err(|e| e.to_string()),
     };
     Some(RssSteering {
         tool,

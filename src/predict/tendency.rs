@@ -9,7 +9,7 @@
 //! inclination of a straight hole, for the same WOBs.
 
 use super::steer::{steady_turn, SteadyTurn};
-use crate::case::{Case, Mode, DEFAULT_ROTATING_RPM};
+use crate::case::Case;
 use crate::geometry::{Station, Survey, Vec3, WellPath};
 use crate::models::fem::solve::SolveControls;
 use crate::string::MotorBend;
@@ -131,17 +131,9 @@ pub fn at_inclination(case: &Case, inc_rad: f64) -> Result<Case, String> {
 
 /// `case` on bottom at `wob_n`, rotating (drilling at its rpm, 60 when it gives none) or sliding.
 fn operated(case: &Case, wob_n: f64, rotating: bool) -> Case {
-    let mut c = case.clone();
+    let mut c = case.on_bottom(rotating);
     c.operation.wob_n = wob_n;
     c.operation.hook_load_n = None;
-    if rotating {
-        c.operation.mode = Mode::Drilling;
-        if c.operation.rpm <= 0.0 {
-            c.operation.rpm = DEFAULT_ROTATING_RPM;
-        }
-    } else {
-        c.operation.mode = Mode::Sliding;
-    }
     c
 }
 

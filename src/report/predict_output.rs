@@ -81,17 +81,15 @@ pub fn forecast_csv(f: &Forecast) -> Result<String, String> {
     }
     let mut out = String::with_capacity(text.len() + 16 * f.rows.len());
     let mut lines = text.lines();
+    let reactive = f.rows.iter().any(|r| r.reactive_turn_rad.is_some());
     out.push_str(lines.next().unwrap_or_default());
     out.push(',');
     out.push_str(STEERING_COLUMNS);
-    out.push('\n');
-    let reactive = f.rows.iter().any(|r| r.reactive_turn_rad.is_some());
     if reactive {
-        out.truncate(out.len() - 1);
         out.push(',');
         out.push_str(REACTIVE_COLUMN);
-        out.push('\n');
     }
+    out.push('\n');
     for (line, r) in lines.zip(&f.rows) {
         let mut cells = match r.steer {
             Some(st) => format!("{},{}", st.mode_name(), num(st.toolface_rad.to_degrees(), 2)?),
