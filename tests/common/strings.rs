@@ -35,6 +35,34 @@ pub fn collar(length: &str) -> String {
     format!("{COLLAR_TO_SURFACE}length = \"{length}\"\n")
 }
 
+/// The string above the steerable assemblies of tests/verification/steering.rs and rss.rs:
+/// MWD 9 m and non-magnetic collar 9.2 m (6.75 in), 280 m of 5 in HWDP (49.3 lb/ft, 6.5 in tool
+/// joints), 5 in drill pipe to the surface (33.6 kg/m, 6-5/8 in tool joints).
+pub const STEERING_UPPER_STRING: &str = r#"[[string]]
+type = "mwd"
+od = "6.75 in"
+id = "3.25 in"
+length = "9 m"
+[[string]]
+type = "collar"
+od = "6.75 in"
+id = "2.8125 in"
+length = "9.2 m"
+[[string]]
+type = "hwdp"
+od = "5 in"
+id = "3 in"
+length = "280 m"
+weight = "49.3 lb/ft"
+tool_joint_od = "6.5 in"
+[[string]]
+type = "pipe"
+od = "5 in"
+id = "4.276 in"
+weight = "33.6 kg/m"
+tool_joint_od = "6.625 in"
+"#;
+
 /// The 6.5 in drill collar of [`collar`] without a length: it fills the string to the surface.
 pub const COLLAR_TO_SURFACE: &str = r#"[[string]]
 type = "collar"

@@ -1,7 +1,7 @@
 //! Rotary steerable systems (docs/theory.md 9.10): push-the-bit pads and the point-the-bit
 //! hinge in the stiff model, their steering tendency, against references stated per test.
 
-use crate::common::load_temp_case;
+use crate::common::{load_temp_case, STEERING_UPPER_STRING};
 use crate::steering::motor_case_with;
 use drillpath::case::Case;
 use drillpath::models::fem::solve::SolveControls;
@@ -30,30 +30,7 @@ od = "8.375 in"
 body_od = "6.75 in"
 id = "3.5 in"
 length = "0.5 m"
-[[string]]
-type = "mwd"
-od = "6.75 in"
-id = "3.25 in"
-length = "9 m"
-[[string]]
-type = "collar"
-od = "6.75 in"
-id = "2.8125 in"
-length = "9.2 m"
-[[string]]
-type = "hwdp"
-od = "5 in"
-id = "3 in"
-length = "280 m"
-weight = "49.3 lb/ft"
-tool_joint_od = "6.5 in"
-[[string]]
-type = "pipe"
-od = "5 in"
-id = "4.276 in"
-weight = "33.6 kg/m"
-tool_joint_od = "6.625 in"
-"#
+{STEERING_UPPER_STRING}"#
     )
 }
 
