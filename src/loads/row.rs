@@ -38,6 +38,9 @@ pub enum StiffOutcome {
         /// limit, [`crate::models::buckling::unbuckled_helical_runs`]), m: there its wall force
         /// and drag miss the helix's; 0 when there is none.
         unbuckled_helical_m: f64,
+        /// Length of the MD intervals where the rotating string whirls (its wall friction
+        /// without its lateral push, [`crate::models::whirl`]), m; 0 when there are none.
+        whirl_m: f64,
     },
     /// The solver stopped without meeting its criteria: no valid numbers.
     NotConverged {
@@ -73,6 +76,14 @@ impl StiffOutcome {
             StiffOutcome::Converged {
                 unbuckled_helical_m, ..
             } => Some(*unbuckled_helical_m),
+            _ => None,
+        }
+    }
+    /// The length where the rotating string whirls when converged ([`StiffOutcome::Converged`]'s
+    /// `whirl_m`), m.
+    pub fn whirl_m(&self) -> Option<f64> {
+        match self {
+            StiffOutcome::Converged { whirl_m, .. } => Some(*whirl_m),
             _ => None,
         }
     }

@@ -44,6 +44,7 @@ use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::levels::run as run_level;
+use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
 
 /// Iteration limit of a warm-started solve: beyond it the cold start (about 5-10 iterations on
@@ -157,7 +158,8 @@ pub fn transport_to_depth(prev: &Solved, model: &Model, string: &DrillString) ->
 /// [`Start::PreviousCase`], carried by [`transport_to_depth`] for [`Start::PreviousDepth`]);
 /// returns the outcome and the converged solve (for the next warm start).
 pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, Option<Solved>) {
-    let model = Model::from_case(case);
+    let mut model = Model::from_case(case);
+    model.whirl_md_m = whirl_intervals(case, &model);
     let ctl = SolveControls::from_settings(&case.solver);
     let mut iterations = 0;
     let t0 = std::time::Instant::now();
@@ -198,7 +200,6 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
-    let mut model = model;
     match solve_holding_toolface(&mut model, &ctl, |m| solve(m, &ctl)) {
         Ok(sol) if sol.converged => {
             let out = converged(
@@ -245,6 +246,7 @@ fn at_lock_up(
     let mut c = case.clone();
     c.operation.wob_n = wob;
     let mut m = Model::from_case(&c);
+    m.whirl_md_m = whirl_intervals(&c, &m);
     let sol = solve_holding_toolface(&mut m, ctl, |m| solve(m, ctl)).ok()?;
     if !sol.converged {
         return None;
@@ -260,6 +262,11 @@ fn at_lock_up(
 
 fn top_radius(case: &Case) -> f64 {
     case.string.components.last().map_or(0.0, |c| c.body_od_m / 2.0)
+}
+
+/// The length of `model`'s whirling intervals ([`Model::whirl_md_m`]), m.
+fn whirl_length_m(model: &Model) -> f64 {
+    model.whirl_md_m.iter().map(|(top, bottom)| bottom - top).sum()
 }
 
 /// The row of a converged whole-string solve `sol` of `model` (`iterations` over its attempts).
@@ -294,6 +301,7 @@ fn converged(
         start,
         lock_up_wob_n,
         unbuckled_helical_m,
+        whirl_m: whirl_length_m(model),
     }
 }
 
@@ -409,6 +417,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
         start: Start::Cold,
         lock_up_wob_n: None,
         unbuckled_helical_m,
+        whirl_m: lr.fem.as_ref().map_or(0.0, |f| whirl_length_m(&f.model)),
     }
 }
 

@@ -31,6 +31,7 @@ use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
 use crate::models::soft_comparison::{soft_comparison, SoftComparison};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
+use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
 use std::time::Instant;
 
@@ -206,6 +207,7 @@ fn fem_part(
     // a bent housing is held at its toolface against the string's twist (a straight string is
     // solved once); a whole string that finds no equilibrium is solved again from its buckled
     // shape
+    model.whirl_md_m = whirl_intervals(case, &model);
     let first = |m: &Model| solve(m, ctl).map(|s| buckled_start::solve_from_buckled_start(case, m, s, ctl));
     let (model, sol) = if case.solver.refine_contacts {
         let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
@@ -233,6 +235,16 @@ fn fem_part(
 /// The warning of an answer that came from the re-solve from the buckled shape
 /// ([`buckled_start`]).
 pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium, and the hook load of another buckled shape can differ by about 10% (a known limit, docs/guide.md)";
+
+/// The warning of a rotating string that whirls in the MD intervals `whirl_md_m` (m,
+/// [`crate::models::whirl`]).
+pub fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
+    let where_: Vec<String> = whirl_md_m.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
+    format!(
+        "the rotating pipe is helically buckled at {} (soft string beyond the helical onset): a real string whirls there, and the model keeps the wall friction's torque and drag there but not its lateral push round the wall, which has no static equilibrium on a helix (docs/theory.md 7.5); the wall forces there are a static helix's",
+        where_.join(", ")
+    )
+}
 
 /// Relative equilibrium (force imbalance over the largest force) a buckled re-solve must meet.
 pub const HELIX_EQUILIBRIUM: f64 = buckled_start::EQUILIBRIUM;
@@ -530,6 +542,9 @@ impl StringSolve {
         {
             w.push(BUCKLED_START_WARNING.to_string());
         }
+        if let Some(p) = self.level.fem.as_ref().filter(|p| !p.model.whirl_md_m.is_empty()) {
+            w.push(whirl_warning(&p.model.whirl_md_m));
+        }
         let runs = unbuckled_helical_runs(self.stiff_marks(), self.reported_nodes());
         if !runs.is_empty() {
             let where_: Vec<String> = runs.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
@@ -658,7 +673,11 @@ fn whole_at_lock_up(
     on_stage: &mut dyn FnMut(usize, usize, &str),
 ) -> Option<(f64, LevelResult)> {
     let soft = soft_lock_up_at(case, case.operation.wob_n)?;
-    let model = Model::from_case(case);
+    let mut model = Model::from_case(case);
+    // the string whirls where it is helical at the WOB it can deliver
+    let mut delivered = case.clone();
+    delivered.operation.wob_n = soft.max_wob_n;
+    model.whirl_md_m = whirl_intervals(&delivered, &model);
     let tolerance = (0.01 * soft.max_wob_n).max(500.0);
     let (wob, hook) = continuation::wob_at_zero_hook_load(&model, ctl, tolerance)?;
     tracing::info!(

@@ -17,3 +17,4 @@ pub mod fem;
 pub mod levels;
 pub mod soft_comparison;
 pub mod softstring;
+pub mod whirl;

@@ -205,6 +205,26 @@ fn print_stiff_summary(
             first_ten(&unbuckled)
         )?;
     }
+    let whirling: Vec<String> = rows
+        .iter()
+        .filter_map(|r| {
+            let length = r.stiff.as_ref()?.whirl_m().filter(|l| *l > 0.0)?;
+            let depth = units.depth().fmt(r.bit_md_m, 0);
+            Some(format!(
+                "{depth} {} over {}",
+                r.mode.name(),
+                units.depth().fmt(length, 0)
+            ))
+        })
+        .collect();
+    if !whirling.is_empty() {
+        writeln!(
+            out,
+            "  WARNING: {} stiff rows rotate with pipe helically buckled (stiff_whirl_m): a real string whirls there, and their wall friction there keeps its torque and drag but not its lateral push (docs/theory.md 7.5): {}",
+            whirling.len(),
+            first_ten(&whirling)
+        )?;
+    }
     Ok(())
 }
 

@@ -100,6 +100,10 @@ struct SolverJson {
     /// True when the answer came from the re-solve from the buckled shape; absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     buckled_start: Option<bool>,
+    /// MD intervals `[top, bottom]` (m) where the rotating string whirls and its wall friction
+    /// has no lateral push (`models::whirl`); absent when there are none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    whirl_md_m: Vec<[Finite; 2]>,
 }
 
 /// The `fidelity` key: the level asked for and run, and what it does not compute.
@@ -350,6 +354,12 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             stabilizer_contact: Some(case.solver.stabilizer_contact.name()),
             friction_continuation: Some(p.converged && p.stats.friction_continuation.is_some()),
             buckled_start: (p.converged && p.stats.buckled_start == Some(true)).then_some(true),
+            whirl_md_m: p
+                .model
+                .whirl_md_m
+                .iter()
+                .map(|&(a, b)| [Finite(a), Finite(b)])
+                .collect(),
         },
         None => SolverJson {
             converged: true,
@@ -363,6 +373,7 @@ fn solver_json(case: &Case, lr: &LevelResult) -> SolverJson {
             stabilizer_contact: None,
             friction_continuation: None,
             buckled_start: None,
+            whirl_md_m: Vec::new(),
         },
     }
 }

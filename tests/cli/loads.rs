@@ -193,7 +193,7 @@ fn fidelity_options_are_checked_and_reported() {
         .lines()
         .next()
         .unwrap()
-        .ends_with(",stiff_model,stiff_lock_up_wob_kN,stiff_unbuckled_helical_m"));
+        .ends_with(",stiff_model,stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m"));
     assert_eq!(
         csv.lines()
             .filter(|l| l.ends_with(",converged,") || l.contains(",converged,"))

@@ -19,12 +19,14 @@
 //! (docs/performance.md, "Acceptance grid").
 
 use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
-use drillpath::models::buckled_start::{solve_from_buckled_start_by, Strategy};
+use drillpath::loads::stiff::stiff_row;
+use drillpath::models::buckled_start::{soft_helical_runs, solve_from_buckled_start_by, Strategy};
 use drillpath::models::fem::model::Model;
 use drillpath::models::fem::results::extract;
 use drillpath::models::fem::solve::{solve_interior_point, SolveControls, DIRECT_BEFORE_CONTINUATION};
 use drillpath::models::levels::{run, solve_string};
 use drillpath::models::softstring;
+use drillpath::models::whirl::whirl_intervals;
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -301,6 +303,101 @@ fn buckled_start_rescues_the_helix_above_the_kick_off() {
         "{} vs {}",
         r.hook_load_n,
         soft.hook_load_n
+    );
+}
+
+/// The rotating helix above the kick-off (issue 16, docs/theory.md 7.5 "The rotating helix"):
+/// the well of [`grid_case`] with its kick-off at 500 m and a 300 m lateral at 90 deg, drilling
+/// at 120 kN with wall friction 0.35. The WOB compresses the vertical pipe above the kick-off
+/// beyond its helical onset (23 kN) over 170 m. With the full rotary friction law there the
+/// direct solve does not converge (nor, measured with the CLI, do the WOB path and the re-solves
+/// from the buckled shape after it: 1,844 iterations, exit 2); with the pipe whirling there ([`whirl_intervals`]) the solve converges. References:
+/// global equilibrium within 1e-6 of the largest force and penetration within the gap
+/// tolerance; the whirling intervals inside the soft string's helical runs and above the
+/// assembly; the vertical pipe buckled: its mean wall force per length over the whirling
+/// interval between 0.4 and 1.15 of Mitchell's `w_c = r F^2 / (4 EI)` at its mean compression
+/// (the bounds of [`buckled_start_rescues_the_helix_above_the_kick_off`]); the hook load within
+/// 1% of the soft string's (rotary friction drags axially by `v_a / |v|` only, 0.1% here) and the surface torque above it (the helix's wall force adds torque
+/// `f w_c R_c` where the soft string has none); the `loads` row of the case whirling over the
+/// same length with the same hook load (within 1e-6 of the largest force).
+#[test]
+fn rotating_helix_above_the_kick_off_whirls() {
+    let g = GridCase {
+        inc_deg: 90.0,
+        lateral_m: 300.0,
+        mode: "drilling",
+        wob_kn: 120.0,
+        friction: 0.35,
+    };
+    let (csv, toml) = well_case(&g, 500.0);
+    let case: Case = load_temp_case(&csv, &toml);
+    let ctl = SolveControls::from_settings(&case.solver);
+    let full_law = Model::from_case(&case);
+    let first = SolveControls {
+        max_iterations: DIRECT_BEFORE_CONTINUATION,
+        ..ctl
+    };
+    let direct = solve_interior_point(&full_law, &first).unwrap();
+    assert!(
+        !direct.converged,
+        "the direct solve with the full friction law converged: the case no longer shows the whirl"
+    );
+    let whirl = whirl_intervals(&case, &full_law);
+    let (_, runs) = soft_helical_runs(&case, &full_law);
+    assert!(!whirl.is_empty() && !runs.is_empty());
+    let bha_top = case.operation.bit_md_m - case.string.bha_length_m();
+    for &(top, bottom) in &whirl {
+        let inside = runs
+            .iter()
+            .any(|&(a, b)| full_law.md_ref[b] <= top + 1e-9 && bottom <= full_law.md_ref[a] + 1e-9);
+        assert!(
+            inside && bottom <= bha_top,
+            "whirl {top}-{bottom} outside the runs or in the assembly"
+        );
+    }
+    let s = solve_string(
+        &case,
+        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
+        &ctl,
+        &mut |_, _, _| {},
+    )
+    .unwrap();
+    let fem = s.level.fem.as_ref().unwrap();
+    assert!(s.level.converged, "the whirling solve did not converge");
+    assert_eq!(fem.model.whirl_md_m, whirl);
+    assert!(fem.stats.max_penetration <= case.solver.tolerance);
+    let r = &fem.results;
+    let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+    assert!(eq < 1e-6, "equilibrium {eq}");
+    let (ei, _, _) = pipe_properties();
+    let r_joint = (12.25 - 6.625) * 0.0254 / 2.0;
+    let (top, bottom) = whirl[0];
+    let sel: Vec<_> = r.nodes.iter().filter(|n| n.md_m >= top && n.md_m <= bottom).collect();
+    let wall = sel.iter().map(|n| n.contact_force_n).sum::<f64>() / (bottom - top);
+    let f = -sel.iter().map(|n| n.axial_force_n).sum::<f64>() / sel.len() as f64;
+    let mitchell = r_joint * f * f / (4.0 * ei);
+    let soft = softstring::from_case(&case, softstring::segment_length_m(&case.solver));
+    println!(
+        "whirl {top:.0}-{bottom:.0} m: wall {wall:.1} N/m, Mitchell {mitchell:.1} N/m at {:.1} kN; hook {:.1} (soft {:.1}) kN; torque {:.2} (soft {:.2}) kN.m; {} iterations",
+        f / 1e3,
+        r.hook_load_n / 1e3,
+        soft.hook_load_n / 1e3,
+        s.level.surface_torque_nm.unwrap() / 1e3,
+        soft.surface_torque_nm / 1e3,
+        fem.stats.iterations
+    );
+    assert!(wall > 0.4 * mitchell && wall < 1.15 * mitchell, "{wall} vs {mitchell}");
+    assert!((r.hook_load_n - soft.hook_load_n).abs() < 0.01 * soft.hook_load_n);
+    assert!(s.level.surface_torque_nm.unwrap() > soft.surface_torque_nm);
+    // the `loads` row of the same case whirls over the same intervals, with the same hook load
+    let (row, _) = stiff_row(&case, None);
+    let whirl_m: f64 = whirl.iter().map(|(a, b)| b - a).sum();
+    assert_eq!(row.whirl_m(), Some(whirl_m), "{row:?}");
+    let hook = row.loads().unwrap().hook_load_n;
+    assert!(
+        (hook - r.hook_load_n).abs() < 1e-6 * r.largest_force_n,
+        "{hook} vs {}",
+        r.hook_load_n
     );
 }
 

@@ -186,6 +186,10 @@ pub struct Model {
     /// The motor's reactive torque turning a sliding bent housing's toolface (None: off,
     /// [`super::reactive`]).
     pub reactive: Option<super::reactive::ReactiveTorque>,
+    /// MD intervals `(top, bottom)`, m, where a rotating string whirls
+    /// ([`crate::models::whirl`]): wall friction there keeps its torque and its axial drag but
+    /// not its lateral push round the wall. Empty: the full friction law everywhere.
+    pub whirl_md_m: Vec<(f64, f64)>,
 }
 
 /// Mechanical state of the string: what a solve finds, what a warm start carries.
@@ -350,7 +354,14 @@ impl Model {
             top: TopCondition::Surface,
             kink,
             reactive: None,
+            whirl_md_m: Vec::new(),
         }
+    }
+
+    /// Whether node `i` lies in a whirling interval ([`Model::whirl_md_m`]).
+    pub fn whirls(&self, i: usize) -> bool {
+        let md = self.md_ref[i];
+        self.whirl_md_m.iter().any(|&(top, bottom)| md >= top && md <= bottom)
     }
 
     /// True when friction acts on a moving string: the consistent tangent is then unsymmetric.
@@ -752,6 +763,7 @@ impl Model {
             },
             lambda_vec: state.pin_multipliers[i],
             friction_load: solver_contact.then_some(state.multipliers[i]),
+            whirl: self.whirls(i),
         }
     }
 

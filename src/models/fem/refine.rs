@@ -142,6 +142,7 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
     );
     out.top = model.top;
     out.reactive = model.reactive.clone();
+    out.whirl_md_m = model.whirl_md_m.clone();
     if let Some(k) = model.kink {
         // the bent housing turned as in `model` (its toolface held against the twist)
         out.turn_kink(k.orientation_rad);

@@ -50,6 +50,9 @@ pub struct GapInput {
     /// exact at convergence where the multiplier equals the normal force. `None`: use the
     /// current normal force.
     pub friction_load: Option<f64>,
+    /// The string whirls here (`crate::models::whirl`): the friction force keeps its axial
+    /// part only (its moment, the friction torque, is kept whole).
+    pub whirl: bool,
 }
 
 /// Result of one gap evaluation, global frame.
@@ -163,8 +166,14 @@ pub fn evaluate(g: &GapInput) -> GapResponse {
             let ff = -vh * (g.friction * rf);
             // dF_f/dx = -f (vh dR^T + R dvh)
             let dff = -(vh * dr_dx.transpose() + dvh * rf) * g.friction;
-            force += ff;
-            stiffness -= dff;
+            // a whirling string: the friction's lateral push round the wall left out
+            let kept = if g.whirl {
+                t * t.transpose()
+            } else {
+                Matrix3::identity()
+            };
+            force += kept * ff;
+            stiffness -= kept * dff;
             let rn = n * g.contact_radius;
             moment = rn.cross(&ff);
             // dM/dx = R_c ([n]x dF_f - [F_f]x dn)
@@ -205,6 +214,7 @@ mod tests {
             omega: 6.0,
             fallback_normal: Vec3::new(0.0, 1.0, 0.0),
             status: None,
+            whirl: false,
             lambda_vec: Vec3::zeros(),
             friction_load: None,
         }
@@ -231,6 +241,24 @@ mod tests {
         assert!(r.force.x.abs() < 1e-12);
     }
 
+    /// A whirling contact (`crate::models::whirl`): the friction force keeps only its axial
+    /// part `-f R v_a/|v| t` and the moment is the full law's (its torque `-f R R_c Omega R_c/|v|`
+    /// about `t`); reference: the full law's evaluation of the same contact.
+    #[test]
+    fn whirling_contact_keeps_torque_and_drag_but_not_the_push() {
+        let mut g = input();
+        g.axial_speed = 0.05;
+        let full = evaluate(&g);
+        g.whirl = true;
+        let w = evaluate(&g);
+        let t = g.t;
+        let normal = -full.normal * full.normal_force;
+        let axial_full = t * t.dot(&(full.force - normal));
+        assert!((w.force - normal - axial_full).norm() < 1e-9 * full.normal_force);
+        assert!((full.force - w.force).norm() > 0.1 * 0.3 * full.normal_force);
+        assert!((w.moment - full.moment).norm() < 1e-12);
+    }
+
     #[test]
     fn stiffness_matches_finite_differences_of_normal_force() {
         let mut g = input();
@@ -253,9 +281,16 @@ mod tests {
     #[test]
     fn frictional_stiffness_and_moment_match_finite_differences() {
         // Consistent tangent of the frictional gap (normal + friction force and friction
-        // moment), rotating and sliding, unilateral and pin: central differences.
-        for (clearance, axial, omega) in [(0.02, 0.0, 6.0), (0.02, 0.3, 0.0), (0.02, 0.01, 6.0), (0.0, 0.0, 6.0)] {
+        // moment), rotating and sliding, unilateral and pin, whirling: central differences.
+        for (clearance, axial, omega, whirl) in [
+            (0.02, 0.0, 6.0, false),
+            (0.02, 0.3, 0.0, false),
+            (0.02, 0.01, 6.0, false),
+            (0.0, 0.0, 6.0, false),
+            (0.02, 0.01, 6.0, true),
+        ] {
             let mut g = input();
+            g.whirl = whirl;
             g.clearance = clearance;
             g.axial_speed = axial;
             g.omega = omega;

@@ -110,7 +110,9 @@ fn wall_column(model: &Model, i: usize, nrm: Vec3, tangent: Vec3) -> (Vec3, [f64
     let split = model.loads.motion().friction_split(rc);
     let (fv, fm) = if model.friction[i] > 0.0 && split.acts() {
         let vh = tangent * split.axial + tangent.cross(&nrm) * split.tangential;
-        (vh * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
+        // a whirling string: the friction force without its lateral push, its torque whole
+        let pushed = if model.whirls(i) { tangent * split.axial } else { vh };
+        (pushed * model.friction[i], nrm.cross(&vh) * (model.friction[i] * rc))
     } else {
         (Vec3::zeros(), Vec3::zeros())
     };

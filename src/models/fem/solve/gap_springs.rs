@@ -101,6 +101,7 @@ pub(crate) fn add_lagged_friction(
             // a pin takes its normal from the vector multiplier: the current direction
             lambda_vec: g.normal * r_lag[i],
             friction_load: Some(r_lag[i]),
+            whirl: model.whirls(i),
         });
         // friction part only (a pin's evaluation also returns the normal force given)
         let f = model.basis[i].transpose() * (fr.force - fr.force_normal());

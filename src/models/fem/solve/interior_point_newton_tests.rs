@@ -70,12 +70,26 @@ fn contact_tangent_matches_central_differences() {
     // the pin's torque row by 1e6 N.m/m (tolerance 1e2). The single pin of the point model:
     // along a full-gauge blade's chain of five pins three entries of the lowest pin's twist row
     // differ from the differences by 0.3-0.5% (tolerance 0.1%); not resolved here.
-    let model = j_shape_bha(StabilizerContact::Point);
-    let sol = solve(&model, &SolveControls::default()).unwrap();
+    assert_tangent_matches_differences(&j_shape_bha(StabilizerContact::Point));
+}
+
+/// [`contact_tangent_matches_central_differences`] with every node but the pin whirling
+/// (`Model::whirl_md_m`: the managed contacts' friction without its lateral push), the same
+/// reference and tolerance.
+#[test]
+fn whirling_contact_tangent_matches_central_differences() {
+    let mut model = j_shape_bha(StabilizerContact::Point);
+    model.whirl_md_m = vec![(0.0, 1e6)];
+    assert_tangent_matches_differences(&model);
+}
+
+/// The check of [`contact_tangent_matches_central_differences`] on `model`.
+fn assert_tangent_matches_differences(model: &Model) {
+    let sol = solve(model, &SolveControls::default()).unwrap();
     assert!(sol.converged);
-    let managed = managed_gaps(&model);
+    let managed = managed_gaps(model);
     let qidx: Vec<usize> = (0..model.nodes()).filter(|&i| managed[i]).collect();
-    let pins = pins_of(&model);
+    let pins = pins_of(model);
     assert_eq!(pins.len(), 1, "the near-bit stabilizer is the pin");
     assert!(
         qidx.iter().filter(|&&i| sol.state.multipliers[i] > 1e3).count() >= 5,
@@ -89,13 +103,13 @@ fn contact_tangent_matches_central_differences() {
         exact_multipliers: false,
         exact_pins: true,
     };
-    let constrained = constrained_with_pins(&model, &pins);
-    let mut lin = MatrixAndFactor::for_model(&model);
+    let constrained = constrained_with_pins(model, &pins);
+    let mut lin = MatrixAndFactor::for_model(model);
     let mut st = state.clone();
     let ev = model.evaluate(&mut st, &gaps, Some(lin.sink()));
-    let cc = contact_columns(&model, &mut st, &ev, &qidx);
-    add_circle_stiffness(&model, lin.sink(), &qidx, &cc.geometry, &st.multipliers);
-    add_pin_coupling(&model, &mut lin, &ev, &st, &pins);
+    let cc = contact_columns(model, &mut st, &ev, &qidx);
+    add_circle_stiffness(model, lin.sink(), &qidx, &cc.geometry, &st.multipliers);
+    add_pin_coupling(model, &mut lin, &ev, &st, &pins);
     let n = model.dofs();
     let hb = HALF_BANDWIDTH;
     let row_max: Vec<f64> = (0..n)
@@ -113,8 +127,8 @@ fn contact_tangent_matches_central_differences() {
         let (mut sp, mut sm) = (state.clone(), state.clone());
         model.update(&mut sp, &e, h);
         model.update(&mut sm, &e, -h);
-        let rp = outer_residual(&model, &sp, &gaps, &qidx, &constrained);
-        let rm = outer_residual(&model, &sm, &gaps, &qidx, &constrained);
+        let rp = outer_residual(model, &sp, &gaps, &qidx, &constrained);
+        let rm = outer_residual(model, &sm, &gaps, &qidx, &constrained);
         for i in (j.saturating_sub(hb)..(j + hb + 1).min(n)).filter(|i| !constrained.contains(i)) {
             let fd = (rp[i] - rm[i]) / (2.0 * h);
             let an = lin.get(i, j);
