@@ -200,7 +200,7 @@ fn fidelity_options_are_checked_and_reported() {
             .count(),
         2 * 5
     );
-    assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid,,0.0")), "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",hybrid,,0.0,0.0")), "{csv}");
     // [solver] fidelity = "whole" in the case runs the whole string; auto runs soft and says why
     let whole = format!("{}[solver]\nfidelity = \"whole\"\n", *CASE);
     std::fs::write(dir.path().join("case.toml"), &whole).unwrap();
@@ -219,7 +219,7 @@ fn fidelity_options_are_checked_and_reported() {
     );
     assert!(out.success(), "{}", out.stderr);
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
-    assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole,,0.0")), "{csv}");
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(",whole,,0.0,0.0")), "{csv}");
     // stdout prints a second table with the stiff values: its last line (1,000 m) shows the
     // stiff trip-out hook load of loads.csv (reference: the CSV, to the printed 0.1 kN), which
     // differs from the soft one printed in the first table
