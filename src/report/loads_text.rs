@@ -185,18 +185,7 @@ fn print_stiff_summary(
             first_ten(&locked)
         )?;
     }
-    let unbuckled: Vec<String> = rows
-        .iter()
-        .filter_map(|r| {
-            let length = r.stiff.as_ref()?.unbuckled_helical_m().filter(|l| *l > 0.0)?;
-            let depth = units.depth().fmt(r.bit_md_m, 0);
-            Some(format!(
-                "{depth} {} over {}",
-                r.mode.name(),
-                units.depth().fmt(length, 0)
-            ))
-        })
-        .collect();
+    let unbuckled = rows_over(rows, units, StiffOutcome::unbuckled_helical_m);
     if !unbuckled.is_empty() {
         writeln!(
             out,
@@ -205,18 +194,7 @@ fn print_stiff_summary(
             first_ten(&unbuckled)
         )?;
     }
-    let whirling: Vec<String> = rows
-        .iter()
-        .filter_map(|r| {
-            let length = r.stiff.as_ref()?.whirl_m().filter(|l| *l > 0.0)?;
-            let depth = units.depth().fmt(r.bit_md_m, 0);
-            Some(format!(
-                "{depth} {} over {}",
-                r.mode.name(),
-                units.depth().fmt(length, 0)
-            ))
-        })
-        .collect();
+    let whirling = rows_over(rows, units, StiffOutcome::whirl_m);
     if !whirling.is_empty() {
         writeln!(
             out,
@@ -226,6 +204,18 @@ fn print_stiff_summary(
         )?;
     }
     Ok(())
+}
+
+/// The rows whose stiff outcome gives a positive `length` (m), each as "depth mode over length"
+/// (a warning's list of rows).
+fn rows_over(rows: &[LoadRow], units: UnitSystem, length: impl Fn(&StiffOutcome) -> Option<f64>) -> Vec<String> {
+    rows.iter()
+        .filter_map(|r| {
+            let l = r.stiff.as_ref().and_then(&length).filter(|l| *l > 0.0)?;
+            let depth = units.depth().fmt(r.bit_md_m, 0);
+            Some(format!("{depth} {} over {}", r.mode.name(), units.depth().fmt(l, 0)))
+        })
+        .collect()
 }
 
 /// The first ten of `rows` (a warning's list of rows), joined by commas.
