@@ -186,6 +186,12 @@ pub struct Model {
     /// The motor's reactive torque turning a sliding bent housing's toolface (None: off,
     /// [`super::reactive`]).
     pub reactive: Option<super::reactive::ReactiveTorque>,
+    /// The housing toolface (rad) the interior-point Newton holds the bent housing at by
+    /// turning its kink as it iterates, the turn in the solution's statistics
+    /// ([`super::solve::SolveStats::kink_turned_to_rad`]); None (the default): the kink stays
+    /// as set. The predictor sets it for each state's solve;
+    /// [`super::solve::toolface::solve_holding_toolface`] takes the turned kink and clears it.
+    pub toolface_hold_rad: Option<f64>,
 }
 
 /// Mechanical state of the string: what a solve finds, what a warm start carries.
@@ -350,6 +356,7 @@ impl Model {
             top: TopCondition::Surface,
             kink,
             reactive: None,
+            toolface_hold_rad: None,
         }
     }
 
