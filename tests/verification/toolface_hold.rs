@@ -1,7 +1,8 @@
 //! The bent housing's toolface held inside the interior-point Newton iteration
-//! (`Model::toolface_hold_rad`, docs/theory.md 9.9 "Holding the toolface"): against the hold by re-solves (the kink turned by the miss and the string solved
-//! again until the housing sits at its toolface), written out here with a tolerance a hundred
-//! times tighter.
+//! (`Model::toolface_hold_rad`, docs/theory.md 9.9 "Holding the toolface as the Newton
+//! iterates"): against the hold by re-solves (the kink turned by the miss and the string
+//! solved again until the housing sits at its toolface), written out here with a tolerance a
+//! hundred times tighter.
 
 use crate::steering::motor_case;
 use drillpath::geometry::survey::wrap_pi;
