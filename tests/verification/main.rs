@@ -32,5 +32,6 @@ mod solver;
 mod spreadsheet;
 mod steering;
 mod steering_pads;
+mod toolface_hold;
 mod tracking;
 mod witsml;

@@ -190,6 +190,12 @@ pub struct Model {
     /// ([`crate::models::whirl`]): wall friction there keeps its torque and its axial drag but
     /// not its lateral push round the wall. Empty: the full friction law everywhere.
     pub whirl_md_m: Vec<(f64, f64)>,
+    /// The housing toolface (rad) the interior-point Newton holds the bent housing at by
+    /// turning its kink as it iterates, the turn in the solution's statistics
+    /// ([`super::solve::SolveStats::kink_turned_to_rad`]); None (the default): the kink stays
+    /// as set. The predictor sets it for each state's solve;
+    /// [`super::solve::toolface::solve_holding_toolface`] takes the turned kink and clears it.
+    pub toolface_hold_rad: Option<f64>,
 }
 
 /// Mechanical state of the string: what a solve finds, what a warm start carries.
@@ -355,6 +361,7 @@ impl Model {
             kink,
             reactive: None,
             whirl_md_m: Vec::new(),
+            toolface_hold_rad: None,
         }
     }
 

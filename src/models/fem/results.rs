@@ -55,9 +55,7 @@ pub fn sensor_results(string: &crate::string::DrillString, model: &Model, nodes:
         .iter()
         .filter_map(|c| {
             let x = c.sensor_to_bit_m?;
-            let i = model.mesh.nodes[..nodes.len().min(model.mesh.nodes.len())]
-                .iter()
-                .position(|m| (m.s_m - x).abs() < 1e-6)?;
+            let i = sensor_node(model, nodes.len(), x)?;
             Some(SensorResult {
                 component: c.name.clone(),
                 sensor_to_bit_m: x,
@@ -67,6 +65,32 @@ pub fn sensor_results(string: &crate::string::DrillString, model: &Model, nodes:
             })
         })
         .collect()
+}
+
+/// The node of `model` among its first `n` (from the bit) at the sensor `sensor_to_bit_m`
+/// (m) from the bit face, if one is there.
+fn sensor_node(model: &Model, n: usize, sensor_to_bit_m: f64) -> Option<usize> {
+    model.mesh.nodes[..n.min(model.mesh.nodes.len())]
+        .iter()
+        .position(|m| (m.s_m - sensor_to_bit_m).abs() < 1e-6)
+}
+
+/// The bit results of `sol` with the sag at the first sensor of `string` on `model`'s nodes
+/// ([`BitResult::sensor_sag_rad`]): the bit of [`extract`] and the sag of [`sensor_results`],
+/// without the other nodes' results.
+pub fn bit_with_sensor(
+    string: &crate::string::DrillString,
+    model: &Model,
+    sol: &Solution,
+    mud_density_kg_m3: f64,
+) -> BitResult {
+    let mut bit = bit_result(model, sol);
+    bit.sensor_sag_rad = string
+        .components
+        .iter()
+        .find_map(|c| sensor_node(model, model.nodes(), c.sensor_to_bit_m?))
+        .map(|i| node_result(model, sol, i, mud_density_kg_m3).tilt_high_rad);
+    bit
 }
 
 /// Per-node results.

@@ -8,7 +8,7 @@ use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::fem::bha::bha_model;
 use crate::models::fem::model::{Model, State};
-use crate::models::fem::results::{extract, sensor_results, BitResult};
+use crate::models::fem::results::{bit_with_sensor, BitResult};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::transport_state;
@@ -211,28 +211,26 @@ struct StateSolve {
     reactive_turn_rad: Option<f64>,
 }
 
-/// Solve `c` (the case at the state `st`: the RSS neutral or not; `case` gives the mud and the
-/// sensors) with the bit at `md_m` in `path` from `start`; a bent housing's kink is held at
-/// the state's toolface ([`solve_holding_toolface`]).
-#[allow(clippy::too_many_arguments)]
+/// Solve the string of `base` (the cut model of the case at the state `st`: the RSS neutral or
+/// not, its consistent tangent on; `case` gives the mud and the sensors) at the state `st` from
+/// `start`; a bent housing's kink is held at the state's toolface ([`solve_holding_toolface`]).
 fn solve_state(
     case: &Case,
-    c: &Case,
-    (path, hole): (&WellPath, &HoleSize),
-    md_m: f64,
-    cut_m: f64,
+    base: &Model,
     st: &SteerState,
     start: Start<'_>,
     ctl: &SolveControls,
 ) -> Result<StateSolve, PredictError> {
-    let mut model = bha_model(c, path, hole, md_m, cut_m);
-    model.consistent_tangent = true;
+    let md_m = base.bit_md_m;
+    let mut model = base.clone();
     model.set_toolface(st.toolface_rad);
     model.turn_kink(st.toolface_rad + start.kink_correction_rad);
     let warm_state = start
         .from
         .filter(|(m, _)| m.nodes() == model.nodes())
         .map(|(m, s)| transport_state(m, s, &model));
+    // the Newton holds the housing at the state's toolface as it iterates
+    model.toolface_hold_rad = model.kink.and(model.reactive.is_none().then_some(st.toolface_rad));
     let mut sol = solve_step(&model, warm_state, start.warm_iterations, ctl)?;
     if model.kink.is_some() {
         // the housing turned back to its toolface against the string's twist
@@ -242,11 +240,7 @@ fn solve_state(
             return Err(not_converged(&model, &sol, ctl));
         }
     }
-    let res = extract(&model, &sol, case.mud.density_kg_m3);
-    let mut bit = res.bit;
-    bit.sensor_sag_rad = sensor_results(&case.string, &model, &res.nodes)
-        .first()
-        .map(|x| x.sag_rad);
+    let bit = bit_with_sensor(&case.string, &model, &sol, case.mud.density_kg_m3);
     Ok(StateSolve {
         model,
         reactive_turn_rad: sol.stats.reactive_turn.map(|t| t.turn_rad),
@@ -276,28 +270,23 @@ pub(crate) fn solve_bit(
     ctl: &SolveControls,
     faces: &[SteerState],
 ) -> Result<BitSolve, PredictError> {
-    // the case with its rotary steerable system neutral, for the share of the time it does
-    // not steer
+    // the cut model of the case, and of the case with its rotary steerable system neutral for
+    // the share of the time it does not steer, each built once for its states
+    let model_of = |c: &Case| {
+        let mut m = bha_model(c, path, hole, md_m, cut_m);
+        m.consistent_tangent = true;
+        m
+    };
+    let steering = faces.iter().any(|f| !f.neutral).then(|| model_of(case));
     let neutral = faces.iter().any(|f| f.neutral).then(|| {
         let mut c = case.clone();
         c.string = c.string.rss_neutral();
-        c
+        model_of(&c)
     });
     let solve_at = |k: usize, st: &SteerState| {
-        let c = match &neutral {
-            Some(n) if st.neutral => n,
-            _ => case,
-        };
-        solve_state(
-            case,
-            c,
-            (path, hole),
-            md_m,
-            cut_m,
-            st,
-            start_of(k, faces, warm, latest),
-            ctl,
-        )
+        let base = if st.neutral { &neutral } else { &steering };
+        let base = base.as_ref().expect("a model for each kind of state");
+        solve_state(case, base, st, start_of(k, faces, warm, latest), ctl)
     };
     let solved: Vec<Result<StateSolve, PredictError>> = if faces.len() == 1 {
         vec![solve_at(0, &faces[0])]

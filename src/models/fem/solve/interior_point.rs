@@ -29,9 +29,24 @@ pub const IP_START_SHIFT: f64 = 0.1;
 /// wells).
 pub const CARRIED_START_SHIFT_FACTOR: f64 = 0.1;
 
-/// Consecutive interior-point steps shorter than 1e-2 after which the contact subproblem of a
-/// linearization far from the solution (inner tolerance above 1e-8) is left as it is.
+/// Consecutive stalled interior-point steps (shorter than 1e-2, or cycling beyond
+/// [`IP_CYCLE_STEPS`]) after which the contact subproblem of a linearization far from the
+/// solution (inner tolerance above 1e-8) is left as it is, and one near it restarted
+/// ([`IP_RESTARTS`]).
 pub const IP_STALL_STEPS: usize = 5;
+
+/// An interior-point step whose iterate is feasible to the tolerance (the dual residual below
+/// it, the primal below ten times it) and whose mean complementarity is above this share of
+/// the smallest before is cycling: with friction the linearized contact problem may have no
+/// complementary solution, and the iterates then cycle at a constant complementarity
+/// (docs/performance.md, "Interior-point cycles").
+pub const IP_CYCLE_MU_RATIO: f64 = 0.9;
+
+/// Cycling interior-point steps ([`IP_CYCLE_MU_RATIO`]) in a row after which each further one
+/// counts as stalled ([`IP_STALL_STEPS`] stalled steps stop or restart the solve); with five
+/// instead of ten, the loads row beyond lock-up of `tests/verification/slack_off.rs` did not
+/// converge.
+pub const IP_CYCLE_STEPS: usize = 10;
 
 /// Restarts of an interior-point solve stalled near the solution (inner tolerance at most 1e-8),
 /// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
@@ -547,6 +562,7 @@ impl ContactSubproblem<'_> {
             mul: Vec::new(),
         };
         let (mut iterations, mut stalled, mut restarts) = (0usize, 0usize, 0usize);
+        let (mut mu_min, mut cycles) = (f64::INFINITY, 0usize);
         for ip in 0..MAX_IP_ITERATIONS {
             let res = self.residuals(lin, ip, &it, &mut w);
             if self.solved(&res, w.cb) {
@@ -576,9 +592,18 @@ impl ContactSubproblem<'_> {
                 continue;
             }
             let alpha = self.corrector(lin, &mut it, &mut w, &res);
-            stalled = if alpha < 1e-2 { stalled + 1 } else { 0 };
-            // a stalled interior point (friction makes the contact problem non-monotone) far
-            // from the solution: take the step found so far
+            let feasible = res.rd_n < self.eta && res.rp_n < 10.0 * self.eta;
+            let cycling = feasible && res.mu > IP_CYCLE_MU_RATIO * mu_min;
+            mu_min = mu_min.min(res.mu);
+            cycles = if cycling { cycles + 1 } else { 0 };
+            stalled = if alpha < 1e-2 || cycles >= IP_CYCLE_STEPS {
+                stalled + 1
+            } else {
+                0
+            };
+            // a stalled interior point (friction makes the contact problem non-monotone: its
+            // steps short, or its iterates cycling at a constant complementarity) far from the
+            // solution: take the step found so far
             if stalled >= IP_STALL_STEPS && self.eta > 1e-8 {
                 break;
             }
@@ -591,6 +616,7 @@ impl ContactSubproblem<'_> {
                 shift = (shift * IP_RESTART_SHIFT_FACTOR).min(1e-1);
                 it = self.start(shift);
                 stalled = 0;
+                (mu_min, cycles) = (f64::INFINITY, 0);
                 tracing::debug!(restarts, shift, "interior point restarted");
             }
         }

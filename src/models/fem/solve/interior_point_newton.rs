@@ -30,6 +30,8 @@ use super::pins::{add_pin_coupling, constrained_with_pins, hold_pins_on_axis, pi
 use super::solution::{Solution, SolveError, SolveStats};
 use super::start::cold_start;
 use super::step_caps::step_cap;
+use super::toolface::{HOLD_TURN_MAX_RAD, HOLD_TURN_RAD};
+use crate::geometry::survey::wrap_pi;
 use crate::geometry::Vec3;
 use crate::models::fem::model::{Evaluation, GapTreatment, Model, State};
 use std::time::Instant;
@@ -62,6 +64,10 @@ pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveCon
     let mut redo = false;
     let mut ev;
     loop {
+        if newton.hold_toolface(&state) {
+            // the kink turned: the state is no longer near this model's equilibrium
+            likely = false;
+        }
         let skip_tangent = likely && !redo;
         redo = false;
         let switching = newton.switch_or_hold_pins(&mut state, &stats.residual_history);
@@ -98,6 +104,7 @@ pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveCon
         stats.iterations += 1;
     }
     let eval = newton.final_evaluation(&mut state, ev);
+    stats.kink_turned_to_rad = newton.held.as_ref().and_then(|m| m.kink).map(|k| k.orientation_rad);
     stats.seconds = t0.elapsed().as_secs_f64();
     Ok(Solution {
         state,
@@ -147,6 +154,11 @@ struct InteriorPointNewton<'a> {
     /// The outer residual of the first step (the reference of the pseudo-transient damping,
     /// [`SolveControls::lateral_damping_n_per_m`]).
     first_residual: Option<f64>,
+    /// The housing toolface held, rad ([`Model::toolface_hold_rad`] of a model with a kink).
+    hold_rad: Option<f64>,
+    /// The model with its kink turned to hold the toolface (None until it is first turned):
+    /// the model of the evaluations.
+    held: Option<Model>,
 }
 
 impl<'a> InteriorPointNewton<'a> {
@@ -192,6 +204,8 @@ impl<'a> InteriorPointNewton<'a> {
             gaps,
             lin: MatrixAndFactor::for_model(model),
             first_residual: None,
+            hold_rad: model.toolface_hold_rad.filter(|_| model.kink.is_some()),
+            held: None,
         }
     }
 
@@ -211,12 +225,42 @@ impl<'a> InteriorPointNewton<'a> {
         switching
     }
 
+    /// Hold the housing toolface ([`Model::toolface_hold_rad`]) in `state`: when the housing
+    /// in `state` misses it by more than [`HOLD_TURN_RAD`] and at most [`HOLD_TURN_MAX_RAD`],
+    /// turn the kink by the miss (the housing turns with it, to first order, by as much:
+    /// docs/theory.md 9.9, "Holding the toolface as the Newton iterates"). Returns whether the
+    /// kink turned.
+    fn hold_toolface(&mut self, state: &State) -> bool {
+        let Some(target) = self.hold_rad else {
+            return false;
+        };
+        let m = self.held.as_ref().unwrap_or(self.model);
+        let (Some(k), Some(actual)) = (m.kink, m.housing_toolface(state)) else {
+            return false;
+        };
+        let miss = wrap_pi(target - actual);
+        if miss.abs() <= HOLD_TURN_RAD || miss.abs() > HOLD_TURN_MAX_RAD {
+            return false;
+        }
+        self.held
+            .get_or_insert_with(|| self.model.clone())
+            .turn_kink(k.orientation_rad + miss);
+        true
+    }
+
+    /// The model of the evaluations: the one solved, its kink turned where the toolface is
+    /// held.
+    fn evaluated(&self) -> &Model {
+        self.held.as_ref().unwrap_or(self.model)
+    }
+
     /// Evaluate `state`, assembling the tangent when `with_tangent`.
     fn evaluate(&mut self, state: &mut State, with_tangent: bool) -> Evaluation {
+        let m = self.held.as_ref().unwrap_or(self.model);
         if with_tangent {
-            self.model.evaluate(state, &self.gaps, Some(self.lin.sink()))
+            m.evaluate(state, &self.gaps, Some(self.lin.sink()))
         } else {
-            self.model.evaluate(state, &self.gaps, None)
+            m.evaluate(state, &self.gaps, None)
         }
     }
 
@@ -370,7 +414,8 @@ impl<'a> InteriorPointNewton<'a> {
             exact_multipliers: true,
             ..GapTreatment::default()
         };
-        self.model.evaluate_reusing_elements(state, &final_gaps, ev.elements)
+        self.evaluated()
+            .evaluate_reusing_elements(state, &final_gaps, ev.elements)
     }
 }
 

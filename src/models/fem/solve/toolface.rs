@@ -54,6 +54,21 @@ impl Model {
 /// turns the drilling direction by 0.001 deg/30 m).
 pub const TOOLFACE_TOLERANCE_RAD: f64 = 0.005 * std::f64::consts::PI / 180.0;
 
+/// Miss of the housing toolface above which the interior-point Newton turns the kink as it
+/// iterates ([`Model::toolface_hold_rad`]), rad: a tenth of [`TOOLFACE_TOLERANCE_RAD`], so
+/// that the last Newton steps, which move the housing a little after its last turn, leave it
+/// within the tolerance (docs/performance.md, "The toolface held inside the Newton
+/// iteration").
+pub const HOLD_TURN_RAD: f64 = 0.1 * TOOLFACE_TOLERANCE_RAD;
+
+/// Largest miss of the housing toolface by which the interior-point Newton turns the kink as
+/// it iterates, rad: a larger one is the twist of a long string still winding up under its
+/// torque (radians over a whole string), left to [`solve_holding_toolface`]'s further solves.
+/// The predictor's cut models miss by up to 0.12 rad (a cold start after a slide); turning by
+/// any miss, the whole-string solve of `wells/horizontal/steered.toml` did not converge, with
+/// this cap (or 0.05 to 0.5 rad) it did.
+pub const HOLD_TURN_MAX_RAD: f64 = 0.2;
+
 /// Solves [`solve_holding_toolface`] may add to turn the housing.
 pub const MAX_TOOLFACE_SOLVES: usize = 10;
 
@@ -70,7 +85,10 @@ pub const MAX_REACTIVE_ROUNDS: usize = 4;
 /// ([`Model::reactive`]) the housing is held at the toolface less the turn
 /// ([`Model::reactive_turn`]) of the solved state, repeated until the turn changes by less
 /// than the tolerance (at most [`MAX_REACTIVE_ROUNDS`]); the turn is in the statistics. A
-/// straight string is solved once. Returns the last solution (not converged when a turned
+/// first solve whose Newton held the toolface as it iterated ([`Model::toolface_hold_rad`], set
+/// by the caller: the predictor's) is taken with the kink where that Newton left it, and
+/// usually needs no further solve; the further solves hold it between solves. A straight
+/// string is solved once. Returns the last solution (not converged when a turned
 /// solve did not converge), its iteration count that of all the solves.
 pub fn solve_holding_toolface(
     model: &mut Model,
@@ -78,7 +96,7 @@ pub fn solve_holding_toolface(
     first: impl FnOnce(&Model) -> Result<Solution, SolveError>,
 ) -> Result<Solution, SolveError> {
     let set = model.loads.toolface_rad;
-    let sol = first(model)?;
+    let sol = held_solution(model, first(model))?;
     let mut iterations = sol.stats.iterations;
     // the first turn from the first state (its kink at the caller's guess, e.g. the last
     // step's turned kink), so that a good guess costs one hold
@@ -99,6 +117,19 @@ pub fn solve_holding_toolface(
     }
     sol.stats.iterations = iterations;
     sol.stats.reactive_turn = turn;
+    Ok(sol)
+}
+
+/// The first solution `sol` of `model` in [`solve_holding_toolface`]: when its Newton held
+/// [`Model::toolface_hold_rad`], `model`'s kink turned to where that Newton left it
+/// ([`super::SolveStats::kink_turned_to_rad`]), so that `sol` is a solution of `model`; the
+/// toolface no longer held inside the Newton (the further solves turn the kink between solves).
+fn held_solution(model: &mut Model, sol: Result<Solution, SolveError>) -> Result<Solution, SolveError> {
+    model.toolface_hold_rad = None;
+    let sol = sol?;
+    if let Some(o) = sol.stats.kink_turned_to_rad {
+        model.turn_kink(o);
+    }
     Ok(sol)
 }
 
