@@ -20,6 +20,7 @@ pub mod kink;
 pub mod linalg;
 pub mod mesh;
 pub mod model;
+pub mod pin_reaction;
 pub mod reactive;
 pub mod refine;
 pub mod results;
