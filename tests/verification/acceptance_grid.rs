@@ -314,7 +314,8 @@ fn buckled_start_rescues_the_helix_above_the_kick_off() {
 /// from the buckled shape after it: 1,844 iterations, exit 2); with the pipe whirling there ([`whirl_intervals`]) the solve converges. References:
 /// global equilibrium within 1e-6 of the largest force and penetration within the gap
 /// tolerance; the whirling intervals inside the soft string's helical runs and above the
-/// assembly; the vertical pipe buckled: its mean wall force per length over the whirling
+/// assembly, and none when the same string slides (at 30 kN, where its soft string is helical above the
+/// kick-off too); the vertical pipe buckled: its mean wall force per length over the whirling
 /// interval between 0.4 and 1.15 of Mitchell's `w_c = r F^2 / (4 EI)` at its mean compression
 /// (the bounds of [`buckled_start_rescues_the_helix_above_the_kick_off`]); the hook load within
 /// 1% of the soft string's (rotary friction drags axially by `v_a / |v|` only, 0.1% here) and the surface torque above it (the helix's wall force adds torque
@@ -343,6 +344,13 @@ fn rotating_helix_above_the_kick_off_whirls() {
         "the direct solve with the full friction law converged: the case no longer shows the whirl"
     );
     let whirl = whirl_intervals(&case, &full_law);
+    // a string that does not rotate never whirls (sliding: the same helix, axial friction)
+    let mut sliding = case.clone();
+    sliding.operation.mode = drillpath::case::Mode::Sliding;
+    sliding.operation.wob_n = 30e3;
+    let sliding_model = Model::from_case(&sliding);
+    assert!(!soft_helical_runs(&sliding, &sliding_model).1.is_empty());
+    assert!(whirl_intervals(&sliding, &sliding_model).is_empty());
     let (_, runs) = soft_helical_runs(&case, &full_law);
     assert!(!whirl.is_empty() && !runs.is_empty());
     let bha_top = case.operation.bit_md_m - case.string.bha_length_m();
