@@ -44,6 +44,10 @@ pub const ONSET_SHOWN_UP_TO: f64 = 2.0;
 /// helically buckled).
 pub const HELIX_SERIES: [&str; 2] = ["helical buckling", "helix wall force (Mitchell)"];
 
+/// Legend name of the whirling intervals on the contact-force plot (shown only where a rotating
+/// string whirls, [`ReportOptions::whirl_md_m`]).
+pub const WHIRL_SERIES: &str = "whirling (rotary friction without its push round the wall)";
+
 /// The wall contact force chart: the normal force at each node of `res` along MD (display
 /// units `du`, `fu`) and, where `marks` (at the nodes of `res`, or empty) put the string beyond
 /// the helical onset, those intervals shaded and Mitchell's helical wall force per length
@@ -162,6 +166,9 @@ pub struct ReportOptions {
     pub no_surface_values: bool,
     /// The soft string at the same WOB, shown beside the hook load and surface torque.
     pub soft: Option<SoftComparison>,
+    /// MD intervals `(top, bottom)`, m, where the rotating string whirls
+    /// (`crate::models::whirl`), shaded on the contact-force plot; empty: none.
+    pub whirl_md_m: Vec<(f64, f64)>,
 }
 
 /// The report's HTML text (`marks`: buckling marks at the nodes of `res`, may be empty;
@@ -192,7 +199,7 @@ pub fn solve_report(
     contact_zones(&mut page, case, b.md_m, &contacts, units);
     echo_inputs(&mut page, case, b.md_m, units)?;
     page.heading("Along the string");
-    string_figures(&mut page, case, res, marks, units)?;
+    string_figures(&mut page, case, res, marks, scope)?;
     let html = page.finish();
     check_finite_text(&html)?;
     Ok(html)
@@ -358,8 +365,9 @@ fn string_figures(
     case: &Case,
     res: &SolveResults,
     marks: &[Mark],
-    units: UnitSystem,
+    scope: &ReportOptions,
 ) -> Result<(), String> {
+    let units = scope.units;
     let (depth_unit, small_unit, force_unit, torque_unit, stress_unit) = (
         units.depth(),
         units.small_length(),
@@ -372,11 +380,19 @@ fn string_figures(
     let along = |f: &dyn Fn(&NodeResult) -> f64| -> Vec<(f64, f64)> {
         res.nodes.iter().map(|n| (depth_unit.show(n.md_m), f(n))).collect()
     };
-    let contact = contact_force_chart(res, marks, depth_unit, force_unit);
+    let contact = contact_force_chart(res, marks, depth_unit, force_unit).with_band(Band {
+        name: WHIRL_SERIES.into(),
+        spans: scope
+            .whirl_md_m
+            .iter()
+            .map(|&(a, b)| (depth_unit.show(a), depth_unit.show(b)))
+            .collect(),
+        color: 2,
+    });
     page.figure(
         "contact-force",
         &render(&contact)?,
-        "normal force of the wall on the string at each node; where the string is helically buckled (shaded), the helix's wall force by Mitchell (r F^2/(4 EI) times the node's share of the string) for comparison",
+        "normal force of the wall on the string at each node; where the string is helically buckled (shaded), the helix's wall force by Mitchell (r F^2/(4 EI) times the node's share of the string) for comparison; where a rotating string whirls (shaded), its wall friction keeps its torque and drag but not its push round the wall (docs/theory.md 7.5)",
     );
 
     let bha_len = shown_length_m(&case.string);
@@ -526,6 +542,7 @@ pub fn solve_html(
             units,
             note: (!warnings.is_empty()).then(|| warnings.trim_start().to_string()),
             soft: s.soft_comparison,
+            whirl_md_m: part.model.whirl_md_m.clone(),
             ..Default::default()
         };
         return html(case, &part.results, &s.marks, &part.stats, part.converged, &options);
@@ -563,6 +580,7 @@ pub fn solve_html(
         note: Some(note + &warnings),
         no_surface_values: !surface,
         soft: s.soft_comparison,
+        whirl_md_m: Vec::new(),
     };
     html(case, &res, s.stiff_marks(), &part.stats, lr.converged, &options)
 }

@@ -27,6 +27,8 @@ use drillpath::models::fem::solve::{solve_interior_point, SolveControls, DIRECT_
 use drillpath::models::levels::{run, solve_string};
 use drillpath::models::softstring;
 use drillpath::models::whirl::whirl_intervals;
+use drillpath::report::display_units::UnitSystem;
+use drillpath::report::solve_report::{solve_html, WHIRL_SERIES};
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -320,7 +322,8 @@ fn buckled_start_rescues_the_helix_above_the_kick_off() {
 /// (the bounds of [`buckled_start_rescues_the_helix_above_the_kick_off`]); the hook load within
 /// 1% of the soft string's (rotary friction drags axially by `v_a / |v|` only, 0.1% here) and the surface torque above it (the helix's wall force adds torque
 /// `f w_c R_c` where the soft string has none); the `loads` row of the case whirling over the
-/// same length with the same hook load (within 1e-6 of the largest force).
+/// same length with the same hook load (within 1e-6 of the largest force); the report's
+/// contact-force plot shading the whirling interval.
 #[test]
 fn rotating_helix_above_the_kick_off_whirls() {
     let g = GridCase {
@@ -397,6 +400,9 @@ fn rotating_helix_above_the_kick_off_whirls() {
     assert!(wall > 0.4 * mitchell && wall < 1.15 * mitchell, "{wall} vs {mitchell}");
     assert!((r.hook_load_n - soft.hook_load_n).abs() < 0.01 * soft.hook_load_n);
     assert!(s.level.surface_torque_nm.unwrap() > soft.surface_torque_nm);
+    // the report shades the whirling interval on its contact-force plot
+    let html = solve_html(&case, &s, UnitSystem::Si, None, None).unwrap();
+    assert!(html.contains(WHIRL_SERIES));
     // the `loads` row of the same case whirls over the same intervals, with the same hook load
     let (row, _) = stiff_row(&case, None);
     let whirl_m: f64 = whirl.iter().map(|(a, b)| b - a).sum();
