@@ -236,13 +236,18 @@ fn fem_part(
 /// ([`buckled_start`]).
 pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium, and the hook load of another buckled shape can differ by about 10% (a known limit, docs/guide.md)";
 
+/// MD intervals `(top, bottom)` (m) as a warning lists them: "a-b m MD", joined by commas.
+fn md_intervals(intervals: &[(f64, f64)]) -> String {
+    let each: Vec<String> = intervals.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
+    each.join(", ")
+}
+
 /// The warning of a rotating string that whirls in the MD intervals `whirl_md_m` (m,
 /// [`crate::models::whirl`]).
-pub fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
-    let where_: Vec<String> = whirl_md_m.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
+fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
     format!(
         "the rotating pipe is helically buckled at {} (soft string beyond the helical onset): a real string whirls there, and the model keeps the wall friction's torque and drag there but not its lateral push round the wall, which has no static equilibrium on a helix (docs/theory.md 7.5); the wall forces there are a static helix's",
-        where_.join(", ")
+        md_intervals(whirl_md_m)
     )
 }
 
@@ -547,10 +552,9 @@ impl StringSolve {
         }
         let runs = unbuckled_helical_runs(self.stiff_marks(), self.reported_nodes());
         if !runs.is_empty() {
-            let where_: Vec<String> = runs.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
             w.push(format!(
                 "the stiff pipe is compressed beyond the helical buckling onset at {} but the solve found it unbuckled there (its wall contacts stay on one side): its wall force and drag there are those of straight pipe and miss the helix's (Mitchell's r F^2/(4 EI)); treat the hook load and torque with caution (a known limit, docs/guide.md)",
-                where_.join(", ")
+                md_intervals(&runs)
             ));
         }
         w

@@ -161,14 +161,9 @@ fn print_stiff_summary(
         .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
         .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
         .collect();
-    if !bad.is_empty() {
-        writeln!(
-            out,
-            "  WARNING: stiff solve not converged for {} rows (no stiff numbers written for them): {}",
-            bad.len(),
-            first_ten(&bad)
-        )?;
-    }
+    warn_rows(out, &bad, |n| {
+        format!("stiff solve not converged for {n} rows (no stiff numbers written for them)")
+    })?;
     let locked: Vec<String> = rows
         .iter()
         .filter_map(|r| {
@@ -177,32 +172,17 @@ fn print_stiff_summary(
             Some(format!("{depth} {} at {}", r.mode.name(), units.force().fmt(wob, 1)))
         })
         .collect();
-    if !locked.is_empty() {
-        writeln!(
-            out,
-            "  WARNING: lock-up: {} stiff rows find no equilibrium at their WOB; their stiff numbers are at the largest WOB the string delivers, hook load zero (stiff_lock_up_wob_kN): {}",
-            locked.len(),
-            first_ten(&locked)
-        )?;
-    }
+    warn_rows(out, &locked, |n| {
+        format!("lock-up: {n} stiff rows find no equilibrium at their WOB; their stiff numbers are at the largest WOB the string delivers, hook load zero (stiff_lock_up_wob_kN)")
+    })?;
     let unbuckled = rows_over(rows, units, StiffOutcome::unbuckled_helical_m);
-    if !unbuckled.is_empty() {
-        writeln!(
-            out,
-            "  WARNING: {} stiff rows find the pipe unbuckled where it is compressed beyond the helical onset (stiff_unbuckled_helical_m): their stiff hook load and torque miss the helix's wall force and drag there; treat them with caution: {}",
-            unbuckled.len(),
-            first_ten(&unbuckled)
-        )?;
-    }
+    warn_rows(out, &unbuckled, |n| {
+        format!("{n} stiff rows find the pipe unbuckled where it is compressed beyond the helical onset (stiff_unbuckled_helical_m): their stiff hook load and torque miss the helix's wall force and drag there; treat them with caution")
+    })?;
     let whirling = rows_over(rows, units, StiffOutcome::whirl_m);
-    if !whirling.is_empty() {
-        writeln!(
-            out,
-            "  WARNING: {} stiff rows rotate with pipe helically buckled (stiff_whirl_m): a real string whirls there, and their wall friction there keeps its torque and drag but not its lateral push (docs/theory.md 7.5): {}",
-            whirling.len(),
-            first_ten(&whirling)
-        )?;
-    }
+    warn_rows(out, &whirling, |n| {
+        format!("{n} stiff rows rotate with pipe helically buckled (stiff_whirl_m): a real string whirls there, and their wall friction there keeps its torque and drag but not its lateral push (docs/theory.md 7.5)")
+    })?;
     Ok(())
 }
 
@@ -218,9 +198,14 @@ fn rows_over(rows: &[LoadRow], units: UnitSystem, length: impl Fn(&StiffOutcome)
         .collect()
 }
 
-/// The first ten of `rows` (a warning's list of rows), joined by commas.
-fn first_ten(rows: &[String]) -> String {
-    rows.iter().take(10).cloned().collect::<Vec<_>>().join(", ")
+/// A `WARNING:` line about the listed `rows` (none without rows): `text` of their count, then
+/// the first ten of them, joined by commas.
+fn warn_rows(out: &mut impl Write, rows: &[String], text: impl Fn(usize) -> String) -> std::io::Result<()> {
+    if rows.is_empty() {
+        return Ok(());
+    }
+    let first_ten = rows.iter().take(10).cloned().collect::<Vec<_>>().join(", ");
+    writeln!(out, "  WARNING: {}: {first_ten}", text(rows.len()))
 }
 
 /// The chart's table in `units`: per bit depth (at most about 40 lines) the hook loads of the
