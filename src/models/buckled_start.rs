@@ -16,7 +16,8 @@
 //! ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result is kept only if it
 //! converged with global equilibrium within [`EQUILIBRIUM`] of the largest force, penetration
 //! within the gap tolerance and a hook load not below zero. A case whose soft string is locked
-//! up is left to the lock-up answer.
+//! up is left to the lock-up answer, and one that the soft string with the helix's drag finds
+//! locked up ([`crate::models::helical_drag`]) is not re-solved: no equilibrium holds it there.
 
 use crate::case::Case;
 use crate::models::buckling::{marks, BuckleState, MIN_HELICAL_RUN_M};
@@ -24,6 +25,7 @@ use crate::models::fem::model::{Model, State, TopCondition};
 use crate::models::fem::results::extract;
 use crate::models::fem::solve::start::cold_start;
 use crate::models::fem::solve::{helix, solve_interior_point_from, Solution, SolveControls, SolveStats};
+use crate::models::helical_drag;
 use crate::models::softstring;
 use std::time::Instant;
 
@@ -131,7 +133,7 @@ pub fn solve_from_buckled_start_by(
         return sol;
     }
     let (axial, runs) = soft_helical_runs(case, model);
-    if runs.is_empty() {
+    if runs.is_empty() || helically_locked(case) {
         return sol;
     }
     let t0 = Instant::now();
@@ -186,6 +188,17 @@ pub fn solve_from_buckled_start_by(
     sol
 }
 
+/// Whether `case` (on bottom, WOB given) is locked up by the helix's drag: the soft string with
+/// Mitchell's helical contact force ([`helical_drag`]) has a negative hook load. The whole
+/// string then has no equilibrium at the case's WOB with the surface holding the string (it
+/// lies below that soft string's hook load in every converged sliding case of the acceptance
+/// grid, docs/performance.md); the solve's hints name the helical lock-up instead
+/// (`models::diagnose`).
+fn helically_locked(case: &Case) -> bool {
+    let op = &case.operation;
+    op.mode.on_bottom() && op.hook_load_n.is_none() && helical_drag::helical_soft_string(case).hook_load_n < 0.0
+}
+
 /// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` (its
 /// iteration limit times [`DAMPED_ITERATION_FACTOR`]) with the lateral damping of [`helix::instability_stiffness`] in `runs` (`axial` the soft string's
 /// axial forces at the nodes, N); the solution if `accept` takes it, and the work.
@@ -210,5 +223,10 @@ fn damped(
         return (None, work);
     };
     work.add_work(&sol.stats);
+    tracing::info!(
+        converged = sol.converged,
+        hook_load_n = sol.state.hook_load_n,
+        "damped re-solve from a buckled start"
+    );
     (Some(sol).filter(|s| s.converged && accept(s)), work)
 }

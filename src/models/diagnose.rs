@@ -12,6 +12,7 @@
 
 use crate::case::Case;
 use crate::models::buckling::{soft_marks, zones, BuckleState};
+use crate::models::helical_drag::helical_lock_up;
 use crate::models::levels::FemPart;
 use crate::models::softstring;
 
@@ -30,6 +31,15 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
             soft.hook_load_n / 1e3,
             wob / 1e3,
             case.operation.mode.name()
+        ));
+    }
+    if let Some(l) = helical_lock_up(case) {
+        hints.push(format!(
+            "helical lock-up: the soft string with the helix's drag (Mitchell's r F^2/(4 EI) added to the wall force beyond the helical onset) has a hook load of {:.0} kN at {:.0} kN WOB while {}: it delivers at most about {:.0} kN WOB; the whole string's drag lies at or above that soft string's in the buckled sliding cases measured (docs/performance.md), so the WOB asked for is most likely beyond the string's reach",
+            l.hook_load_n / 1e3,
+            l.wob_n / 1e3,
+            case.operation.mode.name(),
+            l.max_wob_n / 1e3
         ));
     }
     let m = soft_marks(case, &soft, 0);

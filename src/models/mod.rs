@@ -14,6 +14,7 @@ pub mod buckling;
 pub mod checks;
 pub mod diagnose;
 pub mod fem;
+pub mod helical_drag;
 pub mod levels;
 pub mod soft_comparison;
 pub mod softstring;

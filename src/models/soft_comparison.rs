@@ -2,9 +2,12 @@
 //! case at the WOB the stiff solve ended at, solved by the soft string, with its hook load,
 //! surface torque, helically buckled length and Mitchell's helical wall force. The difference
 //! of the hook loads is what the stiff string's bending and (where it buckles into a helix)
-//! the helix's wall contact add to the drag (docs/theory.md 7.4).
+//! the helix's wall contact add to the drag (docs/theory.md 7.4). Beside it, the soft string
+//! with the helix's drag ([`crate::models::helical_drag`]), the torque-and-drag practice for
+//! buckled pipe.
 
 use super::buckling::{helical_wall_force_n, soft_marks, summarize};
+use super::helical_drag::helical_soft_string;
 use super::softstring;
 use crate::case::Case;
 
@@ -22,6 +25,11 @@ pub struct SoftComparison {
     /// Mitchell's helical contact force summed over the soft string's helical intervals, N
     /// ([`helical_wall_force_n`]): the wall force a soft-string user adds for the helix.
     pub helical_wall_force_n: f64,
+    /// Hook load of the soft string with the helix's drag ([`helical_soft_string`]: Mitchell's
+    /// helical contact force added where it is helically buckled), N.
+    pub helical_drag_hook_load_n: f64,
+    /// Surface torque of the soft string with the helix's drag, N.m.
+    pub helical_drag_surface_torque_nm: f64,
     /// The stiff solve's hook load, N.
     pub stiff_hook_load_n: f64,
     /// The stiff solve's surface torque, N.m.
@@ -53,7 +61,10 @@ pub fn soft_comparison(
     c.operation.hook_load_n = None;
     let soft = softstring::from_case(&c, softstring::segment_length_m(&c.solver));
     let marks = soft_marks(&c, &soft, 0);
+    let helical = helical_soft_string(&c);
     SoftComparison {
+        helical_drag_hook_load_n: helical.hook_load_n,
+        helical_drag_surface_torque_nm: helical.surface_torque_nm,
         wob_n,
         hook_load_n: soft.hook_load_n,
         surface_torque_nm: soft.surface_torque_nm,

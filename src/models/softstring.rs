@@ -171,7 +171,19 @@ fn n_elements(l: f64, max_el: f64) -> usize {
 /// # Panics
 /// If `max_element_m` is not positive.
 pub fn soft_string(input: &SoftStringInput) -> SoftStringResult {
-    integrate(input, false)
+    integrate(input, false, &|_: f64, _: f64, _: f64| 0.0)
+}
+
+/// [`soft_string`] with an added wall contact force per length, `extra(md_m, s_m,
+/// compression_n)` (N/m; at an element's middle MD and distance from the bit face, m, under
+/// the effective compression at its lower end, N), pressing the wall in addition to the lateral
+/// load and dragging with the same friction: the helix's contact force of a buckled soft string
+/// ([`crate::models::helical_drag`]).
+pub fn soft_string_with_extra_contact(
+    input: &SoftStringInput,
+    extra: &dyn Fn(f64, f64, f64) -> f64,
+) -> SoftStringResult {
+    integrate(input, false, extra)
 }
 
 /// Soft string whose wall contact balances the lateral load together with the lateral
@@ -181,10 +193,10 @@ pub fn soft_string(input: &SoftStringInput) -> SoftStringResult {
 /// section. Used above the stiff part of the `hybrid` level, so that its surface torque is
 /// consistent with the stiff model below.
 pub fn soft_string_stiff_contact(input: &SoftStringInput) -> SoftStringResult {
-    integrate(input, true)
+    integrate(input, true, &|_: f64, _: f64, _: f64| 0.0)
 }
 
-fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
+fn integrate(input: &SoftStringInput, stiff_contact: bool, extra: &dyn Fn(f64, f64, f64) -> f64) -> SoftStringResult {
     assert!(input.max_element_m > 0.0, "max_element_m must be positive");
     let motion = Motion {
         axial_speed_m_s: input.axial_speed_m_s,
@@ -231,8 +243,16 @@ fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
                 .friction_at(0.5 * (p_lo.md_m + md_up))
                 .unwrap_or(input.friction);
             let lateral_friction = if stiff_contact { mu * rot_share } else { 0.0 };
-            let normal = lat.norm() / lateral_friction.hypot(1.0);
-            let dir = if normal > 0.0 { lat / normal } else { Vec3::zeros() };
+            let added = added_contact(
+                extra,
+                (0.5 * (p_lo.md_m + md_up), xa + (j as f64 + 0.5) * h),
+                f,
+                dl,
+                |q| f + w_b * (p_lo.position.z - p_up.position.z) - mu * (lat.norm() + q) * ax_share,
+            );
+            let normal = lat.norm() / lateral_friction.hypot(1.0) + added;
+            let lat_norm = lat.norm();
+            let dir = if lat_norm > 0.0 { lat / lat_norm } else { Vec3::zeros() };
             let fric = mu * normal;
             f += w_b * (p_lo.position.z - p_up.position.z) - fric * ax_share;
             m += fric * r_c * rot_share;
@@ -259,6 +279,26 @@ fn integrate(input: &SoftStringInput, stiff_contact: bool) -> SoftStringResult {
     }
 }
 
+/// The added wall force (N) of an element of length `dl_m` at `(md_m, s_m)` (its middle) under
+/// `extra` ([`soft_string_with_extra_contact`]), trapezoidal in the compression: the mean of
+/// `extra` at the lower end's axial force `f_lo_n` and at the upper end's as `f_up(added)`
+/// predicts it (Heun's predictor-corrector, second order in the element length). Zero (without
+/// evaluating `f_up`) where `extra` adds nothing at the lower end and the string is in tension.
+fn added_contact(
+    extra: &dyn Fn(f64, f64, f64) -> f64,
+    (md_m, s_m): (f64, f64),
+    f_lo_n: f64,
+    dl_m: f64,
+    f_up: impl Fn(f64) -> f64,
+) -> f64 {
+    let q_lo = extra(md_m, s_m, -f_lo_n) * dl_m;
+    if q_lo == 0.0 && f_lo_n >= 0.0 {
+        return 0.0;
+    }
+    let q_up = extra(md_m, s_m, -f_up(q_lo)) * dl_m;
+    0.5 * (q_lo + q_up)
+}
+
 /// Longest soft-string segment, m: the soft string costs microseconds per 1,000 m, and its
 /// torque converges more slowly with the segment length than the stiff pipe mesh does (forge-16a
 /// surface torque: 0.9% between 1 m and 3 m segments; docs/performance.md "Pipe mesh").
@@ -280,11 +320,21 @@ pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
 ///   a hook load above the off-bottom value gives WOB 0).
 /// - Bit torque: [`crate::models::bit::bit_torque_nm`] at the WOB.
 pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
+    from_case_with_extra_contact(case, max_element_m, &|_: f64, _: f64, _: f64| 0.0)
+}
+
+/// [`from_case`] with the added wall contact force per length `extra` of
+/// [`soft_string_with_extra_contact`].
+pub fn from_case_with_extra_contact(
+    case: &Case,
+    max_element_m: f64,
+    extra: &dyn Fn(f64, f64, f64) -> f64,
+) -> SoftStringResult {
     let op = &case.operation;
     let bit_torque = |wob: f64| crate::models::bit::bit_torque_nm(case, wob);
     let motion = op.motion();
     let run = |wob: f64| {
-        soft_string(&SoftStringInput {
+        let input = SoftStringInput {
             path: &case.well.path,
             hole: &case.well.hole,
             string: &case.string,
@@ -296,7 +346,8 @@ pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
             omega_rad_s: motion.omega_rad_s,
             friction: op.friction,
             max_element_m,
-        })
+        };
+        integrate(&input, false, extra)
     };
     let target = match op.hook_load_n {
         Some(h) if op.mode.on_bottom() => h,

@@ -173,6 +173,8 @@ struct SoftComparisonJson {
     surface_torque_kNm: Finite,
     helical_length_m: Finite,
     helical_wall_force_kN: Finite,
+    helical_drag_hook_load_kN: Finite,
+    helical_drag_surface_torque_kNm: Finite,
     hook_load_difference_kN: Finite,
     surface_torque_difference_kNm: Finite,
 }
@@ -185,6 +187,8 @@ impl SoftComparisonJson {
             surface_torque_kNm: Finite(c.surface_torque_nm / 1e3),
             helical_length_m: Finite(c.helical_length_m),
             helical_wall_force_kN: Finite(c.helical_wall_force_n / 1e3),
+            helical_drag_hook_load_kN: Finite(c.helical_drag_hook_load_n / 1e3),
+            helical_drag_surface_torque_kNm: Finite(c.helical_drag_surface_torque_nm / 1e3),
             hook_load_difference_kN: Finite(c.hook_load_difference_n() / 1e3),
             surface_torque_difference_kNm: Finite(c.surface_torque_difference_nm() / 1e3),
         }

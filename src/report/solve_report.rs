@@ -278,7 +278,7 @@ fn key_results(
 }
 
 /// The key-result rows of the soft string beside the stiff solve `c`.
-fn soft_rows(c: &SoftComparison, units: UnitSystem) -> [(String, String); 3] {
+fn soft_rows(c: &SoftComparison, units: UnitSystem) -> [(String, String); 4] {
     let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
     [
         (
@@ -303,6 +303,14 @@ fn soft_rows(c: &SoftComparison, units: UnitSystem) -> [(String, String); 3] {
                 "{}, {}",
                 depth_unit.fmt(c.helical_length_m, 1),
                 force_unit.fmt(c.helical_wall_force_n, 2)
+            ),
+        ),
+        (
+            "soft string with the helix's drag (Mitchell): hook load, surface torque".into(),
+            format!(
+                "{}, {}",
+                force_unit.fmt(c.helical_drag_hook_load_n, 1),
+                torque_unit.fmt(c.helical_drag_surface_torque_nm, 2)
             ),
         ),
     ]

@@ -324,7 +324,8 @@ fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
 }
 
 /// The soft string beside the stiff solve `c`: its hook load and torque at the same WOB, the
-/// stiff-minus-soft differences, and its helically buckled length.
+/// stiff-minus-soft differences, and its helically buckled length; where it is helically
+/// buckled, the soft string with the helix's drag too.
 fn soft_line(out: &mut impl Write, c: &SoftComparison, units: UnitSystem) -> std::io::Result<()> {
     let (depth_unit, force_unit, torque_unit) = (units.depth(), units.force(), units.torque());
     writeln!(
@@ -335,5 +336,14 @@ fn soft_line(out: &mut impl Write, c: &SoftComparison, units: UnitSystem) -> std
         torque_unit.fmt(c.surface_torque_nm, 2),
         torque_unit.fmt(c.surface_torque_difference_nm(), 2),
         depth_unit.fmt(c.helical_length_m, 1)
-    )
+    )?;
+    if c.helical_length_m > 0.0 {
+        writeln!(
+            out,
+            "  soft string with the helix's drag (Mitchell): hook load {}, torque {}",
+            force_unit.fmt(c.helical_drag_hook_load_n, 1),
+            torque_unit.fmt(c.helical_drag_surface_torque_nm, 2)
+        )?;
+    }
+    Ok(())
 }

@@ -294,6 +294,8 @@ fn vertical_helix_wall_force_within_15_percent_of_mitchell() {
         c.helical_length_m
     );
     assert!(c.hook_load_difference_n().abs() < 100.0, "{c:?}");
+    // and the soft string with the helix's drag has no more drag without friction (1e-9)
+    assert!((c.helical_drag_hook_load_n - c.hook_load_n).abs() < 1e-9 * c.hook_load_n.abs().max(1.0));
     assert!(
         (total_wall / c.helical_wall_force_n - 1.0).abs() < 0.15,
         "{total_wall} vs {c:?}"

@@ -17,6 +17,7 @@ mod fidelity;
 mod fine_mesh;
 mod fuzz_input;
 mod geometry;
+mod helical_drag;
 mod hybrid;
 mod known_truth;
 mod loads;

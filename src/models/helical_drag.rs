@@ -1,0 +1,119 @@
+//! The soft string with the helix's drag: Mitchell's helical contact force added to the wall
+//! force wherever the soft string's compression exceeds the helical onset.
+//!
+//! A soft string lies on the hole axis and cannot buckle, so beyond the helical onset it misses
+//! the wall force the helix adds, `w_c = r F^2 / (4 EI)` (Mitchell 1986, 1988; `r` the radial
+//! body clearance, `F` the effective compression, `EI` the pipe's bending stiffness). Added to
+//! the element's wall force (its lateral load from weight and curvature, Johancsik) and
+//! dragging with the same friction, it makes the axial balance of a sliding string in a
+//! vertical section `dF/ds = -w + f r F^2 / (4 EI)` (compression `F`, `s` upward): compression
+//! beyond `sqrt(4 EI w / (f r))` grows upward instead of falling, the classic helical lock-up
+//! (Mitchell 1986; docs/theory.md 7.7). Adding the helix's force to the lateral load's is the
+//! common torque-and-drag practice **\[uncertain: in an inclined hole the two loads are not
+//! parallel and their magnitudes do not add exactly; the stiff string is the reference]**.
+//!
+//! Used beside the whole string: in the soft-string comparison of `solve`, in the hints of a
+//! whole-string solve that found no equilibrium ([`helical_lock_up`], the largest WOB by
+//! [`lock_up_wob_n`]), and to skip the re-solve from the buckled shape where the helix locks the
+//! string up (`models::buckled_start`).
+
+use crate::case::Case;
+use crate::models::buckling::{mitchell_wall_force, onset_at, support_span_m};
+use crate::models::softstring::{from_case_with_extra_contact, segment_length_m, SoftStringResult};
+
+/// Compression above which the added helical force is held constant, N: keeps a string
+/// locked up far beyond its lock-up finite (the hook load then falls steeply, not to infinity).
+pub const COMPRESSION_CAP_N: f64 = 1e8;
+
+/// Mitchell's helical wall force per length (N/m) of `case`'s string at `md_m` (`s_m` from the
+/// bit face, m) under the effective compression `compression_n` (N): zero below the helical
+/// onset ([`onset_at`]) or where the pipe cannot buckle.
+pub fn helical_contact_n_per_m(case: &Case, md_m: f64, s_m: f64, compression_n: f64) -> f64 {
+    if compression_n <= 0.0 {
+        return 0.0;
+    }
+    let string = &case.string;
+    let c = string.component_at(s_m.max(0.0));
+    let hole_d = case.well.hole.diameter_at(md_m);
+    let span = support_span_m(string, s_m);
+    let Some((_, helical)) = onset_at(c, &case.well.path, md_m, hole_d, case.mud.density_kg_m3, span) else {
+        return 0.0;
+    };
+    if compression_n <= helical {
+        return 0.0;
+    }
+    mitchell_wall_force(c, hole_d, compression_n.min(COMPRESSION_CAP_N))
+}
+
+/// The soft string of `case` ([`crate::models::softstring::from_case`], the case's segment
+/// length) with Mitchell's helical contact force where it is helically buckled.
+pub fn helical_soft_string(case: &Case) -> SoftStringResult {
+    let extra = |md: f64, s: f64, compression: f64| helical_contact_n_per_m(case, md, s, compression);
+    from_case_with_extra_contact(case, segment_length_m(&case.solver), &extra)
+}
+
+/// Bisection steps of [`lock_up_wob_n`]: the WOB to 1e-6 of the case's.
+const BISECTIONS: usize = 20;
+
+/// The largest WOB (N) at which [`helical_soft_string`] keeps a non-negative hook load, when it
+/// is below `case`'s WOB (None when the helical soft string delivers the case's WOB, or the
+/// string is locked up even at zero WOB): bisected on the WOB to 1e-6 of the case's.
+pub fn lock_up_wob_n(case: &Case) -> Option<f64> {
+    let hook_at = |wob: f64| {
+        let mut c = case.clone();
+        c.operation.wob_n = wob;
+        c.operation.hook_load_n = None;
+        helical_soft_string(&c).hook_load_n
+    };
+    let target = case.operation.wob_n;
+    if target.is_nan() || target <= 0.0 || hook_at(target) >= 0.0 || hook_at(0.0) < 0.0 {
+        return None;
+    }
+    let (mut lo, mut hi) = (0.0, target);
+    for _ in 0..BISECTIONS {
+        let mid = 0.5 * (lo + hi);
+        if hook_at(mid) >= 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(lo)
+}
+
+/// The plain soft string's hook load of `case` at its WOB (the hook-load input dropped), N.
+fn plain_hook_load_n(case: &Case) -> f64 {
+    let mut c = case.clone();
+    c.operation.hook_load_n = None;
+    crate::models::softstring::from_case(&c, segment_length_m(&c.solver)).hook_load_n
+}
+
+/// A helical lock-up: the soft string with the helix's drag locked up at the WOB asked for
+/// while the plain soft string is not.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HelicalLockUp {
+    /// The hook load of the soft string with the helix's drag at the WOB asked for, N
+    /// (negative).
+    pub hook_load_n: f64,
+    /// The WOB asked for, N.
+    pub wob_n: f64,
+    /// The largest WOB with a non-negative hook load of that soft string, N (0 when even a zero
+    /// WOB needs the surface to push).
+    pub max_wob_n: f64,
+}
+
+/// The helical lock-up of `case` at its WOB ([`HelicalLockUp`]); None when the soft string with
+/// the helix's drag delivers the WOB, when the plain soft string is locked up too (the plain
+/// lock-up, `models::checks`), off bottom, or with a hook-load input.
+pub fn helical_lock_up(case: &Case) -> Option<HelicalLockUp> {
+    let op = &case.operation;
+    if !op.mode.on_bottom() || op.hook_load_n.is_some() || plain_hook_load_n(case) < 0.0 {
+        return None;
+    }
+    let hook = helical_soft_string(case).hook_load_n;
+    (hook < 0.0).then(|| HelicalLockUp {
+        hook_load_n: hook,
+        wob_n: op.wob_n,
+        max_wob_n: lock_up_wob_n(case).unwrap_or(0.0),
+    })
+}

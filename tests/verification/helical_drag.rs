@@ -1,0 +1,169 @@
+//! The soft string with the helix's drag (`models::helical_drag`, docs/theory.md 7.6) and the
+//! helical lock-up it predicts.
+//!
+//! References: in a vertical hole the axial balance of a sliding, helically buckled soft string
+//! is `dF/ds = -w + k F^2` (`F` the effective compression, `s` upward, `k = f r / (4 EI)`, Mitchell
+//! 1986), solved in closed form: `F = a tanh(atanh(F_0 / a) - a k s)` below the lock-up force
+//! `a = sqrt(w / k)` and `F = a coth(acoth(F_0 / a) - a k s)` above it (diverging at
+//! `s = acoth(F_0 / a) / (a k)`: the helical lock-up); below the helical onset `dF/ds = -w`. And the
+//! whole string (the stiff FEM, which forms the helix itself) as the independent reference of the
+//! helix's drag in an inclined well.
+
+use drillpath::case::Case;
+use drillpath::models::diagnose::nonconvergence_hints;
+use drillpath::models::helical_drag::{helical_lock_up, helical_soft_string, lock_up_wob_n};
+use drillpath::models::softstring;
+
+use crate::acceptance_grid::{well_case, GridCase};
+use crate::common::{load_temp_case, DRILL_PIPE_BODY};
+
+/// A vertical hole of `length_m` with 5 in pipe (no tool joints) below a short bit, 8.5 in
+/// hole, 1.2 sg, sliding with `wob_kn` and wall friction `friction`.
+fn vertical_case(length_m: f64, wob_kn: f64, friction: f64) -> Case {
+    let survey = format!("md_m,inc_deg,azi_deg\n0,0,0\n{length_m},0,0\n");
+    let text = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+bit_md = "{length_m} m"
+wob = "{wob_kn} kN"
+friction = {friction}
+[[string]]
+type = "bit"
+od = "5 in"
+length = "0.3 m"
+{DRILL_PIPE_BODY}"#
+    );
+    load_temp_case(&survey, &text)
+}
+
+/// The closed-form compression (N) at `s_m` above the bit of the vertical string of
+/// [`vertical_case`] (module docs): from `f0_n` at the bit, `w` (N/m) the buoyed weight, `k`
+/// (1/(N m)) the helix's drag coefficient, `onset_n` the helical onset; None once locked up.
+fn closed_form_compression(f0_n: f64, s_m: f64, w: f64, k: f64, onset_n: f64) -> Option<f64> {
+    let a = (w / k).sqrt();
+    // length over which the helix holds, and the compression at its top
+    let (helix_len, top) = if f0_n <= onset_n {
+        (0.0, f0_n)
+    } else if f0_n < a {
+        let u0 = (f0_n / a).atanh();
+        let u1 = (onset_n / a).atanh();
+        ((u0 - u1) / (a * k), onset_n)
+    } else {
+        let u0 = (a / f0_n).atanh();
+        let at = u0 - a * k * s_m;
+        return (at > 0.0).then(|| a / at.tanh());
+    };
+    if s_m <= helix_len {
+        let u0 = (f0_n / a).atanh();
+        return Some(a * (u0 - a * k * s_m).tanh());
+    }
+    Some(top - w * (s_m - helix_len))
+}
+
+/// The helical soft string of a vertical string against the closed form (module docs): with
+/// 150 kN on the bit and friction 0.35 (below the lock-up force `a`, about 275 kN) the
+/// compression falls along the `tanh` until the helical onset, then by the weight; with 300 kN
+/// (above `a`) it grows upward along the `coth`, from the top of the bit (a solid bar that does
+/// not buckle). Tolerance: 0.01% of the larger of the local compression and the one at the bit's
+/// top (the soft string's trapezoidal 1 m steps against the exact solution; with explicit steps
+/// the error reached 0.5%).
+#[test]
+fn vertical_helix_drag_follows_mitchells_closed_form() {
+    for (wob_kn, length_m) in [(150.0, 1200.0), (300.0, 1000.0)] {
+        let case = vertical_case(length_m, wob_kn, 0.35);
+        let pipe = case.string.component_at(10.0);
+        let ei = pipe.ei_nm2();
+        let w = pipe.buoyed_weight_n_per_m(case.mud.density_kg_m3);
+        let r = (8.5 * 0.0254 - pipe.body_od_m) / 2.0;
+        let k = 0.35 * r / (4.0 * ei);
+        let onset = 5.55 * (ei * w * w).cbrt();
+        let soft = helical_soft_string(&case);
+        let plain = softstring::from_case(&case, softstring::segment_length_m(&case.solver));
+        // from the top of the 0.3 m bit (a solid bar that does not buckle)
+        let top = soft.points.iter().find(|p| p.md_m < length_m - 0.3 + 1e-9).unwrap();
+        let f0 = -top.tension_n;
+        let mut checked = 0;
+        for p in soft.points.iter().filter(|p| p.md_m <= top.md_m).step_by(50) {
+            let s = top.md_m - p.md_m;
+            let Some(exact) = closed_form_compression(f0, s, w, k, onset) else {
+                continue;
+            };
+            let err = (-p.tension_n - exact).abs();
+            assert!(
+                err < 1e-4 * exact.max(wob_kn * 1e3),
+                "{wob_kn} kN at {s:.0} m: {} vs {exact}",
+                -p.tension_n
+            );
+            checked += 1;
+        }
+        assert!(checked > 10, "{checked} points checked");
+        // the helix drags: the hook load falls below the plain soft string's
+        assert!(soft.hook_load_n < plain.hook_load_n - 1e3);
+        println!(
+            "{wob_kn} kN: hook load {:.1} kN (plain soft string {:.1} kN)",
+            soft.hook_load_n / 1e3,
+            plain.hook_load_n / 1e3
+        );
+    }
+    // above `a` the compression grows upward: locked up, the surface would have to push
+    let locked = helical_soft_string(&vertical_case(1000.0, 300.0, 0.35));
+    assert!(locked.hook_load_n < -300e3, "{}", locked.hook_load_n);
+}
+
+/// The grid's well with its kick-off at 500 m, a 300 m lateral at 90 deg, sliding with wall
+/// friction 0.35 (the case of `acceptance_grid::buckled_start_rescues_the_helix_above_the_kick_off`).
+fn small_grid_case(wob_kn: f64) -> Case {
+    let g = GridCase {
+        inc_deg: 90.0,
+        lateral_m: 300.0,
+        mode: "sliding",
+        wob_kn,
+        friction: 0.35,
+    };
+    let (csv, toml) = well_case(&g, 500.0);
+    load_temp_case(&csv, &toml)
+}
+
+/// Helical lock-up of a slid string: the plain soft string delivers the WOB (hook load >= 0)
+/// while the soft string with the helix's drag does not. Its largest WOB is where that soft
+/// string's hook load crosses zero (checked on both sides, 1 kN apart), below the WOB asked
+/// for, and a failed stiff solve's hints name the helical lock-up. At 30 kN (where the whole
+/// string converges, hook load 33.6 kN) it is not locked up.
+#[test]
+fn helical_lock_up_where_the_plain_soft_string_delivers() {
+    let delivers = small_grid_case(30.0);
+    assert!(helical_lock_up(&delivers).is_none());
+    let wob_kn = 50.0;
+    let case = small_grid_case(wob_kn);
+    let plain = softstring::from_case(&case, softstring::segment_length_m(&case.solver));
+    assert!(
+        plain.hook_load_n > 0.0,
+        "plain soft string locked up: {}",
+        plain.hook_load_n
+    );
+    let l = helical_lock_up(&case).expect("not locked up by the helix");
+    assert!(l.hook_load_n < 0.0 && l.wob_n == wob_kn * 1e3);
+    let max = lock_up_wob_n(&case).unwrap();
+    assert_eq!(l.max_wob_n, max);
+    let hook_at = |wob_n: f64| {
+        let mut c = case.clone();
+        c.operation.wob_n = wob_n;
+        helical_soft_string(&c).hook_load_n
+    };
+    assert!(max > 30e3 && max < wob_kn * 1e3, "{max}");
+    assert!(hook_at(max - 500.0) >= 0.0 && hook_at(max + 500.0) < 0.0);
+    let hints = nonconvergence_hints(&case);
+    assert!(hints.iter().any(|h| h.starts_with("helical lock-up")), "{hints:?}");
+    println!(
+        "plain soft hook load {:.1} kN, helical {:.1} kN, largest WOB {:.1} kN",
+        plain.hook_load_n / 1e3,
+        l.hook_load_n / 1e3,
+        max / 1e3
+    );
+}
