@@ -15,6 +15,7 @@ use super::limits::{buckling_along, combined_torque_limit, max_stress_ratio, yie
 use super::row::{LoadRow, RowLoads, RowYield};
 use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::Case;
+use crate::models::helical_drag::helical_soft_string_with;
 use crate::models::softstring::{at_zero_hook_load, from_case, SoftStringResult};
 use crate::string::DrillString;
 
@@ -75,11 +76,20 @@ pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
         combined_torque_limit_nm: combined_torque_limit(top, res.hook_load_n),
         max_stress_ratio: max_stress_ratio(&res, &case.string, &case.well.path, op.bit_md_m, case.mud.density_kg_m3),
     };
+    let helical_drag_hook_load_n = if buckling.helical_length_m > 0.0 {
+        let mut c = case.clone();
+        c.operation.wob_n = wob_n;
+        c.operation.hook_load_n = None;
+        helical_soft_string_with(&c, max_element_m).hook_load_n
+    } else {
+        res.hook_load_n
+    };
     LoadRow {
         bit_md_m: op.bit_md_m,
         mode: op.mode,
         wob_n,
         soft: loads,
+        helical_drag_hook_load_n,
         buckling,
         yield_,
         stiff: None,

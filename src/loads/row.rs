@@ -144,6 +144,10 @@ pub struct LoadRow {
     pub wob_n: f64,
     /// Soft-string loads.
     pub soft: RowLoads,
+    /// Hook load of the soft string with the helix's drag at the row's WOB, N
+    /// ([`crate::models::helical_drag`]; below zero: helically locked up); the soft hook load
+    /// where the soft string is nowhere helically buckled.
+    pub helical_drag_hook_load_n: f64,
     /// Buckling along the soft string.
     pub buckling: Buckling,
     /// Yield limits and stress ratio.

@@ -48,8 +48,13 @@ pub fn helical_contact_n_per_m(case: &Case, md_m: f64, s_m: f64, compression_n: 
 /// The soft string of `case` ([`crate::models::softstring::from_case`], the case's segment
 /// length) with Mitchell's helical contact force where it is helically buckled.
 pub fn helical_soft_string(case: &Case) -> SoftStringResult {
+    helical_soft_string_with(case, segment_length_m(&case.solver))
+}
+
+/// [`helical_soft_string`] with elements of at most `max_element_m` (m).
+pub fn helical_soft_string_with(case: &Case, max_element_m: f64) -> SoftStringResult {
     let extra = |md: f64, s: f64, compression: f64| helical_contact_n_per_m(case, md, s, compression);
-    from_case_with_extra_contact(case, segment_length_m(&case.solver), &extra)
+    from_case_with_extra_contact(case, max_element_m, &extra)
 }
 
 /// Bisection steps of [`lock_up_wob_n`]: the WOB to 1e-6 of the case's.

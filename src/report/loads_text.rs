@@ -24,6 +24,7 @@ pub fn write_loads(
         write_calibration(out, cal, plan.measured.len(), units)?;
     }
     print_summary(&chart.rows, &plan.depths, chart.soft_seconds, units, out)?;
+    warn_helical_lock_up(&chart.rows, units, out)?;
     if plan.choice.level != Level::Soft {
         print_stiff_summary(
             &chart.rows,
@@ -184,6 +185,19 @@ fn print_stiff_summary(
         format!("{n} stiff rows rotate with pipe helically buckled (stiff_whirl_m): a real string whirls there, and their wall friction there keeps its torque and drag but not its lateral push (docs/theory.md 7.5)")
     })?;
     Ok(())
+}
+
+/// A `WARNING:` line listing the rows the helix locks up: the soft string's hook load not below
+/// zero, that of the soft string with the helix's drag below it (`helical_drag_hook_load_kN`).
+fn warn_helical_lock_up(rows: &[LoadRow], units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
+    let locked: Vec<String> = rows
+        .iter()
+        .filter(|r| r.soft.hook_load_n >= 0.0 && r.helical_drag_hook_load_n < 0.0)
+        .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
+        .collect();
+    warn_rows(out, &locked, |n| {
+        format!("helical lock-up: in {n} rows the soft string with the helix's drag (Mitchell's r F^2/(4 EI), helical_drag_hook_load_kN) needs the surface to push, while the soft string's hook load is not below zero: the helically buckled pipe's drag outgrows its weight (docs/theory.md 7.7)")
+    })
 }
 
 /// The rows whose stiff outcome gives a positive `length` (m), each as "depth mode over length"

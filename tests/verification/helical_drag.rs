@@ -167,3 +167,28 @@ fn helical_lock_up_where_the_plain_soft_string_delivers() {
         max / 1e3
     );
 }
+
+/// `loads.csv`'s `helical_drag_hook_load_kN`: the sliding row of the small grid well at 30 kN
+/// (helically buckled above the kick-off) gives the soft string with the helix's drag at the
+/// row's WOB (1e-9), below the row's plain hook load; a row that is nowhere helically buckled
+/// (tripping out, in tension) gives its plain hook load.
+#[test]
+fn loads_rows_carry_the_helix_drag() {
+    use drillpath::case::Mode;
+    use drillpath::loads::chart::{soft_chart, ChartSettings};
+    use drillpath::loads::ChartOperation;
+    let case = small_grid_case(30.0);
+    let settings = ChartSettings {
+        op: ChartOperation::from_case(&case),
+        max_element_m: softstring::segment_length_m(&case.solver),
+    };
+    let rows = soft_chart(&case, &[case.operation.bit_md_m], &settings);
+    let sliding = rows.iter().find(|r| r.mode == Mode::Sliding).unwrap();
+    assert!(sliding.buckling.helical_length_m > 0.0);
+    let expected = helical_soft_string(&case).hook_load_n;
+    assert!((sliding.helical_drag_hook_load_n - expected).abs() < 1e-9 * expected.abs());
+    assert!(sliding.helical_drag_hook_load_n < sliding.soft.hook_load_n - 1e3);
+    let out = rows.iter().find(|r| r.mode == Mode::TripOut).unwrap();
+    assert_eq!(out.buckling.helical_length_m, 0.0);
+    assert_eq!(out.helical_drag_hook_load_n, out.soft.hook_load_n);
+}
