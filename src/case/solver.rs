@@ -8,9 +8,10 @@ use super::fidelity::Fidelity;
 /// highest survey sensor) whose ends the contact-aware refinement refines (`[solver]
 /// refine_runs`; `models::fem::refine::reach_m`). What a coarse run end does to the bit's
 /// forces and a sensor's sag falls by about the carry-over factor of a continuous beam, -0.27,
-/// per span between them. Measured (docs/performance.md, "Contact-aware refinement"): two runs
-/// leave the packed BHA's third run (its bit force 0.27% off at a 1 m mesh); three agree with
-/// refining every run within 0.001% on the test BHAs and the example wells.
+/// per span between them; full-gauge pins are not counted. Measured (docs/performance.md, "The
+/// near-bit scope"): two runs leave the packed BHA's third run (its bit force 0.27% off at a
+/// 1 m mesh); three agree with refining every run within 0.0012% on the test BHAs and the
+/// example wells.
 pub const DEFAULT_REFINE_RUNS: usize = 3;
 
 /// Contact solution scheme.

@@ -61,8 +61,11 @@ impl Scope {
 }
 
 /// Distance from the bit (m) of the top node of the `runs`-th run of touching gap nodes (of
-/// any kind: stabilizers, tool joints and bodies) of `state` whose lowest node lies above
-/// `watch_m` (m from the bit); infinite if there are fewer runs.
+/// any kind with a clearance: stabilizers, tool joints and bodies) of `state` whose lowest node
+/// lies above `watch_m` (m from the bit); infinite if there are fewer runs. Pins (full-gauge
+/// stabilizers, held on the axis, their force in [`State::pin_multipliers`]) are not counted:
+/// counted, three runs end at a packed BHA's third stabilizer and leave its bit force 0.27% off
+/// at a 1 m mesh (docs/performance.md, "The near-bit scope").
 pub fn reach_m(model: &Model, state: &State, watch_m: f64, runs: usize) -> f64 {
     let nodes = &model.mesh.nodes;
     let touching = |i: usize| nodes[i].has_gap && state.multipliers[i] > CONTACT_FORCE_N;
