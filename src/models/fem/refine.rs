@@ -330,10 +330,9 @@ fn turned_onto(triad: &Matrix3<f64>, t: &Vec3) -> Matrix3<f64> {
 
 /// Solve `model` cold with `ctl`, then, for the default contact scheme, refine its mesh at the
 /// ends of the body contact runs of `scope` ([`near_bit_elements`]; `h_m`: the refined element
-/// length)
-/// and solve again from the carried state. Returns the model solved last and its solution (the
-/// statistics of both solves summed); if the refined solve does not converge, the first model
-/// and solution (one pass is enough: docs/performance.md, "Fine BHA meshes").
+/// length) and solve again from the carried state. Returns the model solved last and its
+/// solution (the statistics of both solves summed); if the refined solve does not converge, the
+/// first model and solution (one pass is enough: docs/performance.md, "Fine BHA meshes").
 pub fn solve_refined(
     model: Model,
     ctl: &SolveControls,
