@@ -300,9 +300,9 @@ fn bench_refined(
     ctl: &SolveControls,
     case: &Case,
 ) {
-    let bha_top = case.string.bha_length_m();
+    let scope = refine::Scope::of(&case.string, case.solver.refine_runs);
     let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
-    let (fine, sol) = refine::solve_refined(model.clone(), ctl, bha_top, h).expect("solves");
+    let (fine, sol) = refine::solve_refined(model.clone(), ctl, &scope, h).expect("solves");
     assert!(sol.converged, "{name} converges");
     println!(
         "{name}: {} -> {} DOF, {} Newton iterations, {} factorizations in all",
@@ -313,7 +313,7 @@ fn bench_refined(
     );
     group.bench_function(name, |b| {
         b.iter(|| {
-            let (_, s) = refine::solve_refined(model.clone(), ctl, bha_top, h).expect("solves");
+            let (_, s) = refine::solve_refined(model.clone(), ctl, &scope, h).expect("solves");
             assert!(s.converged);
             s.stats.iterations
         })

@@ -4,12 +4,13 @@
 //!
 //! ```text
 //! cargo run --release --example refine_cost
-//! cargo run --release --example refine_cost -- WELL RUNS
+//! cargo run --release --example refine_cost -- WELL RUNS [REFINE_RUNS]
 //! ```
 //!
 //! With a well and a run count: that well's `bha` solve only, plain and refined alternately,
 //! RUNS each, the fastest of each with its Newton iterations, factorizations and nodes (the
-//! form the baseline comparison against an older build uses).
+//! form the baseline comparison against an older build uses); REFINE_RUNS sets
+//! `[solver] refine_runs` (default 3; 100000 refines every contact run).
 use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
 use drillpath::io::case_toml::{load_case, CaseOverrides};
 use drillpath::models::fem::solve::SolveControls;
@@ -48,9 +49,12 @@ fn fastest(case: &mut Case, level: Level, runs: usize) -> ([f64; 2], [(usize, us
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    if let [w, runs] = args.as_slice() {
+    if let [w, runs, rest @ ..] = args.as_slice() {
         let p = format!("wells/{w}/case.toml");
         let mut case = load_case(Path::new(&p), &CaseOverrides::default()).unwrap();
+        if let Some(r) = rest.first() {
+            case.solver.refine_runs = r.parse().unwrap();
+        }
         let (best, work) = fastest(&mut case, Level::Bha, runs.parse().unwrap());
         for (i, name) in ["plain", "refined"].iter().enumerate() {
             let (it, fa, nodes) = work[i];

@@ -49,6 +49,7 @@ pub const SOLVER_KEYS: &[&str] = &[
     "alpha",
     "stabilizer_contact",
     "refine_contacts",
+    "refine_runs",
 ];
 
 /// The `[solver]` table `s`, every value checked and named on error.
@@ -115,6 +116,10 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         })?,
     };
     let refine_contacts = s.boolean("refine_contacts")?.unwrap_or(d.refine_contacts);
+    let refine_runs = s.number("refine_runs")?.unwrap_or(d.refine_runs as f64);
+    if !(1.0..=100_000.0).contains(&refine_runs) || refine_runs.fract() != 0.0 {
+        return Err(s.error("refine_runs", "must be a whole number between 1 and 100000"));
+    }
     Ok(SolverSettings {
         element_length_m: el,
         bha_element_length_m: bha,
@@ -124,6 +129,7 @@ pub fn read_solver(s: &Section) -> InputResult<SolverSettings> {
         max_iterations: max_it as usize,
         stabilizer_contact,
         refine_contacts,
+        refine_runs: refine_runs as usize,
         alpha,
         time_limit_s: time_limit,
         accuracy,

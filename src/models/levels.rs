@@ -211,7 +211,13 @@ fn fem_part(
     let first = |m: &Model| solve(m, ctl).map(|s| buckled_start::solve_from_buckled_start(case, m, s, ctl));
     let (model, sol) = if case.solver.refine_contacts {
         let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
-        refine::solve_refined_by(model, ctl, case.string.bha_length_m(), h, first)?
+        refine::solve_refined_by(
+            model,
+            ctl,
+            &refine::Scope::of(&case.string, case.solver.refine_runs),
+            h,
+            first,
+        )?
     } else {
         let sol = solve_holding_toolface(&mut model, ctl, first)?;
         (model, sol)

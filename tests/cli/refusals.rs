@@ -413,6 +413,14 @@ fn errors_say_why() {
         &["solve", "case.toml"],
         &["solver.tolerance", "1e-300", "double precision"],
     );
+    for runs in ["0", "2.5"] {
+        let bad = case_dir(SURVEY, &case_text("50 kN", &format!("refine_runs = {runs}")));
+        assert_refused(
+            bad.path(),
+            &["solve", "case.toml"],
+            &["solver.refine_runs", "whole number"],
+        );
+    }
     let one = case_dir(SURVEY, &case_text("50 kN", "max_iterations = 1"));
     let r = run_in(one.path(), &["solve", "case.toml", "--fidelity", "whole"]);
     let line = assert_error_names(&r, &["in 1 iteration ", "max_iterations` = 1"]);

@@ -9,7 +9,10 @@
 //! the solved state is carried onto the new nodes (on the cubic of each split element), and the
 //! model is solved again from there: two more Newton iterations, usually. Stabilizer and
 //! tool-joint contacts (a node wider than the bodies beside it) and pins are where the string
-//! really touches and are left as they are. `[solver] refine_contacts = false` turns it off.
+//! really touches and are left as they are. Only the runs up to the third run of contacts
+//! above the bit, or above the highest survey sensor, are refined ([`Scope`], `[solver]
+//! refine_runs`): a run further up moves the bit's answers through the spans between by about
+//! 0.27 per span. `[solver] refine_contacts = false` turns it off.
 
 use super::element::rotation::skew;
 use super::mesh::{Mesh, MeshBend, MeshNode, MeshPad};
@@ -27,6 +30,73 @@ pub const REFINED_FRACTION: f64 = 0.2;
 /// Normal force above which a node counts as touching the wall, N (as in the reported
 /// contacts).
 pub const CONTACT_FORCE_N: f64 = 1.0;
+
+/// What the refinement is for: the assembly's top and the highest point whose answer it serves.
+#[derive(Debug, Clone, Copy)]
+pub struct Scope {
+    /// Distance of the assembly's top from the bit, m: no node above it is refined.
+    pub bha_top_m: f64,
+    /// Distance from the bit of the highest survey sensor, m (0 without one): every contact
+    /// run below it is refined, and `runs_above` runs above it.
+    pub watch_m: f64,
+    /// Contact runs refined above `watch_m` (at least 1; `usize::MAX`: every run).
+    pub runs_above: usize,
+}
+
+impl Scope {
+    /// The scope of `string` refining `runs_above` runs above its highest sensor: its
+    /// assembly's top and that sensor.
+    pub fn of(string: &crate::string::DrillString, runs_above: usize) -> Scope {
+        let watch_m = string
+            .components
+            .iter()
+            .filter_map(|c| c.sensor_to_bit_m)
+            .fold(0.0, f64::max);
+        Scope {
+            bha_top_m: string.bha_length_m(),
+            watch_m,
+            runs_above,
+        }
+    }
+}
+
+/// Distance from the bit (m) of the top node of the `runs`-th run of touching gap nodes (of
+/// any kind with a clearance: stabilizers, tool joints and bodies) of `state` whose lowest node
+/// lies above `watch_m` (m from the bit); infinite if there are fewer runs. Pins (full-gauge
+/// stabilizers, held on the axis, their force in [`State::pin_multipliers`]) are not counted:
+/// counted, three runs end at a packed BHA's third stabilizer and leave its bit force 0.27% off
+/// at a 1 m mesh (docs/performance.md, "The near-bit scope").
+pub fn reach_m(model: &Model, state: &State, watch_m: f64, runs: usize) -> f64 {
+    let nodes = &model.mesh.nodes;
+    let touching = |i: usize| nodes[i].has_gap && state.multipliers[i] > CONTACT_FORCE_N;
+    let mut count = 0;
+    let mut lowest = 0;
+    for i in 1..nodes.len() {
+        if !touching(i) {
+            continue;
+        }
+        if !touching(i - 1) {
+            lowest = i;
+        }
+        let top_of_run = i + 1 == nodes.len() || !touching(i + 1);
+        if top_of_run && nodes[lowest].s_m > watch_m + 1e-9 {
+            count += 1;
+            if count >= runs {
+                return nodes[i].s_m;
+            }
+        }
+    }
+    f64::INFINITY
+}
+
+/// The elements of `model` that the refinement of `scope` splits into pieces of at most `h_m`:
+/// those of [`tangency_elements`] up to the top of the run [`reach_m`] finds.
+pub fn near_bit_elements(model: &Model, state: &State, scope: &Scope, h_m: f64) -> Vec<usize> {
+    let top = scope
+        .bha_top_m
+        .min(reach_m(model, state, scope.watch_m, scope.runs_above.max(1)));
+    tangency_elements(model, state, top, h_m)
+}
 
 /// Whether node `i` of `model` is a body contact candidate: a gap node no wider than the
 /// bodies of the elements beside it (not a stabilizer, blade or tool joint), within the first
@@ -259,24 +329,24 @@ fn turned_onto(triad: &Matrix3<f64>, t: &Vec3) -> Matrix3<f64> {
 }
 
 /// Solve `model` cold with `ctl`, then, for the default contact scheme, refine its mesh at the
-/// ends of the body contact runs in its first `bha_top_m` (`h_m`: the refined element length)
-/// and solve again from the carried state. Returns the model solved last and its solution (the
-/// statistics of both solves summed); if the refined solve does not converge, the first model
-/// and solution (one pass is enough: docs/performance.md, "Fine BHA meshes").
+/// ends of the body contact runs of `scope` ([`near_bit_elements`]; `h_m`: the refined element
+/// length) and solve again from the carried state. Returns the model solved last and its
+/// solution (the statistics of both solves summed); if the refined solve does not converge, the
+/// first model and solution (one pass is enough: docs/performance.md, "Fine BHA meshes").
 pub fn solve_refined(
     model: Model,
     ctl: &SolveControls,
-    bha_top_m: f64,
+    scope: &Scope,
     h_m: f64,
 ) -> Result<(Model, Solution), SolveError> {
-    solve_refined_by(model, ctl, bha_top_m, h_m, |m| solve(m, ctl))
+    solve_refined_by(model, ctl, scope, h_m, |m| solve(m, ctl))
 }
 
 /// [`solve_refined`] with the first (cold) solve made by `first`.
 pub fn solve_refined_by(
     model: Model,
     ctl: &SolveControls,
-    bha_top_m: f64,
+    scope: &Scope,
     h_m: f64,
     first: impl FnOnce(&Model) -> Result<Solution, SolveError>,
 ) -> Result<(Model, Solution), SolveError> {
@@ -285,7 +355,7 @@ pub fn solve_refined_by(
     if !sol.converged || ctl.method != Method::Newton {
         return Ok((model, sol));
     }
-    let split = tangency_elements(&model, &sol.state, bha_top_m, h_m);
+    let split = near_bit_elements(&model, &sol.state, scope, h_m);
     if split.is_empty() {
         return Ok((model, sol));
     }
