@@ -190,7 +190,13 @@ fn post_buckled_pipe_lies_on_the_wall_beyond_the_helical_load() {
 /// vertical over the first 10 m; a steeper one starts at the surface), 1.2 sg mud, sliding
 /// with `wob_kn` on the bit and wall friction `friction`, elements of `element` (e.g. "1 m";
 /// None: the default mesh).
-fn straight_hole_case(inc_deg: f64, length_m: f64, wob_kn: f64, friction: f64, element: Option<&str>) -> Case {
+pub(crate) fn straight_hole_case(
+    inc_deg: f64,
+    length_m: f64,
+    wob_kn: f64,
+    friction: f64,
+    element: Option<&str>,
+) -> Case {
     let survey = if inc_deg < 1.0 {
         format!("md_m,inc_deg,azi_deg\n0,0,0\n10,{inc_deg},0\n{length_m},{inc_deg},0\n")
     } else {

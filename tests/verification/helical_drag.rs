@@ -15,31 +15,14 @@ use drillpath::models::helical_drag::{helical_lock_up, helical_soft_string, lock
 use drillpath::models::softstring;
 
 use crate::acceptance_grid::{well_case, GridCase};
-use crate::common::{load_temp_case, DRILL_PIPE_BODY};
+use crate::buckling::straight_hole_case;
+use crate::common::load_temp_case;
 
 /// A vertical hole of `length_m` with 5 in pipe (no tool joints) below a short bit, 8.5 in
-/// hole, 1.2 sg, sliding with `wob_kn` and wall friction `friction`.
+/// hole, 1.2 sg, sliding with `wob_kn` and wall friction `friction`
+/// (`buckling::straight_hole_case` at 0 deg).
 fn vertical_case(length_m: f64, wob_kn: f64, friction: f64) -> Case {
-    let survey = format!("md_m,inc_deg,azi_deg\n0,0,0\n{length_m},0,0\n");
-    let text = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-bit_md = "{length_m} m"
-wob = "{wob_kn} kN"
-friction = {friction}
-[[string]]
-type = "bit"
-od = "5 in"
-length = "0.3 m"
-{DRILL_PIPE_BODY}"#
-    );
-    load_temp_case(&survey, &text)
+    straight_hole_case(0.0, length_m, wob_kn, friction, None)
 }
 
 /// The closed-form compression (N) at `s_m` above the bit of the vertical string of
