@@ -14,6 +14,10 @@ pub enum Start {
     PreviousCase,
     /// The same load case's state at the previous bit depth, carried onto the new mesh.
     PreviousDepth,
+    /// The buckled shape, after the cold start found no equilibrium: the re-solve from the
+    /// buckled start ([`crate::models::buckled_start`]), at the row's WOB or, for a row locked
+    /// up by the helix's drag, below its lock-up (`lock_up_wob_n`).
+    BuckledShape,
 }
 
 /// Result of the stiff model for one row.
@@ -84,6 +88,13 @@ impl StiffOutcome {
     pub fn whirl_m(&self) -> Option<f64> {
         match self {
             StiffOutcome::Converged { whirl_m, .. } => Some(*whirl_m),
+            _ => None,
+        }
+    }
+    /// How the converged solve started ([`StiffOutcome::Converged`]'s `start`).
+    pub fn start(&self) -> Option<Start> {
+        match self {
+            StiffOutcome::Converged { start, .. } => Some(*start),
             _ => None,
         }
     }

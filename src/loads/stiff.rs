@@ -37,12 +37,14 @@ use super::row::{RowLoads, Start, StiffOutcome};
 use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
+use crate::models::buckled_start;
 use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, NodeResult, SolveResults};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
+use crate::models::helical_lock_up;
 use crate::models::levels::run as run_level;
 use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
@@ -218,6 +220,16 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             if let Some(out) = at_lock_up(case, &model, &ctl, iterations, t0) {
                 return (out, None);
             }
+            let sol = buckled_start::solve_from_buckled_start(case, &model, sol, &ctl);
+            let iterations = iterations + sol.stats.iterations;
+            if sol.converged {
+                let seconds = t0.elapsed().as_secs_f64();
+                let out = converged(case, &model, &sol, iterations, seconds, Start::BuckledShape, None);
+                return (out, Some((model, sol.state)));
+            }
+            if let Some(out) = at_helical_lock_up(case, &ctl, iterations, t0) {
+                return (out, None);
+            }
             let residual = sol.stats.residual_history.last().copied().unwrap_or(f64::NAN);
             (StiffOutcome::NotConverged { iterations, residual }, None)
         }
@@ -258,6 +270,38 @@ fn at_lock_up(
     let seconds = t0.elapsed().as_secs_f64();
     let its = iterations + sol.stats.iterations;
     Some(converged(&c, &m, &sol, its, seconds, Start::Cold, Some(wob)))
+}
+
+/// Lock-up by the helix's drag as a row's answer ([`helical_lock_up::below_helical_lock_up`]):
+/// where the stiff solve of an on-bottom row of `case` found no equilibrium and the soft string
+/// with the helix's drag is locked up while the plain one is not, the whole string below that
+/// lock-up: the row's loads there (`lock_up_wob_n` that WOB, `iterations` before it added).
+/// None when no such solve converges with a hook load not below zero.
+fn at_helical_lock_up(
+    case: &Case,
+    ctl: &SolveControls,
+    iterations: usize,
+    t0: std::time::Instant,
+) -> Option<StiffOutcome> {
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+        ..*ctl
+    };
+    let below = helical_lock_up::below_helical_lock_up(case, &left)?;
+    let mut c = case.clone();
+    c.operation.wob_n = below.wob_n;
+    let its = iterations + below.solution.stats.iterations;
+    let seconds = t0.elapsed().as_secs_f64();
+    let (m, sol) = (&below.model, &below.solution);
+    Some(converged(
+        &c,
+        m,
+        sol,
+        its,
+        seconds,
+        Start::BuckledShape,
+        Some(below.wob_n),
+    ))
 }
 
 fn top_radius(case: &Case) -> f64 {

@@ -24,7 +24,9 @@ use crate::models::buckling::{marks, BuckleState, MIN_HELICAL_RUN_M};
 use crate::models::fem::model::{Model, State, TopCondition};
 use crate::models::fem::results::extract;
 use crate::models::fem::solve::start::cold_start;
-use crate::models::fem::solve::{helix, solve_interior_point_from, Solution, SolveControls, SolveStats};
+use crate::models::fem::solve::{
+    helix, solve_interior_point, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats,
+};
 use crate::models::helical_drag;
 use crate::models::softstring;
 use std::time::Instant;
@@ -119,6 +121,19 @@ pub const STRATEGIES: [Strategy; 2] = [Strategy::Damped, Strategy::Helix];
 /// ([`SolveStats::buckled_start`] says which).
 pub fn solve_from_buckled_start(case: &Case, model: &Model, sol: Solution, ctl: &SolveControls) -> Solution {
     solve_from_buckled_start_by(case, model, sol, ctl, &STRATEGIES)
+}
+
+/// `model` (of `case`) solved from the buckled start alone (module docs), without the direct
+/// solve and its paths before it: one cold iteration, then [`solve_from_buckled_start`]. For a
+/// string known to be helically buckled (the lock-up answer, `models::levels`), where the
+/// direct solve's stages only spend time.
+pub fn solve_buckled(case: &Case, model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    let one = SolveControls {
+        max_iterations: 1,
+        ..*ctl
+    };
+    let sol = solve_interior_point(model, &one)?;
+    Ok(solve_from_buckled_start(case, model, sol, ctl))
 }
 
 /// [`solve_from_buckled_start`] with the strategies `strategies`.

@@ -94,11 +94,26 @@ pub struct LockUp {
     /// for and was solved at the largest WOB it delivers (its hook load zero), N; None when
     /// the results are at the WOB asked for.
     pub results_at_wob_n: Option<f64>,
+    /// Whether the lock-up is the helix's: the plain soft string delivers the WOB, the soft
+    /// string with the helix's drag (`models::helical_drag`) does not; `hook_load_n` and
+    /// `max_wob_n` are then that soft string's.
+    pub by_helix: bool,
+    /// For a lock-up by the helix's drag: where the soft string with the helix's drag is
+    /// helically buckled at its largest WOB, MD of the highest and lowest helical point, m.
+    pub helical_md_m: Option<(f64, f64)>,
+    /// For a lock-up by the helix's drag with results below it: whether their WOB is the
+    /// largest the whole string delivers along its slack-off path (its hook load within the
+    /// climb's tolerance of zero); false where that path met a limit first (then the WOB is a
+    /// lower bound of the largest).
+    pub results_at_largest_wob: bool,
 }
 
 impl LockUp {
     /// The warning to print.
     pub fn warning(&self, mode: &str) -> String {
+        if self.by_helix {
+            return self.helical_warning(mode);
+        }
         let at = match self.results_at_wob_n {
             Some(w) => format!(
                 "; the whole string finds no equilibrium at {:.0} kN: the results are at the largest WOB it delivers, {:.1} kN (its hook load zero)",
@@ -110,6 +125,45 @@ impl LockUp {
         format!(
             "lock-up: hook load {:.0} kN below zero, the surface would have to push the string down to put {:.0} kN on the bit while {mode}; the string can deliver at most about {:.0} kN WOB (soft string, hook load zero): less WOB or friction, rotation, or heavier pipe above the compressed part{at}",
             self.hook_load_n / 1e3,
+            self.wob_n / 1e3,
+            self.max_wob_n / 1e3
+        )
+    }
+}
+
+/// A hook load below which the helical lock-up's warning says the compression diverges, N:
+/// the soft string with the helix's drag then holds its added force at
+/// `models::helical_drag::COMPRESSION_CAP_N` and its hook load is no longer a load.
+pub const DIVERGED_HOOK_LOAD_N: f64 = -1e7;
+
+impl LockUp {
+    /// The warning of a lock-up by the helix's drag ([`LockUp::by_helix`]).
+    fn helical_warning(&self, mode: &str) -> String {
+        let asked = self.wob_n / 1e3;
+        let at = match self.results_at_wob_n {
+            Some(w) if self.results_at_largest_wob => format!(
+                "; the whole string finds no equilibrium at {asked:.0} kN, and its results are at the largest WOB it delivers along its slack-off path, {:.1} kN (its hook load near zero; solved from the buckled shape, docs/guide.md)",
+                w / 1e3
+            ),
+            Some(w) => format!(
+                "; the whole string finds no equilibrium at {asked:.0} kN, and its results are at {:.1} kN, where its slack-off path met a limit: the largest WOB it delivers lies between {:.1} kN and about {:.0} kN (solved from the buckled shape, docs/guide.md)",
+                w / 1e3,
+                w / 1e3,
+                self.max_wob_n / 1e3
+            ),
+            None => String::new(),
+        };
+        let helix = match self.helical_md_m {
+            Some((top, bottom)) => format!(" (helically buckled at {top:.0}-{bottom:.0} m MD there)"),
+            None => String::new(),
+        };
+        let hook = if self.hook_load_n < DIVERGED_HOOK_LOAD_N {
+            "its compression diverges up the helix".to_string()
+        } else {
+            format!("its hook load is {:.0} kN", self.hook_load_n / 1e3)
+        };
+        format!(
+            "helical lock-up: the pipe buckles into a helix whose wall force and drag grow faster than its weight; by the soft string with the helix's drag (Mitchell's r F^2/(4 EI)) {hook}, the surface would have to push to put {:.0} kN on the bit while {mode}, and it delivers at most about {:.0} kN WOB{helix}: less WOB or friction, rotation, or heavier pipe above the helix{at}",
             self.wob_n / 1e3,
             self.max_wob_n / 1e3
         )
@@ -130,6 +184,9 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
         wob_n,
         max_wob_n,
         results_at_wob_n: None,
+        by_helix: false,
+        helical_md_m: None,
+        results_at_largest_wob: false,
     })
 }
 

@@ -18,7 +18,7 @@
 //! string up (`models::buckled_start`).
 
 use crate::case::Case;
-use crate::models::buckling::{mitchell_wall_force, onset_at, support_span_m};
+use crate::models::buckling::{mitchell_wall_force, onset_at, soft_marks, support_span_m, BuckleState};
 use crate::models::softstring::{from_case_with_extra_contact, segment_length_m, SoftStringResult};
 
 /// Compression above which the added helical force is held constant, N: keeps a string
@@ -105,6 +105,9 @@ pub struct HelicalLockUp {
     /// The largest WOB with a non-negative hook load of that soft string, N (0 when even a zero
     /// WOB needs the surface to push).
     pub max_wob_n: f64,
+    /// Where that soft string is helically buckled at its largest WOB: MD of the highest and
+    /// the lowest helical point, m (None without a helix there).
+    pub helical_md_m: Option<(f64, f64)>,
 }
 
 /// The helical lock-up of `case` at its WOB ([`HelicalLockUp`]); None when the soft string with
@@ -116,9 +119,30 @@ pub fn helical_lock_up(case: &Case) -> Option<HelicalLockUp> {
         return None;
     }
     let hook = helical_soft_string(case).hook_load_n;
-    (hook < 0.0).then(|| HelicalLockUp {
+    if hook >= 0.0 {
+        return None;
+    }
+    let max_wob_n = lock_up_wob_n(case).unwrap_or(0.0);
+    Some(HelicalLockUp {
         hook_load_n: hook,
         wob_n: op.wob_n,
-        max_wob_n: lock_up_wob_n(case).unwrap_or(0.0),
+        max_wob_n,
+        helical_md_m: helical_interval_md_m(case, max_wob_n),
+    })
+}
+
+/// MD of the highest and the lowest point (m) where [`helical_soft_string`] of `case` at the
+/// WOB `wob_n` (N) is beyond the helical onset; None where it is nowhere.
+pub fn helical_interval_md_m(case: &Case, wob_n: f64) -> Option<(f64, f64)> {
+    let mut c = case.clone();
+    c.operation.wob_n = wob_n;
+    let soft = helical_soft_string(&c);
+    let helical = soft_marks(&c, &soft, 0)
+        .into_iter()
+        .filter(|m| m.state == BuckleState::Helical)
+        .map(|m| m.md_m);
+    helical.fold(None, |acc, md| match acc {
+        None => Some((md, md)),
+        Some((top, bottom)) => Some((f64::min(top, md), f64::max(bottom, md))),
     })
 }

@@ -25,10 +25,11 @@ use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
 use crate::models::fem::results::{extract, sensor_results, BitResult, NodeResult, SensorResult, SolveResults};
-use crate::models::fem::solve::continuation;
+use crate::models::fem::solve::continuation::{self, ClimbEnd};
 use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
+use crate::models::helical_lock_up;
 use crate::models::soft_comparison::{soft_comparison, SoftComparison};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::models::whirl::whirl_intervals;
@@ -198,17 +199,24 @@ fn nearest_node(model: &Model, s_m: f64) -> usize {
         .unwrap_or(model.nodes() - 1)
 }
 
-fn fem_part(
+fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
+    // a whole string that finds no equilibrium is solved again from its buckled shape
+    let first = |m: &Model| solve(m, ctl).map(|s| buckled_start::solve_from_buckled_start(case, m, s, ctl));
+    fem_part_by(model, case, ctl, coupling_m, first)
+}
+
+/// The stiff part of `case` on `model` with its first solve by `first`: a bent housing held at
+/// its toolface against the string's twist (a straight string is solved once), the contact
+/// runs near the bit refined, a whole string taken off the straight branch where it is
+/// compressed beyond the helical onset, and the results extracted.
+fn fem_part_by(
     mut model: Model,
     case: &Case,
     ctl: &SolveControls,
     coupling_m: Option<f64>,
+    first: impl FnOnce(&Model) -> Result<Solution, SolveError>,
 ) -> Result<FemPart, SolveError> {
-    // a bent housing is held at its toolface against the string's twist (a straight string is
-    // solved once); a whole string that finds no equilibrium is solved again from its buckled
-    // shape
     model.whirl_md_m = whirl_intervals(case, &model);
-    let first = |m: &Model| solve(m, ctl).map(|s| buckled_start::solve_from_buckled_start(case, m, s, ctl));
     let (model, sol) = if case.solver.refine_contacts {
         let h = refine::REFINED_FRACTION * case.solver.bha_element_length_m;
         refine::solve_refined_by(
@@ -406,19 +414,7 @@ pub fn run_with_progress(
     let t0 = Instant::now();
     let n = stages(choice.level);
     let op = &case.operation;
-    let mut out = LevelResult {
-        choice,
-        fem: None,
-        soft: None,
-        cut_m: None,
-        bit: None,
-        wob_n: op.wob_n,
-        bit_torque_nm: 0.0,
-        hook_load_n: None,
-        surface_torque_nm: None,
-        converged: true,
-        seconds: 0.0,
-    };
+    let mut out = LevelResult::empty(choice, op.wob_n);
     match out.choice.level {
         Level::Soft => {
             on_stage(0, n, "soft string");
@@ -431,11 +427,7 @@ pub fn run_with_progress(
         }
         Level::Whole => {
             on_stage(0, n, "stiff whole string");
-            let part = fem_part(Model::from_case(case), case, ctl, None)?;
-            out.fill_from_fem(&part);
-            out.hook_load_n = Some(part.results.hook_load_n);
-            out.surface_torque_nm = Some(part.results.surface_torque_nm);
-            out.fem = Some(part);
+            out.fill_from_whole(fem_part(Model::from_case(case), case, ctl, None)?);
         }
         Level::Bha | Level::Hybrid => {
             if op.hook_load_n.is_some() {
@@ -470,11 +462,36 @@ pub fn run_with_progress(
 }
 
 impl LevelResult {
+    /// A result of `choice` at the WOB `wob_n` (N) with nothing computed yet.
+    fn empty(choice: Choice, wob_n: f64) -> Self {
+        LevelResult {
+            choice,
+            fem: None,
+            soft: None,
+            cut_m: None,
+            bit: None,
+            wob_n,
+            bit_torque_nm: 0.0,
+            hook_load_n: None,
+            surface_torque_nm: None,
+            converged: true,
+            seconds: 0.0,
+        }
+    }
+
     fn fill_from_fem(&mut self, part: &FemPart) {
         self.bit = Some(part.results.bit);
         self.wob_n = part.results.bit.wob_n;
         self.bit_torque_nm = part.results.bit.torque_nm;
         self.converged = part.converged;
+    }
+
+    /// Fill from `part`, the stiff model of the whole string.
+    fn fill_from_whole(&mut self, part: FemPart) {
+        self.fill_from_fem(&part);
+        self.hook_load_n = Some(part.results.hook_load_n);
+        self.surface_torque_nm = Some(part.results.surface_torque_nm);
+        self.fem = Some(part);
     }
 }
 
@@ -593,8 +610,19 @@ pub fn solve_string(
     let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
     let mut delivered = None;
     if !level.converged && choice.level == Level::Whole {
-        if let Some((wob, r)) = whole_at_lock_up(case, choice, ctl, on_stage) {
-            delivered = Some((case.operation.wob_n, wob));
+        let left = SolveControls {
+            time_limit_s: ctl.time_limit_s - level.seconds,
+            ..*ctl
+        };
+        let answer = whole_at_lock_up(case, choice.clone(), &left, on_stage)
+            .or_else(|| whole_at_helical_lock_up(case, choice, &left, on_stage));
+        if let Some((l, mut r)) = answer {
+            // the statistics count the solve that found no equilibrium too
+            if let (Some(new), Some(failed)) = (r.fem.as_mut(), level.fem.as_ref()) {
+                new.stats.add_work(&failed.stats);
+            }
+            r.seconds += level.seconds;
+            delivered = Some(l);
             level = r;
         }
     }
@@ -620,13 +648,7 @@ pub fn solve_string(
         .as_ref()
         .zip(last_reported_node)
         .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
-    let lock_up = match delivered {
-        Some((asked, wob)) => soft_lock_up_at(case, asked).map(|l| LockUp {
-            results_at_wob_n: Some(wob),
-            ..l
-        }),
-        None => lock_up(case, level.hook_load_n, level.wob_n),
-    };
+    let lock_up = delivered.or_else(|| lock_up(case, level.hook_load_n, level.wob_n));
     let sensors = level
         .fem
         .as_ref()
@@ -673,15 +695,15 @@ fn soft_lock_up_at(case: &Case, wob_n: f64) -> Option<LockUp> {
 /// soft string is locked up there (its hook load below zero), the whole string solved at the
 /// largest WOB it delivers, its hook load zero: found by the WOB path
 /// ([`crate::models::fem::solve::continuation::wob_at_zero_hook_load`], the hook load within 1%
-/// of the soft string's lock-up WOB or 0.5 kN), then solved there as any case. Returns that WOB (N) and the result;
-/// None when the case is not locked up, the path finds no such WOB or the solve there does not
-/// converge.
+/// of the soft string's lock-up WOB or 0.5 kN), then solved there as any case. Returns the
+/// lock-up (the results' WOB in it) and the result; None when the case is not locked up, the
+/// path finds no such WOB or the solve there does not converge.
 fn whole_at_lock_up(
     case: &Case,
     choice: Choice,
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
-) -> Option<(f64, LevelResult)> {
+) -> Option<(LockUp, LevelResult)> {
     let soft = soft_lock_up_at(case, case.operation.wob_n)?;
     let mut model = Model::from_case(case);
     // the string whirls where it is helical at the WOB it can deliver
@@ -698,5 +720,50 @@ fn whole_at_lock_up(
     let mut c = case.clone();
     c.operation.wob_n = wob;
     let r = run_with_progress(&c, choice, ctl, on_stage).ok()?;
-    r.converged.then_some((wob, r))
+    let l = LockUp {
+        results_at_wob_n: Some(wob),
+        results_at_largest_wob: true,
+        ..soft
+    };
+    r.converged.then_some((l, r))
+}
+
+/// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
+/// the whole string found no equilibrium at `case`'s WOB, the whole string below that lock-up,
+/// then refined and taken off the straight branch as any solve ([`fem_part_by`]). Returns the
+/// lock-up (the results' WOB in it) and the result.
+fn whole_at_helical_lock_up(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Option<(LockUp, LevelResult)> {
+    let t0 = Instant::now();
+    on_stage(0, 1, "stiff whole string below its helical lock-up");
+    let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
+    let mut c = case.clone();
+    c.operation.wob_n = below.wob_n;
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+        ..*ctl
+    };
+    let solution = below.solution;
+    let part = fem_part_by(below.model, &c, &left, None, |_| Ok(solution)).ok()?;
+    if !part.converged || part.results.hook_load_n < 0.0 {
+        return None;
+    }
+    let mut out = LevelResult::empty(choice, below.wob_n);
+    out.fill_from_whole(part);
+    out.seconds = t0.elapsed().as_secs_f64();
+    let h = below.lock_up;
+    let l = LockUp {
+        hook_load_n: h.hook_load_n,
+        wob_n: h.wob_n,
+        max_wob_n: h.max_wob_n,
+        results_at_wob_n: Some(below.wob_n),
+        by_helix: true,
+        helical_md_m: h.helical_md_m,
+        results_at_largest_wob: matches!(below.climb_end, ClimbEnd::HookLoad | ClimbEnd::Bracketed),
+    };
+    Some((l, out))
 }

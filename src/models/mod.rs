@@ -6,6 +6,8 @@
 //! - [`levels`]: one static solve at a fidelity level (soft, bha, hybrid, whole);
 //! - [`buckling`]: sinusoidal and helical buckling onsets and the buckled intervals;
 //! - [`soft_comparison`]: the soft string beside a stiff solve's surface values;
+//! - [`helical_drag`]: the soft string with the helix's drag, and its helical lock-up;
+//! - [`helical_lock_up`]: the whole string below a helical lock-up, the answer where it locks up;
 //! - [`diagnose`]: why a stiff solve may not converge (lock-up, helical buckling).
 
 pub mod bit;
@@ -15,6 +17,7 @@ pub mod checks;
 pub mod diagnose;
 pub mod fem;
 pub mod helical_drag;
+pub mod helical_lock_up;
 pub mod levels;
 pub mod soft_comparison;
 pub mod softstring;

@@ -146,6 +146,13 @@ fn print_stiff_summary(
             count(Start::PreviousCase),
             count(Start::Cold),
         )?;
+        let buckled = count(Start::BuckledShape);
+        if buckled > 0 {
+            writeln!(
+                out,
+                "  solved again from the buckled shape after the cold start found no equilibrium: {buckled} rows (stiff_buckled_start; buckled equilibria with friction are not unique, docs/theory.md 7.5)"
+            )?;
+        }
     } else {
         writeln!(out, " (each row cold-started)")?;
     }
@@ -165,16 +172,21 @@ fn print_stiff_summary(
     warn_rows(out, &bad, |n| {
         format!("stiff solve not converged for {n} rows (no stiff numbers written for them)")
     })?;
-    let locked: Vec<String> = rows
-        .iter()
-        .filter_map(|r| {
-            let wob = r.stiff.as_ref()?.lock_up_wob_n()?;
-            let depth = units.depth().fmt(r.bit_md_m, 0);
-            Some(format!("{depth} {} at {}", r.mode.name(), units.force().fmt(wob, 1)))
-        })
-        .collect();
-    warn_rows(out, &locked, |n| {
+    let locked = |by_helix: bool| -> Vec<String> {
+        rows.iter()
+            .filter(|r| helically_locked(r) == by_helix)
+            .filter_map(|r| {
+                let wob = r.stiff.as_ref()?.lock_up_wob_n()?;
+                let depth = units.depth().fmt(r.bit_md_m, 0);
+                Some(format!("{depth} {} at {}", r.mode.name(), units.force().fmt(wob, 1)))
+            })
+            .collect()
+    };
+    warn_rows(out, &locked(false), |n| {
         format!("lock-up: {n} stiff rows find no equilibrium at their WOB; their stiff numbers are at the largest WOB the string delivers, hook load zero (stiff_lock_up_wob_kN)")
+    })?;
+    warn_rows(out, &locked(true), |n| {
+        format!("helical lock-up: {n} stiff rows find no equilibrium at their WOB, locked up by the helix's drag (helical_drag_hook_load_kN below zero); their stiff numbers are at a WOB below the lock-up, solved from the buckled shape (stiff_lock_up_wob_kN; the largest WOB lies between it and that soft string's, docs/guide.md)")
     })?;
     let unbuckled = rows_over(rows, units, StiffOutcome::unbuckled_helical_m);
     warn_rows(out, &unbuckled, |n| {
@@ -187,12 +199,18 @@ fn print_stiff_summary(
     Ok(())
 }
 
+/// Whether the row `r` is locked up by the helix's drag only: the soft string's hook load not
+/// below zero, that of the soft string with the helix's drag below it.
+fn helically_locked(r: &LoadRow) -> bool {
+    r.soft.hook_load_n >= 0.0 && r.helical_drag_hook_load_n < 0.0
+}
+
 /// A `WARNING:` line listing the rows the helix locks up: the soft string's hook load not below
 /// zero, that of the soft string with the helix's drag below it (`helical_drag_hook_load_kN`).
 fn warn_helical_lock_up(rows: &[LoadRow], units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
     let locked: Vec<String> = rows
         .iter()
-        .filter(|r| r.soft.hook_load_n >= 0.0 && r.helical_drag_hook_load_n < 0.0)
+        .filter(|r| helically_locked(r))
         .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
         .collect();
     warn_rows(out, &locked, |n| {

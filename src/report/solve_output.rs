@@ -160,6 +160,10 @@ struct LockUpJson {
     wob_kN: Finite,
     max_wob_kN: Finite,
     results_at_wob_kN: Option<Finite>,
+    by_helical_drag: bool,
+    helical_top_md_m: Option<Finite>,
+    helical_bottom_md_m: Option<Finite>,
+    results_at_largest_wob: bool,
 }
 
 /// The `soft_string_comparison` key: the soft string at the same WOB beside a `whole` or
@@ -443,6 +447,10 @@ impl SolveSummary {
                 wob_kN: Finite(l.wob_n / 1e3),
                 max_wob_kN: Finite(l.max_wob_n / 1e3),
                 results_at_wob_kN: l.results_at_wob_n.map(|w| Finite(w / 1e3)),
+                by_helical_drag: l.by_helix,
+                helical_top_md_m: l.helical_md_m.map(|(top, _)| Finite(top)),
+                helical_bottom_md_m: l.helical_md_m.map(|(_, bottom)| Finite(bottom)),
+                results_at_largest_wob: l.results_at_largest_wob,
             }),
             warnings: s.warnings(case),
             motor_yield_deg_per_30m: None,

@@ -13,9 +13,10 @@
 //! grid runs with
 //! `cargo test --release --test verification acceptance_grid::full_grid -- --ignored --nocapture`
 //! (one line per case: soft hook load, that of the soft string with the helix's drag, whole
-//! converged, equilibrium, seconds, helix re-solve;
-//! the count at the end; it fails while a case with a non-negative soft hook load does not
-//! converge). With `DRILLPATH_GRID_CASES=<dir>` it also writes every case (`<dir>/<name>/
+//! converged, equilibrium, seconds, helix re-solve, and the WOB of the results where `solve`
+//! answered with a lock-up below the WOB asked for (`lock_up_at_kN`: such an answer counts as
+//! converged, the "lock-up is an answer"); the count at the end; it fails while a case
+//! with a non-negative soft hook load does not converge). With `DRILLPATH_GRID_CASES=<dir>` it also writes every case (`<dir>/<name>/
 //! case.toml` and `survey.csv`) so any build of the CLI can be timed on them
 //! (docs/performance.md, "Acceptance grid").
 
@@ -156,6 +157,8 @@ pub struct Outcome {
     pub buckled_start: Option<bool>,
     /// The hook load of the soft string with the helix's drag, kN (below zero: helical lock-up).
     pub helical_soft_hook_kn: f64,
+    /// The WOB of the results when `solve` answered with a lock-up below the WOB asked for, kN.
+    pub lock_up_at_kn: Option<f64>,
 }
 
 /// Solve `g` at `soft` and at `whole` (as `drillpath solve --fidelity whole` does).
@@ -172,6 +175,11 @@ pub fn solve_grid_case(g: &GridCase) -> Outcome {
         &mut |_, _, _| {},
     );
     let seconds = t0.elapsed().as_secs_f64();
+    let lock_up_at_kn = whole
+        .as_ref()
+        .ok()
+        .and_then(|s| s.lock_up?.results_at_wob_n)
+        .map(|w| w / 1e3);
     let (converged, whole_hook_kn, helix, buckled_start) = match &whole {
         Ok(s) => {
             let fem = s.level.fem.as_ref().unwrap();
@@ -195,6 +203,7 @@ pub fn solve_grid_case(g: &GridCase) -> Outcome {
         seconds,
         helix,
         buckled_start,
+        lock_up_at_kn,
     }
 }
 
@@ -462,7 +471,7 @@ fn write_cases() {
 #[ignore]
 fn full_grid() {
     let write_to = std::env::var_os("DRILLPATH_GRID_CASES").map(std::path::PathBuf::from);
-    let (mut asked, mut ok) = (0, 0);
+    let (mut asked, mut ok, mut locked) = (0, 0, 0);
     let mut missed = Vec::new();
     for g in grid() {
         if let Some(dir) = &write_to {
@@ -471,7 +480,7 @@ fn full_grid() {
         let o = solve_grid_case(&g);
         let applies = o.soft_hook_kn >= 0.0;
         println!(
-            "GRID {} soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} applies {applies}",
+            "GRID {} soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} lock_up_at_kN {:?} applies {applies}",
             g.name(),
             o.soft_hook_kn,
             o.helical_soft_hook_kn,
@@ -479,17 +488,21 @@ fn full_grid() {
             o.whole_hook_kn,
             o.seconds,
             o.helix,
-            o.buckled_start
+            o.buckled_start,
+            o.lock_up_at_kn.map(|w| (w * 10.0).round() / 10.0)
         );
         if applies {
             asked += 1;
             if o.converged {
                 ok += 1;
+                locked += usize::from(o.lock_up_at_kn.is_some());
             } else {
                 missed.push(g.name());
             }
         }
     }
-    println!("GRID {ok} of {asked} cases with a non-negative soft hook load converge");
+    println!(
+        "GRID {ok} of {asked} cases with a non-negative soft hook load converge ({locked} of them answering with a lock-up below the WOB asked for)"
+    );
     assert!(missed.is_empty(), "not converged: {missed:?}");
 }

@@ -59,7 +59,7 @@ pub fn applies(model: &Model) -> bool {
 }
 
 /// `model` with its WOB at `wob_n` and its bit torque in proportion (N, N.m).
-fn at_wob(model: &Model, wob_n: f64) -> Model {
+pub fn at_wob(model: &Model, wob_n: f64) -> Model {
     let mut m = model.clone();
     let share = wob_n / model.loads.wob_n;
     m.loads.wob_n = wob_n;
@@ -195,28 +195,82 @@ pub const SEARCH_BUDGET_FACTOR: usize = 3;
 
 /// The largest WOB of `model`'s string with a non-negative hook load, by the same WOB path
 /// (at most [`SEARCH_BUDGET_FACTOR`] x `max_iterations` iterations in all):
-/// from [`START_FRACTION`] of the model's WOB upward until the hook load turns negative (the
-/// surface would have to push: lock-up), then bisected between the last step with a
-/// non-negative hook load and the first without, warm-started, until the hook load lies within
-/// `hook_tolerance_n` or the bracket within [`MIN_STEP_FRACTION`] of the WOB. Returns that WOB
+/// from [`START_FRACTION`] of the model's WOB upward by [`climb_wob`]. Returns that WOB
 /// (N) and the hook load there (N); None when the path's first step fails or the hook load
 /// never turns negative below the model's WOB.
 pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_n: f64) -> Option<(f64, f64)> {
     let t0 = Instant::now();
     let target = model.loads.wob_n;
-    let mut lo = START_FRACTION * target;
+    let lo = START_FRACTION * target;
     let (first, consistent) = first_step(&at_wob(model, lo), model, ctl).ok()?;
-    let mut state = Some(first).filter(|s| s.converged && s.state.hook_load_n >= 0.0)?.state;
+    let first = Some(first).filter(|s| s.converged && s.state.hook_load_n >= 0.0)?;
+    let climb = climb_wob(&consistent, first, lo, ctl, hook_tolerance_n, t0);
+    match climb.end {
+        ClimbEnd::Bracketed | ClimbEnd::HookLoad => Some((climb.wob_n, climb.solution.state.hook_load_n)),
+        ClimbEnd::Target | ClimbEnd::Stalled => None,
+    }
+}
+
+/// How a [`climb_wob`] ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ClimbEnd {
+    /// The hook load fell below the tolerance.
+    HookLoad,
+    /// The hook load turned negative beyond the WOB reached, bisected to the smallest step.
+    Bracketed,
+    /// The target WOB was reached with a hook load above the tolerance.
+    Target,
+    /// No step converged (below the smallest step, or out of iterations or time): a limit of the
+    /// path.
+    Stalled,
+}
+
+/// Where a [`climb_wob`] ended: the last converged solution with a hook load not below zero,
+/// its WOB (N), and why it stopped.
+pub struct Climb {
+    /// The last converged solution with a hook load not below zero.
+    pub solution: Solution,
+    /// Its WOB, N.
+    pub wob_n: f64,
+    /// Why the climb stopped.
+    pub end: ClimbEnd,
+}
+
+/// The WOB of `model` (full tangent; its WOB the target) raised from `from_n` (N), where `sol`
+/// converged with a hook load not below zero, in steps from `from_n` growing by [`STEP_GROWTH`]
+/// after a converged step and halved after one that does not converge, each warm-started with
+/// [`STEP_ITERATIONS`], until the hook load falls below `hook_tolerance_n` (N), turns negative
+/// (then bisected between the last step with a non-negative hook load and the first without,
+/// until the bracket is within [`MIN_STEP_FRACTION`] of the target), the target is reached, or
+/// the step falls below [`MIN_STEP_FRACTION`] of the target; at most [`SEARCH_BUDGET_FACTOR`]
+/// x `max_iterations` iterations and `ctl`'s time limit from `t0`. The solution's statistics count
+/// `sol`'s work and the climb's.
+pub fn climb_wob(
+    model: &Model,
+    sol: Solution,
+    from_n: f64,
+    ctl: &SolveControls,
+    hook_tolerance_n: f64,
+    t0: Instant,
+) -> Climb {
+    let target = model.loads.wob_n;
+    let climb_t0 = Instant::now();
+    let (it0, f0, s0) = (sol.stats.iterations, sol.stats.factorizations, sol.stats.seconds);
+    let (mut lo, mut best) = (from_n, sol);
     let mut hi: Option<f64> = None;
-    let mut step = START_FRACTION * target;
-    let mut iterations = 0;
-    loop {
+    let mut step = from_n;
+    let (mut iterations, mut factorizations) = (0, 0);
+    let end = loop {
         let elapsed = t0.elapsed().as_secs_f64();
         if iterations >= SEARCH_BUDGET_FACTOR * ctl.max_iterations
             || elapsed > ctl.time_limit_s
             || step < MIN_STEP_FRACTION * target
         {
-            break;
+            break if hi.is_some() {
+                ClimbEnd::Bracketed
+            } else {
+                ClimbEnd::Stalled
+            };
         }
         let next = match hi {
             Some(h) => 0.5 * (lo + h),
@@ -227,23 +281,27 @@ pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_
             time_limit_s: ctl.time_limit_s - elapsed,
             ..*ctl
         };
-        match solve_interior_point_from(&at_wob(&consistent, next), state.clone(), &step_ctl) {
+        match solve_interior_point_from(&at_wob(model, next), best.state.clone(), &step_ctl) {
             Ok(s) if s.converged && s.state.hook_load_n >= 0.0 => {
                 iterations += s.stats.iterations;
+                factorizations += s.stats.factorizations;
                 lo = next;
                 let hook = s.state.hook_load_n;
-                state = s.state;
+                best = s;
                 if hook < hook_tolerance_n {
-                    return Some((lo, hook));
+                    break ClimbEnd::HookLoad;
                 }
                 step *= STEP_GROWTH;
             }
             Ok(s) if s.converged => {
                 iterations += s.stats.iterations;
+                factorizations += s.stats.factorizations;
                 hi = Some(next);
             }
             other => {
-                iterations += other.map_or(0, |s| s.stats.iterations);
+                let (i, f) = other.map_or((0, 0), |s| (s.stats.iterations, s.stats.factorizations));
+                iterations += i;
+                factorizations += f;
                 match hi {
                     Some(_) => hi = Some(next),
                     None => step *= 0.5,
@@ -252,12 +310,20 @@ pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_
         }
         if let Some(h) = hi {
             if h - lo < MIN_STEP_FRACTION * target {
-                break;
+                break ClimbEnd::Bracketed;
             }
         }
         if lo >= target {
-            return None;
+            break ClimbEnd::Target;
         }
+    };
+    // the solution's statistics: the start's and the climb's work
+    best.stats.iterations = it0 + iterations;
+    best.stats.factorizations = f0 + factorizations;
+    best.stats.seconds = s0 + climb_t0.elapsed().as_secs_f64();
+    Climb {
+        solution: best,
+        wob_n: lo,
+        end,
     }
-    hi.map(|_| (lo, state.hook_load_n))
 }

@@ -1,0 +1,96 @@
+//! Lock-up by the helix's drag as an answer (issue 16; docs/theory.md 7.7): where the whole
+//! string finds no equilibrium at the WOB asked for, the plain soft string delivers that WOB and
+//! the soft string with the helix's drag does not ([`helical_drag::helical_lock_up`]), the whole
+//! string solved below the lock-up ([`below_helical_lock_up`]): from its buckled shape
+//! ([`solve_buckled`]) at a fraction of that soft string's largest WOB, then slacked off toward
+//! it ([`continuation::climb_wob`]) until its hook load is near zero or the path meets a limit.
+//! `solve` (`models::levels`) and the whole-string rows of `loads` answer with it.
+
+use crate::case::Case;
+use crate::models::buckled_start::solve_buckled;
+use crate::models::fem::model::Model;
+use crate::models::fem::solve::continuation::{self, ClimbEnd};
+use crate::models::fem::solve::toolface::solve_holding_toolface;
+use crate::models::fem::solve::{Solution, SolveControls};
+use crate::models::helical_drag;
+use crate::models::whirl::whirl_intervals;
+use std::time::Instant;
+
+/// Fractions of the largest WOB of the soft string with the helix's drag from which
+/// [`below_helical_lock_up`] starts the whole string, in turn (docs/performance.md, "Lock-up by
+/// the helix's drag as an answer").
+pub const HELICAL_LOCK_UP_FRACTIONS: [f64; 2] = [0.5, 0.25];
+
+/// The whole string below its lock-up by the helix's drag ([`below_helical_lock_up`]).
+pub struct BelowLockUp {
+    /// The lock-up of the soft string with the helix's drag.
+    pub lock_up: helical_drag::HelicalLockUp,
+    /// The WOB the whole string was solved at, N.
+    pub wob_n: f64,
+    /// The model at that WOB (its kink turned as solved).
+    pub model: Model,
+    /// The converged solution there, its hook load not below zero.
+    pub solution: Solution,
+    /// How the WOB climb from the start ended.
+    pub climb_end: ClimbEnd,
+}
+
+/// Lock-up by the helix's drag as an answer: when the plain soft string of `case` delivers its
+/// WOB and the soft string with the helix's drag does not ([`helical_drag::helical_lock_up`]),
+/// the whole string solved from its buckled shape ([`solve_buckled`], the toolface held) at
+/// [`HELICAL_LOCK_UP_FRACTIONS`] of that soft string's largest WOB in turn; from the first that
+/// converges with a hook load not below zero, the WOB climbed toward that largest WOB
+/// ([`continuation::climb_wob`], warm-started steps) until the hook load falls within
+/// [`LOCK_UP_HOOK_TOLERANCE`] of zero or the path meets a limit; all within `ctl`'s time limit.
+/// None when the case is not so locked up, that largest WOB is zero, or no start converged.
+pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls) -> Option<BelowLockUp> {
+    let h = helical_drag::helical_lock_up(case)?;
+    let t0 = Instant::now();
+    for fraction in HELICAL_LOCK_UP_FRACTIONS {
+        let left = SolveControls {
+            time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+            ..*ctl
+        };
+        let wob = fraction * h.max_wob_n;
+        if wob <= 0.0 || left.time_limit_s <= 0.0 {
+            break;
+        }
+        let mut c = case.clone();
+        c.operation.wob_n = wob;
+        let mut model = Model::from_case(&c);
+        model.whirl_md_m = whirl_intervals(&c, &model);
+        let start = solve_holding_toolface(&mut model, &left, |m| solve_buckled(&c, m, &left));
+        let converged = start.ok().filter(|s| s.converged && s.state.hook_load_n >= 0.0);
+        tracing::info!(
+            wob_n = wob,
+            converged = converged.is_some(),
+            "whole string below its helical lock-up"
+        );
+        let Some(sol) = converged else {
+            continue;
+        };
+        let mut toward = continuation::at_wob(&model, h.max_wob_n);
+        toward.consistent_tangent = true;
+        let tolerance = (LOCK_UP_HOOK_TOLERANCE * h.max_wob_n).max(LOCK_UP_HOOK_TOLERANCE_N);
+        let climb = continuation::climb_wob(&toward, sol, wob, &left, tolerance, t0);
+        tracing::info!(wob_n = climb.wob_n, end = ?climb.end, "WOB climb below the helical lock-up");
+        let mut solution = climb.solution;
+        solution.converged = true;
+        solution.stats.buckled_start = Some(true);
+        return Some(BelowLockUp {
+            lock_up: h,
+            wob_n: climb.wob_n,
+            model: continuation::at_wob(&model, climb.wob_n),
+            solution,
+            climb_end: climb.end,
+        });
+    }
+    None
+}
+
+/// Hook load at which [`below_helical_lock_up`]'s climb stops, as a fraction of the largest WOB
+/// of the soft string with the helix's drag (at least [`LOCK_UP_HOOK_TOLERANCE_N`]).
+pub const LOCK_UP_HOOK_TOLERANCE: f64 = 0.01;
+
+/// Smallest hook load at which [`below_helical_lock_up`]'s climb stops, N.
+pub const LOCK_UP_HOOK_TOLERANCE_N: f64 = 500.0;
