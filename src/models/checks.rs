@@ -151,7 +151,7 @@ impl LockUp {
                 w / 1e3,
                 self.max_wob_n / 1e3
             ),
-            None => String::new(),
+            None => "; the results are at the WOB asked for, where the solved string's hook load is below zero too (the surface pushing)".to_string(),
         };
         let helix = match self.helical_md_m {
             Some((top, bottom)) => format!(" (helically buckled at {top:.0}-{bottom:.0} m MD there)"),

@@ -29,6 +29,7 @@ use crate::models::fem::solve::continuation::{self, ClimbEnd};
 use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
+use crate::models::helical_drag;
 use crate::models::helical_lock_up;
 use crate::models::soft_comparison::{soft_comparison, SoftComparison};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
@@ -648,7 +649,7 @@ pub fn solve_string(
         .as_ref()
         .zip(last_reported_node)
         .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
-    let lock_up = delivered.or_else(|| lock_up(case, level.hook_load_n, level.wob_n));
+    let lock_up = delivered.or_else(|| lock_up(case, level.hook_load_n, level.wob_n).map(|l| by_helix_if_so(case, l)));
     let sensors = level
         .fem
         .as_ref()
@@ -667,6 +668,23 @@ pub fn solve_string(
         sensors,
         soft_comparison,
     })
+}
+
+/// The lock-up `l` of a solve of `case` whose hook load is below zero at the WOB asked for, as a
+/// lock-up by the helix's drag where the plain soft string delivers that WOB and the soft string
+/// with the helix's drag does not (the plain soft string's largest WOB, above the WOB asked for,
+/// would contradict the solve); `l` otherwise.
+fn by_helix_if_so(case: &Case, l: LockUp) -> LockUp {
+    match helical_drag::helical_lock_up(case) {
+        Some(h) => LockUp {
+            hook_load_n: h.hook_load_n,
+            max_wob_n: h.max_wob_n,
+            by_helix: true,
+            helical_md_m: h.helical_md_m,
+            ..l
+        },
+        None => l,
+    }
 }
 
 /// The soft string beside `level`'s solve of `case`: for a converged `whole` or `hybrid` solve

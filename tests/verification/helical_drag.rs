@@ -281,3 +281,24 @@ fn loads_rows_answer_from_the_buckled_shape() {
         loads.hook_load_n / 1e3
     );
 }
+
+/// The whole string of the small grid well slid at 50 kN converges at that WOB with a hook load
+/// below zero (the surface pushing): its lock-up is named as the helix's (the plain soft
+/// string, which delivers 50 kN, would give a largest WOB above the WOB asked for), with the
+/// largest WOB of the soft string with the helix's drag (below 50 kN) and the results at the WOB
+/// asked for.
+#[test]
+fn a_converged_lock_up_is_named_by_the_helix() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::models::levels::solve_string;
+    let case = small_grid_case(50.0);
+    let ctl = SolveControls::from_settings(&case.solver);
+    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
+    let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    assert!(s.level.converged && s.level.hook_load_n.unwrap() < 0.0);
+    let l = s.lock_up.expect("no lock-up reported");
+    assert!(l.by_helix && l.results_at_wob_n.is_none(), "{l:?}");
+    assert_eq!(l.max_wob_n, lock_up_wob_n(&case).unwrap());
+    assert!(l.max_wob_n < 50e3 && l.hook_load_n < 0.0, "{l:?}");
+}
