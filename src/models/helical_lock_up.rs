@@ -7,8 +7,9 @@
 //! `solve` (`models::levels`) and the whole-string rows of `loads` answer with it.
 
 use crate::case::Case;
-use crate::models::buckled_start::solve_buckled;
+use crate::models::buckled_start::{solve_buckled, EQUILIBRIUM};
 use crate::models::fem::model::Model;
+use crate::models::fem::results::extract;
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{Solution, SolveControls};
@@ -72,7 +73,11 @@ pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls) -> Option<BelowLo
         let mut toward = continuation::at_wob(&model, h.max_wob_n);
         toward.consistent_tangent = true;
         let tolerance = (LOCK_UP_HOOK_TOLERANCE * h.max_wob_n).max(LOCK_UP_HOOK_TOLERANCE_N);
-        let climb = continuation::climb_wob(&toward, sol, wob, &left, tolerance, t0);
+        let in_equilibrium = |m: &Model, s: &Solution| {
+            let r = extract(m, s, case.mud.density_kg_m3);
+            r.force_imbalance_n.norm() <= EQUILIBRIUM * r.largest_force_n
+        };
+        let climb = continuation::climb_wob(&toward, sol, wob, &left, tolerance, t0, in_equilibrium);
         tracing::info!(wob_n = climb.wob_n, end = ?climb.end, "WOB climb below the helical lock-up");
         let mut solution = climb.solution;
         solution.converged = true;

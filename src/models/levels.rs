@@ -746,6 +746,10 @@ fn whole_at_lock_up(
     r.converged.then_some((l, r))
 }
 
+/// Factor on the residual tolerance of the refined re-solve of a lock-up answer by the helix's
+/// drag ([`whole_at_helical_lock_up`]).
+pub const LOCK_UP_RESIDUAL_FACTOR: f64 = 0.1;
+
 /// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
 /// the whole string found no equilibrium at `case`'s WOB, the whole string below that lock-up,
 /// then refined and taken off the straight branch as any solve ([`fem_part_by`]). Returns the
@@ -761,8 +765,11 @@ fn whole_at_helical_lock_up(
     let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
     let mut c = case.clone();
     c.operation.wob_n = below.wob_n;
+    // the refined re-solve of a buckled string at the usual residual tolerance can leave the
+    // global equilibrium at a few 1e-6 of the largest force (the grid's 110 deg, 1,000 m slide)
     let left = SolveControls {
         time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+        residual_tolerance: LOCK_UP_RESIDUAL_FACTOR * ctl.residual_tolerance,
         ..*ctl
     };
     let solution = below.solution;

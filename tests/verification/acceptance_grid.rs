@@ -85,8 +85,13 @@ pub fn grid_case(g: &GridCase) -> (String, String) {
 /// The survey CSV and case file of `g` with the kick-off point at `kop` (m MD) in place of the
 /// grid's 1,000 m.
 pub fn well_case(g: &GridCase, kop: f64) -> (String, String) {
+    well_case_with(g, kop, 6.0)
+}
+
+/// [`well_case`] with the build at `dls_deg_per_30m` (deg/30 m) in place of the grid's 6.
+pub fn well_case_with(g: &GridCase, kop: f64, dls_deg_per_30m: f64) -> (String, String) {
     let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
-    let build = g.inc_deg / 6.0 * 30.0;
+    let build = g.inc_deg / dls_deg_per_30m * 30.0;
     let n = (build / 10.0_f64).ceil() as usize;
     for k in 1..=n {
         let f = k as f64 / n as f64;
@@ -164,12 +169,16 @@ pub struct Outcome {
 /// Solve `g` at `soft` and at `whole` (as `drillpath solve --fidelity whole` does).
 pub fn solve_grid_case(g: &GridCase) -> Outcome {
     let (csv, toml) = grid_case(g);
-    let case: Case = load_temp_case(&csv, &toml);
+    solve_case(&load_temp_case(&csv, &toml))
+}
+
+/// Solve `case` at `soft` and at `whole` (as `drillpath solve --fidelity whole` does).
+pub fn solve_case(case: &Case) -> Outcome {
     let ctl = SolveControls::from_settings(&case.solver);
-    let soft = run(&case, choose(Fidelity::Level(Level::Soft), Purpose::Solve), &ctl).unwrap();
+    let soft = run(case, choose(Fidelity::Level(Level::Soft), Purpose::Solve), &ctl).unwrap();
     let t0 = Instant::now();
     let whole = solve_string(
-        &case,
+        case,
         choose(Fidelity::Level(Level::Whole), Purpose::Solve),
         &ctl,
         &mut |_, _, _| {},
@@ -196,7 +205,7 @@ pub fn solve_grid_case(g: &GridCase) -> Outcome {
         Err(_) => (false, f64::NAN, None, None),
     };
     Outcome {
-        helical_soft_hook_kn: helical_soft_string(&case).hook_load_n / 1e3,
+        helical_soft_hook_kn: helical_soft_string(case).hook_load_n / 1e3,
         soft_hook_kn: soft.hook_load_n.unwrap() / 1e3,
         converged,
         whole_hook_kn,
@@ -505,4 +514,127 @@ fn full_grid() {
         "GRID {ok} of {asked} cases with a non-negative soft hook load converge ({locked} of them answering with a lock-up below the WOB asked for)"
     );
     assert!(missed.is_empty(), "not converged: {missed:?}");
+}
+
+/// The issue's other acceptance cases, beside the grid: the 2,000 m horizontal lateral of the
+/// grid's well slid with WOBs from a quarter to 3 x the lateral pipe's helical onset (friction
+/// 0.2 and 0.35); the grid's well at 90 deg with a 30 deg/30 m build, drilling at 20/60/120 kN
+/// (friction 0.2 and 0.35); a 12 km extended-reach string (kick-off at 500 m, 3 deg/30 m to 80
+/// deg, held to 12,000 m MD, 12.25 in casing to 3,000 m) at 30 kN, drilling and sliding
+/// (friction 0.2 and 0.35). One `EXTRA` line per case as the grid's `GRID` lines; fails while a
+/// case with a non-negative soft hook load does not converge.
+/// `cargo test --release --test verification acceptance_grid::extra_cases -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn extra_cases() {
+    let mut cases: Vec<(String, String, String)> = Vec::new();
+    let horizontal = |wob_kn: f64, friction: f64| GridCase {
+        inc_deg: 90.0,
+        lateral_m: 2000.0,
+        mode: "sliding",
+        wob_kn,
+        friction,
+    };
+    let onset_kn = lateral_helical_onset_kn(&horizontal(10.0, 0.2));
+    println!("EXTRA lateral helical onset {onset_kn:.1} kN");
+    for friction in FRICTIONS {
+        for k in [0.25, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0] {
+            let g = horizontal((k * onset_kn).round(), friction);
+            let (csv, toml) = grid_case(&g);
+            cases.push((format!("horizontal {k} x onset: {}", g.name()), csv, toml));
+        }
+    }
+    for friction in FRICTIONS {
+        for wob_kn in [20.0, 60.0, 120.0] {
+            let g = GridCase {
+                inc_deg: 90.0,
+                lateral_m: 1000.0,
+                mode: "drilling",
+                wob_kn,
+                friction,
+            };
+            let (csv, toml) = well_case_with(&g, 1000.0, 30.0);
+            cases.push((format!("DLS 30: {}", g.name()), csv, toml));
+        }
+    }
+    for friction in FRICTIONS {
+        for mode in ["drilling", "sliding"] {
+            let (csv, toml) = erd_case(mode, friction);
+            cases.push((format!("ERD 12 km: {mode} 30 kN mu {friction}"), csv, toml));
+        }
+    }
+    let (mut asked, mut ok) = (0, 0);
+    let mut missed = Vec::new();
+    for (name, csv, toml) in &cases {
+        let o = solve_case(&load_temp_case(csv, toml));
+        let applies = o.soft_hook_kn >= 0.0;
+        println!(
+            "EXTRA {name} soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} buckled_start {:?} lock_up_at_kN {:?} applies {applies}",
+            o.soft_hook_kn,
+            o.helical_soft_hook_kn,
+            o.converged,
+            o.whole_hook_kn,
+            o.seconds,
+            o.buckled_start,
+            o.lock_up_at_kn.map(|w| (w * 10.0).round() / 10.0)
+        );
+        if applies {
+            asked += 1;
+            if o.converged {
+                ok += 1;
+            } else {
+                missed.push(name.clone());
+            }
+        }
+    }
+    println!("EXTRA {ok} of {asked} cases with a non-negative soft hook load converge");
+    assert!(missed.is_empty(), "not converged: {missed:?}");
+}
+
+/// The helical onset of the pipe in the lateral of `g`'s well (the grid's), kN.
+fn lateral_helical_onset_kn(g: &GridCase) -> f64 {
+    let (csv, toml) = grid_case(g);
+    let case = load_temp_case(&csv, &toml);
+    let md = case.operation.bit_md_m - 0.5 * g.lateral_m;
+    let s = case.operation.bit_md_m - md;
+    let c = case.string.component_at(s);
+    let hole = case.well.hole.diameter_at(md);
+    let span = drillpath::models::buckling::support_span_m(&case.string, s);
+    let (_, helical) =
+        drillpath::models::buckling::onset_at(c, &case.well.path, md, hole, case.mud.density_kg_m3, span)
+            .expect("no onset in the lateral");
+    helical / 1e3
+}
+
+/// The 12 km extended-reach case of [`extra_cases`] at 30 kN, `mode` and wall friction `friction`:
+/// survey CSV and case file.
+fn erd_case(mode: &str, friction: f64) -> (String, String) {
+    let (kop, inc, hold_to) = (500.0, 80.0, 12000.0);
+    let build = inc / 3.0 * 30.0;
+    let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
+    let n = (build / 10.0_f64).ceil() as usize;
+    for k in 1..=n {
+        let f = k as f64 / n as f64;
+        writeln!(csv, "{},{},0", kop + f * build, f * inc).unwrap();
+    }
+    writeln!(csv, "{hold_to},{inc},0").unwrap();
+    let rpm = if mode == "drilling" { "rpm = 60\n" } else { "" };
+    let toml = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "3000 m", diameter = "12.25 in" }}, {{ to_md = "{hold_to} m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "{mode}"
+bit_md = "{hold_to} m"
+wob = "30 kN"
+{rpm}rop = "12 m/h"
+friction = {friction}
+{BIT}{}{}{DRILL_PIPE}"#,
+        stabilizer("8.4375 in"),
+        collar("54 m")
+    );
+    (csv, toml)
 }

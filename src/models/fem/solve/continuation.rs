@@ -204,7 +204,7 @@ pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_
     let lo = START_FRACTION * target;
     let (first, consistent) = first_step(&at_wob(model, lo), model, ctl).ok()?;
     let first = Some(first).filter(|s| s.converged && s.state.hook_load_n >= 0.0)?;
-    let climb = climb_wob(&consistent, first, lo, ctl, hook_tolerance_n, t0);
+    let climb = climb_wob(&consistent, first, lo, ctl, hook_tolerance_n, t0, |_, _| true);
     match climb.end {
         ClimbEnd::Bracketed | ClimbEnd::HookLoad => Some((climb.wob_n, climb.solution.state.hook_load_n)),
         ClimbEnd::Target | ClimbEnd::Stalled => None,
@@ -243,8 +243,9 @@ pub struct Climb {
 /// (then bisected between the last step with a non-negative hook load and the first without,
 /// until the bracket is within [`MIN_STEP_FRACTION`] of the target), the target is reached, or
 /// the step falls below [`MIN_STEP_FRACTION`] of the target; at most [`SEARCH_BUDGET_FACTOR`]
-/// x `max_iterations` iterations and `ctl`'s time limit from `t0`. The solution's statistics count
-/// `sol`'s work and the climb's.
+/// x `max_iterations` iterations and `ctl`'s time limit from `t0`. A step counts as converged
+/// only if `accept` takes its solution (and its model). The solution's statistics count `sol`'s
+/// work and the climb's.
 pub fn climb_wob(
     model: &Model,
     sol: Solution,
@@ -252,6 +253,7 @@ pub fn climb_wob(
     ctl: &SolveControls,
     hook_tolerance_n: f64,
     t0: Instant,
+    accept: impl Fn(&Model, &Solution) -> bool,
 ) -> Climb {
     let target = model.loads.wob_n;
     let climb_t0 = Instant::now();
@@ -281,7 +283,12 @@ pub fn climb_wob(
             time_limit_s: ctl.time_limit_s - elapsed,
             ..*ctl
         };
-        match solve_interior_point_from(&at_wob(model, next), best.state.clone(), &step_ctl) {
+        let at = at_wob(model, next);
+        let solved = solve_interior_point_from(&at, best.state.clone(), &step_ctl).map(|mut s| {
+            s.converged = s.converged && accept(&at, &s);
+            s
+        });
+        match solved {
             Ok(s) if s.converged && s.state.hook_load_n >= 0.0 => {
                 iterations += s.stats.iterations;
                 factorizations += s.stats.factorizations;
