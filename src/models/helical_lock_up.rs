@@ -77,7 +77,8 @@ pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls) -> Option<BelowLo
             let r = extract(m, s, case.mud.density_kg_m3);
             r.force_imbalance_n.norm() <= EQUILIBRIUM * r.largest_force_n
         };
-        let climb = continuation::climb_wob(&toward, sol, wob, &left, tolerance, t0, in_equilibrium);
+        // the climb's time limit counts from `t0`, as `ctl`'s
+        let climb = continuation::climb_wob(&toward, sol, wob, ctl, tolerance, t0, in_equilibrium);
         tracing::info!(wob_n = climb.wob_n, end = ?climb.end, "WOB climb below the helical lock-up");
         let mut solution = climb.solution;
         solution.converged = true;
