@@ -40,7 +40,7 @@
 //! | command | library call | typed result |
 //! |---|---|---|
 //! | `survey` | [`io::case_toml::load_case`] or [`io::survey::read_survey`] | [`geometry::WellPath`] |
-//! | `solve` | [`models::levels::solve_string`] | [`models::levels::StringSolve`] |
+//! | `solve` | [`models::string_solve::solve_string`] | [`models::string_solve::StringSolve`] |
 //! | `predict` | [`predict::forecast::forecast`] | [`predict::forecast::Forecast`] |
 //! | `backanalyze` | [`predict::backanalysis::plan`], [`predict::backanalysis::run`] | [`predict::backanalysis::Backanalysis`] |
 //! | `loads` | [`loads::run::plan`], [`loads::run::run`] | [`loads::run::Chart`] |

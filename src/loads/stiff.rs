@@ -41,6 +41,7 @@ use crate::models::buckled_start;
 use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, NodeResult, SolveResults};
+use crate::models::fem::solve::continuation::ClimbEnd;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
@@ -230,6 +231,13 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             if let Some(out) = at_helical_lock_up(case, &ctl, iterations, t0) {
                 return (out, None);
             }
+            let climbed = helical_lock_up::climbed_to_wob(case, &left_of(&ctl, t0));
+            if let Some(c) = climbed.filter(|c| c.climb_end == ClimbEnd::Target) {
+                let its = iterations + c.solution.stats.iterations;
+                let seconds = t0.elapsed().as_secs_f64();
+                let out = converged(case, &c.model, &c.solution, its, seconds, Start::BuckledShape, None);
+                return (out, Some((c.model, c.solution.state)));
+            }
             let residual = sol.stats.residual_history.last().copied().unwrap_or(f64::NAN);
             (StiffOutcome::NotConverged { iterations, residual }, None)
         }
@@ -283,11 +291,7 @@ fn at_helical_lock_up(
     iterations: usize,
     t0: std::time::Instant,
 ) -> Option<StiffOutcome> {
-    let left = SolveControls {
-        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
-        ..*ctl
-    };
-    let below = helical_lock_up::below_helical_lock_up(case, &left)?;
+    let below = helical_lock_up::below_helical_lock_up(case, &left_of(ctl, t0))?.climbed;
     let mut c = case.clone();
     c.operation.wob_n = below.wob_n;
     let its = iterations + below.solution.stats.iterations;
@@ -302,6 +306,14 @@ fn at_helical_lock_up(
         Start::BuckledShape,
         Some(below.wob_n),
     ))
+}
+
+/// `ctl` with the time left of its limit since `t0`.
+fn left_of(ctl: &SolveControls, t0: std::time::Instant) -> SolveControls {
+    SolveControls {
+        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+        ..*ctl
+    }
 }
 
 fn top_radius(case: &Case) -> f64 {

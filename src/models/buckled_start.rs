@@ -38,7 +38,7 @@ pub const EQUILIBRIUM: f64 = 1e-6;
 /// `case`, N, tension positive, bit first; linear between the soft-string points) and the
 /// runs of nodes (index ranges from the bit, inclusive) where it is beyond the helical onset
 /// over at least [`MIN_HELICAL_RUN_M`]; none where the soft string is locked up (its hook load
-/// below zero: the lock-up is the answer, `models::levels`).
+/// below zero: the lock-up is the answer, `models::string_solve`).
 pub fn soft_helical_runs(case: &Case, model: &Model) -> (Vec<f64>, Vec<(usize, usize)>) {
     let soft = softstring::from_case(case, softstring::segment_length_m(&case.solver));
     if soft.hook_load_n < 0.0 {
@@ -125,7 +125,7 @@ pub fn solve_from_buckled_start(case: &Case, model: &Model, sol: Solution, ctl: 
 
 /// `model` (of `case`) solved from the buckled start alone (module docs), without the direct
 /// solve and its paths before it: one cold iteration, then [`solve_from_buckled_start`]. For a
-/// string known to be helically buckled (the lock-up answer, `models::levels`), where the
+/// string known to be helically buckled (the lock-up answer, `models::string_solve`), where the
 /// direct solve's stages only spend time.
 pub fn solve_buckled(case: &Case, model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let one = SolveControls {

@@ -97,7 +97,19 @@ pub fn stop_phrase(
     });
     let buckled = (stats.buckled_start == Some(false))
         .then(|| "a re-solve from the buckled shape (damped; a helix along the wall)".to_string());
-    let paths: Vec<String> = wob_path.into_iter().chain(friction_path).chain(buckled).collect();
+    let climb = stats.buckled_climb_n.map(|(reached, target)| {
+        format!(
+            "a WOB climb from the buckled shape that reached {:.1} of {:.1} kN",
+            reached / 1e3,
+            target / 1e3
+        )
+    });
+    let paths: Vec<String> = wob_path
+        .into_iter()
+        .chain(friction_path)
+        .chain(buckled)
+        .chain(climb)
+        .collect();
     let path = if paths.is_empty() {
         format!(" (the limit, `[solver] max_iterations` = {})", ctl.max_iterations)
     } else {

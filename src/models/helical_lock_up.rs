@@ -4,7 +4,7 @@
 //! string solved below the lock-up ([`below_helical_lock_up`]): from its buckled shape
 //! ([`solve_buckled`]) at a fraction of that soft string's largest WOB, then slacked off toward
 //! it ([`continuation::climb_wob`]) until its hook load is near zero or the path meets a limit.
-//! `solve` (`models::levels`) and the whole-string rows of `loads` answer with it.
+//! `solve` (`models::string_solve`) and the whole-string rows of `loads` answer with it.
 
 use crate::case::Case;
 use crate::models::buckled_start::{solve_buckled, EQUILIBRIUM};
@@ -22,10 +22,8 @@ use std::time::Instant;
 /// the helix's drag as an answer").
 pub const HELICAL_LOCK_UP_FRACTIONS: [f64; 2] = [0.5, 0.25];
 
-/// The whole string below its lock-up by the helix's drag ([`below_helical_lock_up`]).
-pub struct BelowLockUp {
-    /// The lock-up of the soft string with the helix's drag.
-    pub lock_up: helical_drag::HelicalLockUp,
+/// The whole string climbed from its buckled shape ([`climb_from_buckled_shape`]).
+pub struct Climbed {
     /// The WOB the whole string was solved at, N.
     pub wob_n: f64,
     /// The model at that WOB (its kink turned as solved).
@@ -36,55 +34,93 @@ pub struct BelowLockUp {
     pub climb_end: ClimbEnd,
 }
 
+/// The whole string below its lock-up by the helix's drag ([`below_helical_lock_up`]).
+pub struct BelowLockUp {
+    /// The lock-up of the soft string with the helix's drag.
+    pub lock_up: helical_drag::HelicalLockUp,
+    /// The whole string climbed toward that soft string's largest WOB.
+    pub climbed: Climbed,
+}
+
 /// Lock-up by the helix's drag as an answer: when the plain soft string of `case` delivers its
 /// WOB and the soft string with the helix's drag does not ([`helical_drag::helical_lock_up`]),
-/// the whole string solved from its buckled shape ([`solve_buckled`], the toolface held) at
-/// [`HELICAL_LOCK_UP_FRACTIONS`] of that soft string's largest WOB in turn; from the first that
-/// converges with a hook load not below zero, the WOB climbed toward that largest WOB
-/// ([`continuation::climb_wob`], warm-started steps) until the hook load falls within
-/// [`LOCK_UP_HOOK_TOLERANCE`] of zero or the path meets a limit; all within `ctl`'s time limit.
-/// None when the case is not so locked up, that largest WOB is zero, or no start converged.
+/// the whole string climbed from its buckled shape ([`climb_from_buckled_shape`]) toward that
+/// soft string's largest WOB until the hook load falls within [`LOCK_UP_HOOK_TOLERANCE`] of
+/// zero or the path meets a limit. None when the case is not so locked up, that largest WOB is
+/// zero, or no start converged.
 pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls) -> Option<BelowLockUp> {
     let h = helical_drag::helical_lock_up(case)?;
+    let tolerance = (LOCK_UP_HOOK_TOLERANCE * h.max_wob_n).max(LOCK_UP_HOOK_TOLERANCE_N);
+    let climbed = climb_from_buckled_shape(case, h.max_wob_n, tolerance, ctl)?;
+    Some(BelowLockUp { lock_up: h, climbed })
+}
+
+/// The whole string of `case` climbed toward its own WOB by [`climb_from_buckled_shape`]: for a
+/// solve that found no equilibrium at that WOB from its usual start, where no lock-up applies.
+/// The climb (an answer at the case's WOB where it ended at [`ClimbEnd::Target`]); None off
+/// bottom, with a hook-load input, or when no start converged.
+pub fn climbed_to_wob(case: &Case, ctl: &SolveControls) -> Option<Climbed> {
+    let op = &case.operation;
+    if !op.mode.on_bottom() || op.hook_load_n.is_some() || op.wob_n <= 0.0 {
+        return None;
+    }
+    climb_from_buckled_shape(case, op.wob_n, 0.0, ctl)
+}
+
+/// The whole string of `case` climbed from its buckled shape toward the WOB `target_n` (N): solved
+/// from the buckled shape ([`solve_buckled`], the toolface held) at
+/// [`HELICAL_LOCK_UP_FRACTIONS`] of `target_n` in turn; from the first that converges with a
+/// hook load not below zero, the WOB raised toward `target_n` ([`continuation::climb_wob`],
+/// warm-started steps, each step's global equilibrium within [`EQUILIBRIUM`] of the largest
+/// force) until the hook load falls below `hook_tolerance_n` (N), turns negative, the target is
+/// reached or the path meets a limit; all within `ctl`'s time limit. The string whirls where it
+/// would at `target_n` ([`whirl_intervals`]). The WOB reached with its model and converged
+/// solution, and how the climb ended; None when no start converged.
+pub fn climb_from_buckled_shape(
+    case: &Case,
+    target_n: f64,
+    hook_tolerance_n: f64,
+    ctl: &SolveControls,
+) -> Option<Climbed> {
     let t0 = Instant::now();
+    let mut at_target = case.clone();
+    at_target.operation.wob_n = target_n;
     for fraction in HELICAL_LOCK_UP_FRACTIONS {
         let left = SolveControls {
             time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
             ..*ctl
         };
-        let wob = fraction * h.max_wob_n;
+        let wob = fraction * target_n;
         if wob <= 0.0 || left.time_limit_s <= 0.0 {
             break;
         }
         let mut c = case.clone();
         c.operation.wob_n = wob;
         let mut model = Model::from_case(&c);
-        model.whirl_md_m = whirl_intervals(&c, &model);
+        model.whirl_md_m = whirl_intervals(&at_target, &model);
         let start = solve_holding_toolface(&mut model, &left, |m| solve_buckled(&c, m, &left));
         let converged = start.ok().filter(|s| s.converged && s.state.hook_load_n >= 0.0);
         tracing::info!(
             wob_n = wob,
             converged = converged.is_some(),
-            "whole string below its helical lock-up"
+            "whole string from its buckled shape below the WOB aimed at"
         );
         let Some(sol) = converged else {
             continue;
         };
-        let mut toward = continuation::at_wob(&model, h.max_wob_n);
+        let mut toward = continuation::at_wob(&model, target_n);
         toward.consistent_tangent = true;
-        let tolerance = (LOCK_UP_HOOK_TOLERANCE * h.max_wob_n).max(LOCK_UP_HOOK_TOLERANCE_N);
         let in_equilibrium = |m: &Model, s: &Solution| {
             let r = extract(m, s, case.mud.density_kg_m3);
             r.force_imbalance_n.norm() <= EQUILIBRIUM * r.largest_force_n
         };
         // the climb's time limit counts from `t0`, as `ctl`'s
-        let climb = continuation::climb_wob(&toward, sol, wob, ctl, tolerance, t0, in_equilibrium);
-        tracing::info!(wob_n = climb.wob_n, end = ?climb.end, "WOB climb below the helical lock-up");
+        let climb = continuation::climb_wob(&toward, sol, wob, ctl, hook_tolerance_n, t0, in_equilibrium);
+        tracing::info!(wob_n = climb.wob_n, end = ?climb.end, "WOB climb from the buckled shape");
         let mut solution = climb.solution;
         solution.converged = true;
         solution.stats.buckled_start = Some(true);
-        return Some(BelowLockUp {
-            lock_up: h,
+        return Some(Climbed {
             wob_n: climb.wob_n,
             model: continuation::at_wob(&model, climb.wob_n),
             solution,

@@ -4,6 +4,8 @@
 //! - [`softstring`]: the soft string (torque and drag along the hole axis, no bending);
 //! - [`fem`]: the stiff string (co-rotational beams and contact-friction gap elements);
 //! - [`levels`]: one static solve at a fidelity level (soft, bha, hybrid, whole);
+//! - [`string_solve`]: a solve as `drillpath solve` reports it, and the answers of a whole string
+//!   that found no equilibrium at its WOB;
 //! - [`buckling`]: sinusoidal and helical buckling onsets and the buckled intervals;
 //! - [`soft_comparison`]: the soft string beside a stiff solve's surface values;
 //! - [`helical_drag`]: the soft string with the helix's drag, and its helical lock-up;
@@ -21,4 +23,5 @@ pub mod helical_lock_up;
 pub mod levels;
 pub mod soft_comparison;
 pub mod softstring;
+pub mod string_solve;
 pub mod whirl;

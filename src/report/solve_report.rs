@@ -11,8 +11,8 @@ use crate::case::{Case, Level};
 use crate::models::buckling::{spans, tributary, BuckleState, Mark};
 use crate::models::fem::results::{NodeResult, SolveResults};
 use crate::models::fem::solve::SolveStats;
-use crate::models::levels::StringSolve;
 use crate::models::soft_comparison::SoftComparison;
+use crate::models::string_solve::StringSolve;
 use crate::predict::steer::{RssSteering, Steering};
 
 /// Ids of the solve report's figures (the tests look for each).

@@ -226,10 +226,10 @@ length = "0.3 m"
 }
 
 /// The whole-string `solve` of `case` (with its outputs' warnings).
-fn whole_solve(case: &Case) -> drillpath::models::levels::StringSolve {
+fn whole_solve(case: &Case) -> drillpath::models::string_solve::StringSolve {
     use drillpath::case::{choose, Fidelity, Level, Purpose};
     let ctl = SolveControls::from_settings(&case.solver);
-    drillpath::models::levels::solve_string(
+    drillpath::models::string_solve::solve_string(
         case,
         choose(Fidelity::Level(Level::Whole), Purpose::Solve),
         &ctl,
@@ -241,7 +241,7 @@ fn whole_solve(case: &Case) -> drillpath::models::levels::StringSolve {
 /// Mean wall force per length (N/m) and mean compression (N) of the reported nodes of `s`
 /// strictly between `top_md` and `bottom_md` (m): the nodes' wall forces over the window's
 /// length.
-fn window(s: &drillpath::models::levels::StringSolve, top_md: f64, bottom_md: f64) -> (f64, f64) {
+fn window(s: &drillpath::models::string_solve::StringSolve, top_md: f64, bottom_md: f64) -> (f64, f64) {
     let sel: Vec<_> = s
         .reported_nodes()
         .iter()

@@ -44,6 +44,10 @@ pub struct SolveStats {
     /// shape (`models::buckled_start`): `Some(true)` kept (the answer came from it),
     /// `Some(false)` tried and not kept; None when none ran.
     pub buckled_start: Option<bool>,
+    /// The climb from the buckled shape toward the WOB (`models::helical_lock_up::climbed_to_wob`)
+    /// that followed a whole-string solve that found no equilibrium and did not reach it: the
+    /// WOB it reached and the WOB aimed at, N; None when none ran or it reached the WOB.
+    pub buckled_climb_n: Option<(f64, f64)>,
 }
 
 impl SolveStats {

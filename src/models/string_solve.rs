@@ -1,0 +1,367 @@
+//! One static solve of a case as `drillpath solve` reports it ([`solve_string`]): the level's
+//! result ([`crate::models::levels`]) with the buckling marks, the checks (yield, lock-up), the
+//! survey sensors and the soft string beside it; and the answers of a whole-string solve that
+//! found no equilibrium at the WOB asked for: the whole string at the largest WOB it delivers
+//! (a lock-up), below its lock-up by the helix's drag ([`crate::models::helical_lock_up`]), or
+//! climbed to its WOB from its buckled shape.
+
+use crate::case::fidelity::{Choice, Level};
+use crate::case::Case;
+use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
+use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
+use crate::models::fem::model::Model;
+use crate::models::fem::results::{sensor_results, NodeResult, SensorResult};
+use crate::models::fem::solve::continuation::{self, ClimbEnd};
+use crate::models::fem::solve::SolveControls;
+use crate::models::helical_drag;
+use crate::models::helical_lock_up;
+use crate::models::levels::{fem_part_by, run_with_progress, FidelityError, LevelResult};
+use crate::models::soft_comparison::{soft_comparison, SoftComparison};
+use crate::models::softstring;
+use crate::models::whirl::whirl_intervals;
+use std::time::Instant;
+
+/// The warning of an answer that came from the re-solve from the buckled shape
+/// ([`buckled_start`]).
+pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium, and the hook load of another buckled shape can differ by about 10% (a known limit, docs/guide.md)";
+
+/// MD intervals `(top, bottom)` (m) as a warning lists them: "a-b m MD", joined by commas.
+fn md_intervals(intervals: &[(f64, f64)]) -> String {
+    let each: Vec<String> = intervals.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
+    each.join(", ")
+}
+
+/// The warning of a rotating string that whirls in the MD intervals `whirl_md_m` (m,
+/// [`crate::models::whirl`]).
+fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
+    format!(
+        "the rotating pipe is helically buckled at {} (soft string beyond the helical onset): a real string whirls there, and the model keeps the wall friction's torque and drag there but not its lateral push round the wall, which has no static equilibrium on a helix (docs/theory.md 7.5); the wall forces there are a static helix's",
+        md_intervals(whirl_md_m)
+    )
+}
+
+/// A static solve of a case at a fidelity level with what `drillpath solve` reports: the
+/// level's result, the nodes of its stiff part that are reported (the stiff part of a cut model
+/// is reported up to the coupling point, [`FemPart::coupling`]), the buckling marks there and
+/// along the soft part above, and the assumptions the user should know of.
+pub struct StringSolve {
+    /// The level's result.
+    pub level: LevelResult,
+    /// Index of the last reported node of the stiff part (None without a stiff part).
+    pub last_reported_node: Option<usize>,
+    /// Distance of the coupling point above the bit, m (a cut `bha` or `hybrid` model).
+    pub coupling_m: Option<f64>,
+    /// Buckling marks: the stiff part's reported nodes from the bit up, then the soft
+    /// string's points above them.
+    pub marks: Vec<Mark>,
+    /// Assumptions stated in the outputs (e.g. the hole above the first survey station).
+    pub notes: Vec<String>,
+    /// The highest stress against the yield strength (None without a stiff part).
+    pub yield_check: Option<YieldCheck>,
+    /// A hook load below zero on bottom (None otherwise).
+    pub lock_up: Option<LockUp>,
+    /// The survey sensors on the stiff part's reported nodes, with their sag angles.
+    pub sensors: Vec<SensorResult>,
+    /// The soft string at the same WOB beside a converged `whole` or `hybrid` solve.
+    pub soft_comparison: Option<SoftComparison>,
+}
+
+impl StringSolve {
+    /// Warnings about results a real string cannot give: stress beyond yield, lock-up.
+    pub fn warnings(&self, case: &Case) -> Vec<String> {
+        let mut w: Vec<String> = dogleg_warning(case).into_iter().collect();
+        w.extend(self.yield_check.and_then(|y| y.warning()));
+        if let Some(l) = &self.lock_up {
+            w.push(l.warning(case.operation.mode.name()));
+        }
+        if self
+            .level
+            .fem
+            .as_ref()
+            .is_some_and(|p| p.stats.buckled_start == Some(true))
+        {
+            w.push(BUCKLED_START_WARNING.to_string());
+        }
+        if let Some(p) = self.level.fem.as_ref().filter(|p| !p.model.whirl_md_m.is_empty()) {
+            w.push(whirl_warning(&p.model.whirl_md_m));
+        }
+        let runs = unbuckled_helical_runs(self.stiff_marks(), self.reported_nodes());
+        if !runs.is_empty() {
+            w.push(format!(
+                "the stiff pipe is compressed beyond the helical buckling onset at {} but the solve found it unbuckled there (its wall contacts stay on one side): its wall force and drag there are those of straight pipe and miss the helix's (Mitchell's r F^2/(4 EI)); treat the hook load and torque with caution (a known limit, docs/guide.md)",
+                md_intervals(&runs)
+            ));
+        }
+        w
+    }
+}
+
+impl StringSolve {
+    /// The stiff part's node results from the bit to the last reported node (empty without
+    /// a stiff part).
+    pub fn reported_nodes(&self) -> &[NodeResult] {
+        match (&self.level.fem, self.last_reported_node) {
+            (Some(part), Some(last)) => &part.results.nodes[..=last],
+            _ => &[],
+        }
+    }
+    /// The buckling marks of the stiff part's reported nodes.
+    pub fn stiff_marks(&self) -> &[Mark] {
+        &self.marks[..self.reported_nodes().len()]
+    }
+}
+
+/// Solve `case` at the level of `choice` ([`run_with_progress`]) and add what the outputs of
+/// `drillpath solve` show ([`StringSolve`]).
+pub fn solve_string(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Result<StringSolve, FidelityError> {
+    let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
+    let mut delivered = None;
+    if !level.converged && choice.level == Level::Whole {
+        let (answer, lock_up) = answer_without_equilibrium(case, choice, ctl, &mut level, on_stage);
+        if let Some(mut r) = answer {
+            // the statistics count the solve that found no equilibrium too
+            if let (Some(new), Some(failed)) = (r.fem.as_mut(), level.fem.as_ref()) {
+                new.stats.add_work(&failed.stats);
+            }
+            r.seconds += level.seconds;
+            delivered = lock_up;
+            level = r;
+        }
+    }
+    let coupling = level.fem.as_ref().and_then(|part| part.coupling);
+    let last_reported_node = level
+        .fem
+        .as_ref()
+        .map(|part| coupling.unwrap_or(part.model.nodes() - 1));
+    let coupling_m = level
+        .fem
+        .as_ref()
+        .zip(coupling)
+        .map(|(part, k)| part.model.mesh.nodes[k].s_m);
+    let mut marks = Vec::new();
+    if let (Some(part), Some(last)) = (&level.fem, last_reported_node) {
+        marks.extend(stiff_marks(case, &part.model, &part.results.nodes[..=last]));
+    }
+    if let Some(soft) = &level.soft {
+        marks.extend(soft_marks(case, soft, usize::from(level.fem.is_some())));
+    }
+    let yield_check = level
+        .fem
+        .as_ref()
+        .zip(last_reported_node)
+        .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
+    let lock_up = delivered.or_else(|| lock_up(case, level.hook_load_n, level.wob_n).map(|l| by_helix_if_so(case, l)));
+    let sensors = level
+        .fem
+        .as_ref()
+        .zip(last_reported_node)
+        .map(|(part, last)| sensor_results(&case.string, &part.model, &part.results.nodes[..=last]))
+        .unwrap_or_default();
+    let soft_comparison = beside_soft(case, &level);
+    Ok(StringSolve {
+        level,
+        last_reported_node,
+        coupling_m,
+        marks,
+        notes: case.string_above_survey_note().into_iter().collect(),
+        yield_check,
+        lock_up,
+        sensors,
+        soft_comparison,
+    })
+}
+
+/// The lock-up `l` of a solve of `case` whose hook load is below zero at the WOB asked for, as a
+/// lock-up by the helix's drag where the plain soft string delivers that WOB and the soft string
+/// with the helix's drag does not (the plain soft string's largest WOB, above the WOB asked for,
+/// would contradict the solve); `l` otherwise.
+fn by_helix_if_so(case: &Case, l: LockUp) -> LockUp {
+    match helical_drag::helical_lock_up(case) {
+        Some(h) => LockUp {
+            hook_load_n: h.hook_load_n,
+            max_wob_n: h.max_wob_n,
+            by_helix: true,
+            helical_md_m: h.helical_md_m,
+            ..l
+        },
+        None => l,
+    }
+}
+
+/// The soft string beside `level`'s solve of `case`: for a converged `whole` or `hybrid` solve
+/// (the levels that give surface values from a stiff part), None otherwise.
+fn beside_soft(case: &Case, level: &LevelResult) -> Option<SoftComparison> {
+    if !matches!(level.choice.level, Level::Whole | Level::Hybrid) || !level.converged {
+        return None;
+    }
+    Some(soft_comparison(
+        case,
+        level.wob_n,
+        level.hook_load_n?,
+        level.surface_torque_nm?,
+    ))
+}
+
+/// The lock-up of `case` at the WOB `wob_n` (N) by the soft string's hook load there.
+fn soft_lock_up_at(case: &Case, wob_n: f64) -> Option<LockUp> {
+    let mut c = case.clone();
+    c.operation.wob_n = wob_n;
+    let hook = softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n;
+    lock_up(&c, Some(hook), wob_n)
+}
+
+/// Lock-up as an answer: when the whole string found no equilibrium at `case`'s WOB and the
+/// soft string is locked up there (its hook load below zero), the whole string solved at the
+/// largest WOB it delivers, its hook load zero: found by the WOB path
+/// ([`crate::models::fem::solve::continuation::wob_at_zero_hook_load`], the hook load within 1%
+/// of the soft string's lock-up WOB or 0.5 kN), then solved there as any case. Returns the
+/// lock-up (the results' WOB in it) and the result; None when the case is not locked up, the
+/// path finds no such WOB or the solve there does not converge.
+fn whole_at_lock_up(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Option<(LockUp, LevelResult)> {
+    let soft = soft_lock_up_at(case, case.operation.wob_n)?;
+    let mut model = Model::from_case(case);
+    // the string whirls where it is helical at the WOB it can deliver
+    let mut delivered = case.clone();
+    delivered.operation.wob_n = soft.max_wob_n;
+    model.whirl_md_m = whirl_intervals(&delivered, &model);
+    let tolerance = (0.01 * soft.max_wob_n).max(500.0);
+    let (wob, hook) = continuation::wob_at_zero_hook_load(&model, ctl, tolerance)?;
+    tracing::info!(
+        wob_n = wob,
+        hook_n = hook,
+        "lock-up: the largest WOB with a non-negative hook load"
+    );
+    let mut c = case.clone();
+    c.operation.wob_n = wob;
+    let r = run_with_progress(&c, choice, ctl, on_stage).ok()?;
+    let l = LockUp {
+        results_at_wob_n: Some(wob),
+        results_at_largest_wob: true,
+        ..soft
+    };
+    r.converged.then_some((l, r))
+}
+
+/// The answer of a whole-string solve `level` of `case` that found no equilibrium at its WOB, in
+/// the time left of `ctl`'s limit: the whole string at the largest WOB it delivers
+/// ([`whole_at_lock_up`]), below its lock-up by the helix's drag ([`whole_at_helical_lock_up`]),
+/// or climbed to its WOB from its buckled shape ([`whole_climbed_to_wob`]), the first that
+/// applies and answers, with its lock-up. None without one; a climb that stopped below the WOB
+/// is recorded in `level`'s statistics ([`crate::models::fem::solve::SolveStats::buckled_climb_n`]) for the message.
+fn answer_without_equilibrium(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    level: &mut LevelResult,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> (Option<LevelResult>, Option<LockUp>) {
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - level.seconds,
+        ..*ctl
+    };
+    let locked = whole_at_lock_up(case, choice.clone(), &left, on_stage)
+        .or_else(|| whole_at_helical_lock_up(case, choice.clone(), &left, on_stage));
+    if let Some((l, r)) = locked {
+        return (Some(r), Some(l));
+    }
+    match whole_climbed_to_wob(case, choice, &left, on_stage) {
+        Ok(r) => (Some(r), None),
+        Err(reached) => {
+            if let Some(part) = level.fem.as_mut() {
+                part.stats.buckled_climb_n = reached;
+            }
+            (None, None)
+        }
+    }
+}
+
+/// The whole string of `case` at its WOB climbed from its buckled shape
+/// ([`helical_lock_up::climbed_to_wob`]) when the solve found no equilibrium there from its
+/// usual start and no lock-up applies, then refined and taken off the straight branch as any
+/// solve ([`fem_part_by`], the residual tolerance times [`LOCK_UP_RESIDUAL_FACTOR`]). Err with the
+/// WOB the climb reached and the case's (N) where it stopped below the WOB, Err(None) where no
+/// climb ran or its answer did not converge.
+fn whole_climbed_to_wob(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Result<LevelResult, Option<(f64, f64)>> {
+    let t0 = Instant::now();
+    on_stage(0, 1, "stiff whole string climbed from its buckled shape");
+    let climbed = helical_lock_up::climbed_to_wob(case, ctl).ok_or(None)?;
+    if climbed.climb_end != ClimbEnd::Target {
+        return Err(Some((climbed.wob_n, case.operation.wob_n)));
+    }
+    let (model, solution) = (climbed.model, climbed.solution);
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+        residual_tolerance: LOCK_UP_RESIDUAL_FACTOR * ctl.residual_tolerance,
+        ..*ctl
+    };
+    let part = fem_part_by(model, case, &left, None, |_| Ok(solution)).map_err(|_| None)?;
+    if !part.converged {
+        return Err(None);
+    }
+    let mut out = LevelResult::empty(choice, case.operation.wob_n);
+    out.fill_from_whole(part);
+    out.seconds = t0.elapsed().as_secs_f64();
+    Ok(out)
+}
+
+/// Factor on the residual tolerance of the refined re-solve of a lock-up answer by the helix's
+/// drag ([`whole_at_helical_lock_up`]).
+pub const LOCK_UP_RESIDUAL_FACTOR: f64 = 0.1;
+
+/// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
+/// the whole string found no equilibrium at `case`'s WOB, the whole string below that lock-up,
+/// then refined and taken off the straight branch as any solve ([`fem_part_by`]). Returns the
+/// lock-up (the results' WOB in it) and the result.
+fn whole_at_helical_lock_up(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Option<(LockUp, LevelResult)> {
+    let t0 = Instant::now();
+    on_stage(0, 1, "stiff whole string below its helical lock-up");
+    let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
+    let (h, climbed) = (below.lock_up, below.climbed);
+    let mut c = case.clone();
+    c.operation.wob_n = climbed.wob_n;
+    // the refined re-solve of a buckled string at the usual residual tolerance can leave the
+    // global equilibrium at a few 1e-6 of the largest force (the grid's 110 deg, 1,000 m slide)
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
+        residual_tolerance: LOCK_UP_RESIDUAL_FACTOR * ctl.residual_tolerance,
+        ..*ctl
+    };
+    let solution = climbed.solution;
+    let part = fem_part_by(climbed.model, &c, &left, None, |_| Ok(solution)).ok()?;
+    if !part.converged || part.results.hook_load_n < 0.0 {
+        return None;
+    }
+    let mut out = LevelResult::empty(choice, climbed.wob_n);
+    out.fill_from_whole(part);
+    out.seconds = t0.elapsed().as_secs_f64();
+    let l = LockUp {
+        hook_load_n: h.hook_load_n,
+        wob_n: h.wob_n,
+        max_wob_n: h.max_wob_n,
+        results_at_wob_n: Some(climbed.wob_n),
+        by_helix: true,
+        helical_md_m: h.helical_md_m,
+        results_at_largest_wob: matches!(climbed.climb_end, ClimbEnd::HookLoad | ClimbEnd::Bracketed),
+    };
+    Some((l, out))
+}
