@@ -22,7 +22,7 @@ use crate::models::whirl::whirl_intervals;
 use std::time::Instant;
 
 /// The warning of an answer that came from the re-solve from the buckled shape
-/// ([`buckled_start`]).
+/// ([`crate::models::buckled_start`]).
 pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium, and the hook load of another buckled shape can differ by about 10% (a known limit, docs/guide.md)";
 
 /// MD intervals `(top, bottom)` (m) as a warning lists them: "a-b m MD", joined by commas.
@@ -42,7 +42,7 @@ fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
 
 /// A static solve of a case at a fidelity level with what `drillpath solve` reports: the
 /// level's result, the nodes of its stiff part that are reported (the stiff part of a cut model
-/// is reported up to the coupling point, [`FemPart::coupling`]), the buckling marks there and
+/// is reported up to the coupling point, [`crate::models::levels::FemPart::coupling`]), the buckling marks there and
 /// along the soft part above, and the assumptions the user should know of.
 pub struct StringSolve {
     /// The level's result.
@@ -319,8 +319,8 @@ fn whole_climbed_to_wob(
     Ok(out)
 }
 
-/// Factor on the residual tolerance of the refined re-solve of a lock-up answer by the helix's
-/// drag ([`whole_at_helical_lock_up`]).
+/// Factor on the residual tolerance of the refined re-solve of an answer climbed from the buckled
+/// shape (a lock-up by the helix's drag, or the climb to the WOB).
 pub const LOCK_UP_RESIDUAL_FACTOR: f64 = 0.1;
 
 /// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
