@@ -287,8 +287,7 @@ fn answer_without_equilibrium(
 
 /// The whole string of `case` at its WOB climbed from its buckled shape
 /// ([`helical_lock_up::climbed_to_wob`]) when the solve found no equilibrium there from its
-/// usual start and no lock-up applies, then refined and taken off the straight branch as any
-/// solve ([`fem_part_by`], the residual tolerance times [`LOCK_UP_RESIDUAL_FACTOR`]). Err with the
+/// usual start and no lock-up applies ([`whole_from_climb`]). Err with the
 /// WOB the climb reached and the case's (N) where it stopped below the WOB, Err(None) where no
 /// climb ran or its answer did not converge.
 fn whole_climbed_to_wob(
@@ -303,40 +302,20 @@ fn whole_climbed_to_wob(
     if climbed.climb_end != ClimbEnd::Target {
         return Err(Some((climbed.wob_n, case.operation.wob_n)));
     }
-    let (model, solution) = (climbed.model, climbed.solution);
-    let left = SolveControls {
-        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
-        residual_tolerance: LOCK_UP_RESIDUAL_FACTOR * ctl.residual_tolerance,
-        ..*ctl
-    };
-    let part = fem_part_by(model, case, &left, None, |_| Ok(solution)).map_err(|_| None)?;
-    if !part.converged {
-        return Err(None);
-    }
-    let mut out = LevelResult::empty(choice, case.operation.wob_n);
-    out.fill_from_whole(part);
-    out.seconds = t0.elapsed().as_secs_f64();
-    Ok(out)
+    whole_from_climb(case, choice, climbed, ctl, t0).ok_or(None)
 }
 
-/// Factor on the residual tolerance of the refined re-solve of an answer climbed from the buckled
-/// shape (a lock-up by the helix's drag, or the climb to the WOB).
-pub const LOCK_UP_RESIDUAL_FACTOR: f64 = 0.1;
-
-/// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
-/// the whole string found no equilibrium at `case`'s WOB, the whole string below that lock-up,
-/// then refined and taken off the straight branch as any solve ([`fem_part_by`]). Returns the
-/// lock-up (the results' WOB in it) and the result.
-fn whole_at_helical_lock_up(
+/// The level result of the whole string of `case` climbed from its buckled shape (`climbed`, its
+/// WOB the results'): refined and taken off the straight branch as any solve ([`fem_part_by`],
+/// the residual tolerance times [`LOCK_UP_RESIDUAL_FACTOR`], in the time left of `ctl`'s limit
+/// since `t0`). None when that does not converge or the hook load is below zero.
+fn whole_from_climb(
     case: &Case,
     choice: Choice,
+    climbed: helical_lock_up::Climbed,
     ctl: &SolveControls,
-    on_stage: &mut dyn FnMut(usize, usize, &str),
-) -> Option<(LockUp, LevelResult)> {
-    let t0 = Instant::now();
-    on_stage(0, 1, "stiff whole string below its helical lock-up");
-    let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
-    let (h, climbed) = (below.lock_up, below.climbed);
+    t0: Instant,
+) -> Option<LevelResult> {
     let mut c = case.clone();
     c.operation.wob_n = climbed.wob_n;
     // the refined re-solve of a buckled string at the usual residual tolerance can leave the
@@ -354,6 +333,27 @@ fn whole_at_helical_lock_up(
     let mut out = LevelResult::empty(choice, climbed.wob_n);
     out.fill_from_whole(part);
     out.seconds = t0.elapsed().as_secs_f64();
+    Some(out)
+}
+
+/// Factor on the residual tolerance of the refined re-solve of an answer climbed from the buckled
+/// shape (a lock-up by the helix's drag, or the climb to the WOB).
+pub const LOCK_UP_RESIDUAL_FACTOR: f64 = 0.1;
+
+/// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
+/// the whole string found no equilibrium at `case`'s WOB, the whole string below that lock-up
+/// ([`whole_from_climb`]). Returns the
+/// lock-up (the results' WOB in it) and the result.
+fn whole_at_helical_lock_up(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Option<(LockUp, LevelResult)> {
+    let t0 = Instant::now();
+    on_stage(0, 1, "stiff whole string below its helical lock-up");
+    let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
+    let (h, climbed) = (below.lock_up, below.climbed);
     let l = LockUp {
         hook_load_n: h.hook_load_n,
         wob_n: h.wob_n,
@@ -363,5 +363,6 @@ fn whole_at_helical_lock_up(
         helical_md_m: h.helical_md_m,
         results_at_largest_wob: matches!(climbed.climb_end, ClimbEnd::HookLoad | ClimbEnd::Bracketed),
     };
+    let out = whole_from_climb(case, choice, climbed, ctl, t0)?;
     Some((l, out))
 }

@@ -91,16 +91,9 @@ pub fn well_case(g: &GridCase, kop: f64) -> (String, String) {
 
 /// [`well_case`] with the build at `dls_deg_per_30m` (deg/30 m) in place of the grid's 6.
 pub fn well_case_with(g: &GridCase, kop: f64, dls_deg_per_30m: f64) -> (String, String) {
-    let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
-    let build = g.inc_deg / dls_deg_per_30m * 30.0;
-    let n = (build / 10.0_f64).ceil() as usize;
-    for k in 1..=n {
-        let f = k as f64 / n as f64;
-        writeln!(csv, "{},{},0", kop + f * build, f * g.inc_deg).unwrap();
-    }
-    let landing = kop + build;
+    let landing = kop + g.inc_deg / dls_deg_per_30m * 30.0;
     let td = landing + g.lateral_m;
-    writeln!(csv, "{td},{},0", g.inc_deg).unwrap();
+    let csv = build_and_hold(kop, dls_deg_per_30m, g.inc_deg, td);
     let rpm = if g.mode == "drilling" { "rpm = 60\n" } else { "" };
     let toml = format!(
         r#"
@@ -123,6 +116,20 @@ friction = {}
         collar("54 m")
     );
     (csv, toml)
+}
+
+/// The survey CSV of a well vertical to `kop` (m MD), built at `dls_deg_per_30m` (deg/30 m,
+/// stations every 10 m at most) to `inc_deg` (deg, azimuth 0) and held there to `td` (m MD).
+pub fn build_and_hold(kop: f64, dls_deg_per_30m: f64, inc_deg: f64, td: f64) -> String {
+    let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
+    let build = inc_deg / dls_deg_per_30m * 30.0;
+    let n = (build / 10.0_f64).ceil() as usize;
+    for k in 1..=n {
+        let f = k as f64 / n as f64;
+        writeln!(csv, "{},{},0", kop + f * build, f * inc_deg).unwrap();
+    }
+    writeln!(csv, "{td},{inc_deg},0").unwrap();
+    csv
 }
 
 /// Every case of the grid, in order.
@@ -165,6 +172,54 @@ pub struct Outcome {
     pub helical_soft_hook_kn: f64,
     /// The WOB of the results when `solve` answered with a lock-up below the WOB asked for, kN.
     pub lock_up_at_kn: Option<f64>,
+}
+
+impl Outcome {
+    /// The outcome in one line (a `GRID` or `EXTRA` line after the case's name), ending with
+    /// whether the acceptance applies (a non-negative soft hook load).
+    pub fn line(&self) -> String {
+        format!(
+            "soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} lock_up_at_kN {:?} applies {}",
+            self.soft_hook_kn,
+            self.helical_soft_hook_kn,
+            self.converged,
+            self.whole_hook_kn,
+            self.seconds,
+            self.helix,
+            self.buckled_start,
+            self.lock_up_at_kn.map(|w| (w * 10.0).round() / 10.0),
+            self.soft_hook_kn >= 0.0
+        )
+    }
+}
+
+/// The count of a run of cases against the acceptance.
+#[derive(Default)]
+pub struct Tally {
+    /// Cases with a non-negative soft hook load (the acceptance applies).
+    pub asked: usize,
+    /// Of those, converged.
+    pub ok: usize,
+    /// Of those, converged with a lock-up answer below the WOB asked for.
+    pub locked: usize,
+    /// The names of those that did not converge.
+    pub missed: Vec<String>,
+}
+
+impl Tally {
+    /// Count the outcome `o` of the case `name`.
+    pub fn add(&mut self, o: &Outcome, name: String) {
+        if o.soft_hook_kn < 0.0 {
+            return;
+        }
+        self.asked += 1;
+        if o.converged {
+            self.ok += 1;
+            self.locked += usize::from(o.lock_up_at_kn.is_some());
+        } else {
+            self.missed.push(name);
+        }
+    }
 }
 
 /// Solve `g` at `soft` and at `whole` (as `drillpath solve --fidelity whole` does).
@@ -481,39 +536,20 @@ fn write_cases() {
 #[ignore]
 fn full_grid() {
     let write_to = std::env::var_os("DRILLPATH_GRID_CASES").map(std::path::PathBuf::from);
-    let (mut asked, mut ok, mut locked) = (0, 0, 0);
-    let mut missed = Vec::new();
+    let mut tally = Tally::default();
     for g in grid() {
         if let Some(dir) = &write_to {
             write_grid_case(dir, &g);
         }
         let o = solve_grid_case(&g);
-        let applies = o.soft_hook_kn >= 0.0;
-        println!(
-            "GRID {} soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} lock_up_at_kN {:?} applies {applies}",
-            g.name(),
-            o.soft_hook_kn,
-            o.helical_soft_hook_kn,
-            o.converged,
-            o.whole_hook_kn,
-            o.seconds,
-            o.helix,
-            o.buckled_start,
-            o.lock_up_at_kn.map(|w| (w * 10.0).round() / 10.0)
-        );
-        if applies {
-            asked += 1;
-            if o.converged {
-                ok += 1;
-                locked += usize::from(o.lock_up_at_kn.is_some());
-            } else {
-                missed.push(g.name());
-            }
-        }
+        println!("GRID {} {}", g.name(), o.line());
+        tally.add(&o, g.name());
     }
     println!(
-        "GRID {ok} of {asked} cases with a non-negative soft hook load converge ({locked} of them answering with a lock-up below the WOB asked for)"
+        "GRID {} of {} cases with a non-negative soft hook load converge ({} of them answering with a lock-up below the WOB asked for)",
+        tally.ok, tally.asked, tally.locked
     );
+    let missed = tally.missed;
     assert!(missed.is_empty(), "not converged: {missed:?}");
 }
 
@@ -564,30 +600,13 @@ fn extra_cases() {
             cases.push((format!("ERD 12 km: {mode} 30 kN mu {friction}"), csv, toml));
         }
     }
-    let (mut asked, mut ok) = (0, 0);
-    let mut missed = Vec::new();
+    let mut tally = Tally::default();
     for (name, csv, toml) in &cases {
         let o = solve_case(&load_temp_case(csv, toml));
-        let applies = o.soft_hook_kn >= 0.0;
-        println!(
-            "EXTRA {name} soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} buckled_start {:?} lock_up_at_kN {:?} applies {applies}",
-            o.soft_hook_kn,
-            o.helical_soft_hook_kn,
-            o.converged,
-            o.whole_hook_kn,
-            o.seconds,
-            o.buckled_start,
-            o.lock_up_at_kn.map(|w| (w * 10.0).round() / 10.0)
-        );
-        if applies {
-            asked += 1;
-            if o.converged {
-                ok += 1;
-            } else {
-                missed.push(name.clone());
-            }
-        }
+        println!("EXTRA {name} {}", o.line());
+        tally.add(&o, name.clone());
     }
+    let (ok, asked, missed) = (tally.ok, tally.asked, tally.missed);
     println!("EXTRA {ok} of {asked} cases with a non-negative soft hook load converge");
     assert!(missed.is_empty(), "not converged: {missed:?}");
 }
@@ -610,15 +629,8 @@ fn lateral_helical_onset_kn(g: &GridCase) -> f64 {
 /// The 12 km extended-reach case of [`extra_cases`] at 30 kN, `mode` and wall friction `friction`:
 /// survey CSV and case file.
 fn erd_case(mode: &str, friction: f64) -> (String, String) {
-    let (kop, inc, hold_to) = (500.0, 80.0, 12000.0);
-    let build = inc / 3.0 * 30.0;
-    let mut csv = format!("md_m,inc_deg,azi_deg\n0,0,0\n{kop},0,0\n");
-    let n = (build / 10.0_f64).ceil() as usize;
-    for k in 1..=n {
-        let f = k as f64 / n as f64;
-        writeln!(csv, "{},{},0", kop + f * build, f * inc).unwrap();
-    }
-    writeln!(csv, "{hold_to},{inc},0").unwrap();
+    let hold_to = 12000.0;
+    let csv = build_and_hold(500.0, 3.0, 80.0, hold_to);
     let rpm = if mode == "drilling" { "rpm = 60\n" } else { "" };
     let toml = format!(
         r#"
