@@ -45,7 +45,7 @@ use crate::models::fem::solve::continuation::ClimbEnd;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
-use crate::models::helical_lock_up;
+use crate::models::helical_lock_up::{self, Climbed};
 use crate::models::levels::run as run_level;
 use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
@@ -231,11 +231,9 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             if let Some(out) = at_helical_lock_up(case, &ctl, iterations, t0) {
                 return (out, None);
             }
-            let climbed = helical_lock_up::climbed_to_wob(case, &left_of(&ctl, t0));
+            let climbed = helical_lock_up::climbed_to_wob(case, &ctl.with_time_left(t0));
             if let Some(c) = climbed.filter(|c| c.climb_end == ClimbEnd::Target) {
-                let its = iterations + c.solution.stats.iterations;
-                let seconds = t0.elapsed().as_secs_f64();
-                let out = converged(case, &c.model, &c.solution, its, seconds, Start::BuckledShape, None);
+                let out = climbed_row(case, &c, iterations, t0, false);
                 return (out, Some((c.model, c.solution.state)));
             }
             let residual = sol.stats.residual_history.last().copied().unwrap_or(f64::NAN);
@@ -261,7 +259,7 @@ fn at_lock_up(
     if !continuation::applies(model) {
         return None;
     }
-    let tolerance = (0.01 * model.loads.wob_n).max(500.0);
+    let tolerance = continuation::lock_up_hook_tolerance_n(model.loads.wob_n);
     let (wob, _) = continuation::wob_at_zero_hook_load(model, ctl, tolerance)?;
     let mut c = case.clone();
     c.operation.wob_n = wob;
@@ -291,29 +289,27 @@ fn at_helical_lock_up(
     iterations: usize,
     t0: std::time::Instant,
 ) -> Option<StiffOutcome> {
-    let below = helical_lock_up::below_helical_lock_up(case, &left_of(ctl, t0))?.climbed;
-    let mut c = case.clone();
-    c.operation.wob_n = below.wob_n;
-    let its = iterations + below.solution.stats.iterations;
+    let below = helical_lock_up::below_helical_lock_up(case, &ctl.with_time_left(t0))?.climbed;
+    Some(climbed_row(case, &below, iterations, t0, true))
+}
+
+/// The row of `case` from the whole string climbed from its buckled shape `c`, at its WOB
+/// (`lock_up`: as the row's lock-up WOB; `iterations` before the climb added).
+fn climbed_row(case: &Case, c: &Climbed, iterations: usize, t0: std::time::Instant, lock_up: bool) -> StiffOutcome {
+    let mut at = case.clone();
+    at.operation.wob_n = c.wob_n;
+    let its = iterations + c.solution.stats.iterations;
     let seconds = t0.elapsed().as_secs_f64();
-    let (m, sol) = (&below.model, &below.solution);
-    Some(converged(
-        &c,
-        m,
-        sol,
+    let lock_up_wob_n = lock_up.then_some(c.wob_n);
+    converged(
+        &at,
+        &c.model,
+        &c.solution,
         its,
         seconds,
         Start::BuckledShape,
-        Some(below.wob_n),
-    ))
-}
-
-/// `ctl` with the time left of its limit since `t0`.
-fn left_of(ctl: &SolveControls, t0: std::time::Instant) -> SolveControls {
-    SolveControls {
-        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
-        ..*ctl
-    }
+        lock_up_wob_n,
+    )
 }
 
 fn top_radius(case: &Case) -> f64 {

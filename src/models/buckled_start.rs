@@ -159,7 +159,7 @@ pub fn solve_from_buckled_start_by(
             return false;
         }
         let r = extract(model, h, case.mud.density_kg_m3);
-        let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+        let eq = r.equilibrium_error();
         tracing::info!(equilibrium = eq, "re-solve from a buckled start converged");
         eq <= EQUILIBRIUM
     };

@@ -5,6 +5,7 @@
 use crate::case::Case;
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
+use crate::models::helical_drag::HelicalLockUp;
 use crate::models::softstring;
 use crate::string::material::grade_yield_strength_pa;
 
@@ -109,6 +110,20 @@ pub struct LockUp {
 }
 
 impl LockUp {
+    /// The lock-up by the helix's drag `h` ([`LockUp::by_helix`]), its results at the WOB asked
+    /// for.
+    pub fn by_helix(h: &HelicalLockUp) -> LockUp {
+        LockUp {
+            hook_load_n: h.hook_load_n,
+            wob_n: h.wob_n,
+            max_wob_n: h.max_wob_n,
+            results_at_wob_n: None,
+            by_helix: true,
+            helical_md_m: h.helical_md_m,
+            results_at_largest_wob: false,
+        }
+    }
+
     /// The warning to print.
     pub fn warning(&self, mode: &str) -> String {
         if self.by_helix {

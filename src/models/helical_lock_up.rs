@@ -45,12 +45,12 @@ pub struct BelowLockUp {
 /// Lock-up by the helix's drag as an answer: when the plain soft string of `case` delivers its
 /// WOB and the soft string with the helix's drag does not ([`helical_drag::helical_lock_up`]),
 /// the whole string climbed from its buckled shape ([`climb_from_buckled_shape`]) toward that
-/// soft string's largest WOB until the hook load falls within [`LOCK_UP_HOOK_TOLERANCE`] of
-/// zero or the path meets a limit. None when the case is not so locked up, that largest WOB is
+/// soft string's largest WOB until the hook load falls within
+/// [`continuation::lock_up_hook_tolerance_n`] of zero or the path meets a limit. None when the case is not so locked up, that largest WOB is
 /// zero, or no start converged.
 pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls) -> Option<BelowLockUp> {
     let h = helical_drag::helical_lock_up(case)?;
-    let tolerance = (LOCK_UP_HOOK_TOLERANCE * h.max_wob_n).max(LOCK_UP_HOOK_TOLERANCE_N);
+    let tolerance = continuation::lock_up_hook_tolerance_n(h.max_wob_n);
     let climbed = climb_from_buckled_shape(case, h.max_wob_n, tolerance, ctl)?;
     Some(BelowLockUp { lock_up: h, climbed })
 }
@@ -86,10 +86,7 @@ pub fn climb_from_buckled_shape(
     let mut at_target = case.clone();
     at_target.operation.wob_n = target_n;
     for fraction in HELICAL_LOCK_UP_FRACTIONS {
-        let left = SolveControls {
-            time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
-            ..*ctl
-        };
+        let left = ctl.with_time_left(t0);
         let wob = fraction * target_n;
         if wob <= 0.0 || left.time_limit_s <= 0.0 {
             break;
@@ -110,10 +107,8 @@ pub fn climb_from_buckled_shape(
         };
         let mut toward = continuation::at_wob(&model, target_n);
         toward.consistent_tangent = true;
-        let in_equilibrium = |m: &Model, s: &Solution| {
-            let r = extract(m, s, case.mud.density_kg_m3);
-            r.force_imbalance_n.norm() <= EQUILIBRIUM * r.largest_force_n
-        };
+        let in_equilibrium =
+            |m: &Model, s: &Solution| extract(m, s, case.mud.density_kg_m3).equilibrium_error() <= EQUILIBRIUM;
         // the climb's time limit counts from `t0`, as `ctl`'s
         let climb = continuation::climb_wob(&toward, sol, wob, ctl, hook_tolerance_n, t0, in_equilibrium);
         tracing::info!(wob_n = climb.wob_n, end = ?climb.end, "WOB climb from the buckled shape");
@@ -129,10 +124,3 @@ pub fn climb_from_buckled_shape(
     }
     None
 }
-
-/// Hook load at which [`below_helical_lock_up`]'s climb stops, as a fraction of the largest WOB
-/// of the soft string with the helix's drag (at least [`LOCK_UP_HOOK_TOLERANCE_N`]).
-pub const LOCK_UP_HOOK_TOLERANCE: f64 = 0.01;
-
-/// Smallest hook load at which [`below_helical_lock_up`]'s climb stops, N.
-pub const LOCK_UP_HOOK_TOLERANCE_N: f64 = 500.0;

@@ -320,7 +320,7 @@ fn buckled_or_straight(
             return false;
         }
         let r = extract(model, h, case.mud.density_kg_m3);
-        let eq = r.force_imbalance_n.norm() / r.largest_force_n;
+        let eq = r.equilibrium_error();
         let rest = length(&node_runs(case, model, &r));
         tracing::info!(equilibrium = eq, straight_m = rest, "buckled re-solve converged");
         eq <= HELIX_EQUILIBRIUM && rest < length(straight)

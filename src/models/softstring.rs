@@ -171,7 +171,7 @@ fn n_elements(l: f64, max_el: f64) -> usize {
 /// # Panics
 /// If `max_element_m` is not positive.
 pub fn soft_string(input: &SoftStringInput) -> SoftStringResult {
-    integrate(input, false, &|_: f64, _: f64, _: f64| 0.0)
+    integrate(input, false, &no_extra_contact)
 }
 
 /// [`soft_string`] with an added wall contact force per length, `extra(md_m, s_m,
@@ -193,7 +193,12 @@ pub fn soft_string_with_extra_contact(
 /// section. Used above the stiff part of the `hybrid` level, so that its surface torque is
 /// consistent with the stiff model below.
 pub fn soft_string_stiff_contact(input: &SoftStringInput) -> SoftStringResult {
-    integrate(input, true, &|_: f64, _: f64, _: f64| 0.0)
+    integrate(input, true, &no_extra_contact)
+}
+
+/// No added wall contact force (N/m): the plain soft string's `extra`.
+fn no_extra_contact(_md_m: f64, _s_m: f64, _compression_n: f64) -> f64 {
+    0.0
 }
 
 fn integrate(input: &SoftStringInput, stiff_contact: bool, extra: &dyn Fn(f64, f64, f64) -> f64) -> SoftStringResult {
@@ -243,18 +248,23 @@ fn integrate(input: &SoftStringInput, stiff_contact: bool, extra: &dyn Fn(f64, f
                 .friction_at(0.5 * (p_lo.md_m + md_up))
                 .unwrap_or(input.friction);
             let lateral_friction = if stiff_contact { mu * rot_share } else { 0.0 };
+            let lat_norm = lat.norm();
+            let lateral_normal = lat_norm / lateral_friction.hypot(1.0);
+            // the element's axial balance: the axial force at its upper end, N, under the wall
+            // force `normal` (N)
+            let f_lo = f;
+            let axial_up = |normal: f64| f_lo + (w_b * (p_lo.position.z - p_up.position.z) - mu * normal * ax_share);
             let added = added_contact(
                 extra,
                 (0.5 * (p_lo.md_m + md_up), xa + (j as f64 + 0.5) * h),
                 f,
                 dl,
-                |q| f + w_b * (p_lo.position.z - p_up.position.z) - mu * (lat.norm() + q) * ax_share,
+                |q| axial_up(lateral_normal + q),
             );
-            let normal = lat.norm() / lateral_friction.hypot(1.0) + added;
-            let lat_norm = lat.norm();
+            let normal = lateral_normal + added;
             let dir = if lat_norm > 0.0 { lat / lat_norm } else { Vec3::zeros() };
             let fric = mu * normal;
-            f += w_b * (p_lo.position.z - p_up.position.z) - fric * ax_share;
+            f = axial_up(normal);
             m += fric * r_c * rot_share;
             let q = if dl > 0.0 { normal / dl } else { 0.0 };
             if points.len() == 1 {
@@ -320,7 +330,7 @@ pub fn segment_length_m(settings: &crate::case::SolverSettings) -> f64 {
 ///   a hook load above the off-bottom value gives WOB 0).
 /// - Bit torque: [`crate::models::bit::bit_torque_nm`] at the WOB.
 pub fn from_case(case: &Case, max_element_m: f64) -> SoftStringResult {
-    from_case_with_extra_contact(case, max_element_m, &|_: f64, _: f64, _: f64| 0.0)
+    from_case_with_extra_contact(case, max_element_m, &no_extra_contact)
 }
 
 /// [`from_case`] with the added wall contact force per length `extra` of

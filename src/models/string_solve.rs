@@ -181,16 +181,10 @@ pub fn solve_string(
 /// with the helix's drag does not (the plain soft string's largest WOB, above the WOB asked for,
 /// would contradict the solve); `l` otherwise.
 fn by_helix_if_so(case: &Case, l: LockUp) -> LockUp {
-    match helical_drag::helical_lock_up(case) {
-        Some(h) => LockUp {
-            hook_load_n: h.hook_load_n,
-            max_wob_n: h.max_wob_n,
-            by_helix: true,
-            helical_md_m: h.helical_md_m,
-            ..l
-        },
-        None => l,
-    }
+    helical_drag::helical_lock_up(case).map_or(l, |h| LockUp {
+        wob_n: l.wob_n,
+        ..LockUp::by_helix(&h)
+    })
 }
 
 /// The soft string beside `level`'s solve of `case`: for a converged `whole` or `hybrid` solve
@@ -234,7 +228,7 @@ fn whole_at_lock_up(
     let mut delivered = case.clone();
     delivered.operation.wob_n = soft.max_wob_n;
     model.whirl_md_m = whirl_intervals(&delivered, &model);
-    let tolerance = (0.01 * soft.max_wob_n).max(500.0);
+    let tolerance = continuation::lock_up_hook_tolerance_n(soft.max_wob_n);
     let (wob, hook) = continuation::wob_at_zero_hook_load(&model, ctl, tolerance)?;
     tracing::info!(
         wob_n = wob,
@@ -321,9 +315,8 @@ fn whole_from_climb(
     // the refined re-solve of a buckled string at the usual residual tolerance can leave the
     // global equilibrium at a few 1e-6 of the largest force (the grid's 110 deg, 1,000 m slide)
     let left = SolveControls {
-        time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
         residual_tolerance: LOCK_UP_RESIDUAL_FACTOR * ctl.residual_tolerance,
-        ..*ctl
+        ..ctl.with_time_left(t0)
     };
     let solution = climbed.solution;
     let part = fem_part_by(climbed.model, &c, &left, None, |_| Ok(solution)).ok()?;
@@ -355,13 +348,9 @@ fn whole_at_helical_lock_up(
     let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
     let (h, climbed) = (below.lock_up, below.climbed);
     let l = LockUp {
-        hook_load_n: h.hook_load_n,
-        wob_n: h.wob_n,
-        max_wob_n: h.max_wob_n,
         results_at_wob_n: Some(climbed.wob_n),
-        by_helix: true,
-        helical_md_m: h.helical_md_m,
         results_at_largest_wob: matches!(climbed.climb_end, ClimbEnd::HookLoad | ClimbEnd::Bracketed),
+        ..LockUp::by_helix(&h)
     };
     let out = whole_from_climb(case, choice, climbed, ctl, t0)?;
     Some((l, out))

@@ -94,28 +94,31 @@ pub fn well_case_with(g: &GridCase, kop: f64, dls_deg_per_30m: f64) -> (String, 
     let landing = kop + g.inc_deg / dls_deg_per_30m * 30.0;
     let td = landing + g.lateral_m;
     let csv = build_and_hold(kop, dls_deg_per_30m, g.inc_deg, td);
-    let rpm = if g.mode == "drilling" { "rpm = 60\n" } else { "" };
-    let toml = format!(
+    (csv, case_toml(landing, td, g.mode, g.wob_kn, g.friction))
+}
+
+/// The case file of the grid's string and mud with 12.25 in casing to `casing_md` (m MD) and
+/// 8.5 in open hole below to the bit at `td` (m MD), `mode` (`drilling` at 60 rpm, or
+/// `sliding`) at `wob_kn` (kN) with wall friction `friction`.
+pub fn case_toml(casing_md: f64, td: f64, mode: &str, wob_kn: f64, friction: f64) -> String {
+    let rpm = if mode == "drilling" { "rpm = 60\n" } else { "" };
+    format!(
         r#"
 [well]
 survey = "survey.csv"
-hole = [{{ to_md = "{landing} m", diameter = "12.25 in" }}, {{ to_md = "{td} m", diameter = "8.5 in" }}]
+hole = [{{ to_md = "{casing_md} m", diameter = "12.25 in" }}, {{ to_md = "{td} m", diameter = "8.5 in" }}]
 [mud]
 density = "1.2 sg"
 [operation]
-mode = "{}"
+mode = "{mode}"
 bit_md = "{td} m"
-wob = "{} kN"
+wob = "{wob_kn} kN"
 {rpm}rop = "12 m/h"
-friction = {}
+friction = {friction}
 {BIT}{}{}{DRILL_PIPE}"#,
-        g.mode,
-        g.wob_kn,
-        g.friction,
         stabilizer("8.4375 in"),
         collar("54 m")
-    );
-    (csv, toml)
+    )
 }
 
 /// The survey CSV of a well vertical to `kop` (m MD), built at `dls_deg_per_30m` (deg/30 m,
@@ -631,23 +634,5 @@ fn lateral_helical_onset_kn(g: &GridCase) -> f64 {
 fn erd_case(mode: &str, friction: f64) -> (String, String) {
     let hold_to = 12000.0;
     let csv = build_and_hold(500.0, 3.0, 80.0, hold_to);
-    let rpm = if mode == "drilling" { "rpm = 60\n" } else { "" };
-    let toml = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "3000 m", diameter = "12.25 in" }}, {{ to_md = "{hold_to} m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "{mode}"
-bit_md = "{hold_to} m"
-wob = "30 kN"
-{rpm}rop = "12 m/h"
-friction = {friction}
-{BIT}{}{}{DRILL_PIPE}"#,
-        stabilizer("8.4375 in"),
-        collar("54 m")
-    );
-    (csv, toml)
+    (csv, case_toml(3000.0, hold_to, mode, 30.0, friction))
 }

@@ -190,10 +190,9 @@ fn loads_rows_carry_the_helix_drag() {
 #[test]
 fn helical_lock_up_is_an_answer() {
     use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::continuation::lock_up_hook_tolerance_n;
     use drillpath::models::fem::solve::SolveControls;
-    use drillpath::models::helical_lock_up::{
-        HELICAL_LOCK_UP_FRACTIONS, LOCK_UP_HOOK_TOLERANCE, LOCK_UP_HOOK_TOLERANCE_N,
-    };
+    use drillpath::models::helical_lock_up::HELICAL_LOCK_UP_FRACTIONS;
     use drillpath::models::string_solve::solve_string;
     let case = small_grid_case(55.0);
     let ctl = SolveControls::from_settings(&case.solver);
@@ -221,7 +220,7 @@ fn helical_lock_up_is_an_answer() {
     let helical_soft = helical_soft_string(&c).hook_load_n;
     assert!(hook >= 0.0 && hook < helical_soft + 1e3, "{hook} {helical_soft}");
     if l.results_at_largest_wob {
-        let tolerance = (LOCK_UP_HOOK_TOLERANCE * l.max_wob_n).max(LOCK_UP_HOOK_TOLERANCE_N);
+        let tolerance = lock_up_hook_tolerance_n(l.max_wob_n);
         assert!(hook < tolerance, "{hook} {tolerance}");
     }
     assert!(s.warnings(&case).iter().any(|w| w.starts_with("helical lock-up")));

@@ -146,6 +146,14 @@ pub struct SolveResults {
     pub largest_force_n: f64,
 }
 
+impl SolveResults {
+    /// The global equilibrium error: the net external force's magnitude over the largest single
+    /// external force term (dimensionless).
+    pub fn equilibrium_error(&self) -> f64 {
+        self.force_imbalance_n.norm() / self.largest_force_n
+    }
+}
+
 /// Extract results from a solution (`mud_density_kg_m3` for the hydrostatic pressure of the
 /// stresses, kg/m3).
 pub fn extract(model: &Model, sol: &Solution, mud_density_kg_m3: f64) -> SolveResults {

@@ -211,6 +211,19 @@ pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_
     }
 }
 
+/// Hook load at which a search for the largest WOB stops (lock-up), as a fraction of that WOB
+/// (at least [`LOCK_UP_HOOK_TOLERANCE_N`]).
+pub const LOCK_UP_HOOK_TOLERANCE: f64 = 0.01;
+
+/// Smallest hook load at which a search for the largest WOB stops, N.
+pub const LOCK_UP_HOOK_TOLERANCE_N: f64 = 500.0;
+
+/// The hook load (N) within which a search for the largest WOB, about `wob_n` (N), stops:
+/// [`LOCK_UP_HOOK_TOLERANCE`] of it, at least [`LOCK_UP_HOOK_TOLERANCE_N`].
+pub fn lock_up_hook_tolerance_n(wob_n: f64) -> f64 {
+    (LOCK_UP_HOOK_TOLERANCE * wob_n).max(LOCK_UP_HOOK_TOLERANCE_N)
+}
+
 /// How a [`climb_wob`] ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ClimbEnd {

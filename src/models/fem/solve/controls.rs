@@ -1,6 +1,7 @@
 //! The controls of a solve: iteration limit, tolerances, contact scheme.
 
 use crate::case::{Method, SolverSettings};
+use std::time::Instant;
 
 /// Solver controls.
 #[derive(Debug, Clone, Copy)]
@@ -37,6 +38,14 @@ pub struct SolveControls {
 }
 
 impl SolveControls {
+    /// These controls with the time left of their limit since `t0` (s).
+    pub fn with_time_left(&self, t0: Instant) -> SolveControls {
+        SolveControls {
+            time_limit_s: self.time_limit_s - t0.elapsed().as_secs_f64(),
+            ..*self
+        }
+    }
+
     /// Controls from a case's `[solver]` table (iteration limit, gap tolerance, scheme, alpha).
     pub fn from_settings(s: &SolverSettings) -> SolveControls {
         SolveControls {

@@ -233,9 +233,8 @@ pub fn solve_from_helix(
             continue;
         }
         let ctl = SolveControls {
-            time_limit_s: ctl.time_limit_s - t0.elapsed().as_secs_f64(),
             lateral_damping_n_per_m: attempt.damping * damping,
-            ..*ctl
+            ..ctl.with_time_left(t0)
         };
         if ctl.time_limit_s <= 0.0 {
             break;
