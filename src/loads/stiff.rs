@@ -217,12 +217,14 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             (out, Some((model, sol.state)))
         }
         Ok(sol) => {
-            let iterations = iterations + sol.stats.iterations;
+            let before = iterations;
+            let iterations = before + sol.stats.iterations;
             if let Some(out) = at_lock_up(case, &model, &ctl, iterations, t0) {
                 return (out, None);
             }
+            // its statistics count the cold solve's work and its own
             let sol = buckled_start::solve_from_buckled_start(case, &model, sol, &ctl);
-            let iterations = iterations + sol.stats.iterations;
+            let iterations = before + sol.stats.iterations;
             if sol.converged {
                 let seconds = t0.elapsed().as_secs_f64();
                 let out = converged(case, &model, &sol, iterations, seconds, Start::BuckledShape, None);
