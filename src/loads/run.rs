@@ -6,9 +6,10 @@ use super::calibrate::{calibrate, calibrated_case, Calibration, CalibrationError
 use super::chart::{case_at_depth, soft_chart, ChartSettings};
 use super::row::LoadRow;
 use super::stiff::{hybrid_depth, stiff_depth, Solved};
-use super::{check_fits, depth_list, ChartOperation, MODES};
+use super::{case_for_row, check_fits, depth_list, ChartOperation, MODES};
 use crate::case::fidelity::Choice;
-use crate::case::{Case, Level};
+use crate::case::{Case, Level, Mode};
+use crate::models::lock_up_depth::{lock_up_depths, LockUpDepths};
 use crate::models::softstring::segment_length_m;
 use std::time::Instant;
 
@@ -103,6 +104,10 @@ pub struct Chart {
     pub soft_seconds: f64,
     /// Time of the stiff columns, s (0 at the `soft` level).
     pub stiff_seconds: f64,
+    /// The lock-up depths of the on-bottom load cases that are locked up at the deepest bit
+    /// depth (the soft string with the helix's drag at the chart's WOB,
+    /// [`crate::models::lock_up_depth`]), in [`MODES`] order.
+    pub lock_up_depths: Vec<(Mode, LockUpDepths)>,
 }
 
 /// MDs between which a bit depth may lie, m: the top of the survey and the deepest hole (the
@@ -187,8 +192,10 @@ pub fn run(case: &Case, plan: &ChartPlan, on_depth: &mut dyn FnMut(usize, f64)) 
     if level != Level::Soft {
         stiff_rows(&chart_case, &plan.depths, &plan.op, level, &mut rows, on_depth);
     }
+    let lock_up_depths = chart_lock_up_depths(&chart_case, plan);
     Ok(Chart {
         rows,
+        lock_up_depths,
         calibration,
         soft_seconds,
         stiff_seconds: if level == Level::Soft {
@@ -197,6 +204,23 @@ pub fn run(case: &Case, plan: &ChartPlan, on_depth: &mut dyn FnMut(usize, f64)) 
             t1.elapsed().as_secs_f64()
         },
     })
+}
+
+/// The lock-up depths ([`Chart::lock_up_depths`]) of the chart of `case` planned by `plan`.
+fn chart_lock_up_depths(case: &Case, plan: &ChartPlan) -> Vec<(Mode, LockUpDepths)> {
+    let Some(&deepest) = plan.depths.last() else {
+        return Vec::new();
+    };
+    let string = case.string.at_depth(deepest);
+    MODES
+        .iter()
+        .filter(|m| m.on_bottom())
+        .filter_map(|&mode| {
+            let row_case = case_for_row(case, &string, deepest, mode, &plan.op);
+            let depths = lock_up_depths(&row_case, plan.op.wob_n);
+            depths.at_wob_md_m.is_some().then_some((mode, depths))
+        })
+        .collect()
 }
 
 /// Fill the stiff columns of the chart `rows` of `case` at `depths` with the `level` (whole or

@@ -6,6 +6,7 @@ use crate::case::Case;
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
 use crate::models::helical_drag::HelicalLockUp;
+use crate::models::lock_up_depth::{lock_up_depths, LockUpDepths};
 use crate::models::softstring;
 use crate::string::material::grade_yield_strength_pa;
 
@@ -107,6 +108,13 @@ pub struct LockUp {
     /// climb's tolerance of zero); false where that path met a limit first (then the WOB is a
     /// lower bound of the largest).
     pub results_at_largest_wob: bool,
+    /// For a lock-up by the helix's drag: the results are those of a level whose soft string
+    /// has no helix's drag (`soft`, `hybrid`) at the WOB asked for, their hook load not below
+    /// zero.
+    pub results_without_helical_drag: bool,
+    /// The bit depths from which the string locks up at the WOB asked for and at zero WOB
+    /// ([`crate::models::lock_up_depth`]); None where not computed (`loads` rows).
+    pub depths: Option<LockUpDepths>,
 }
 
 impl LockUp {
@@ -121,7 +129,36 @@ impl LockUp {
             by_helix: true,
             helical_md_m: h.helical_md_m,
             results_at_largest_wob: false,
+            results_without_helical_drag: false,
+            depths: None,
         }
+    }
+
+    /// The lock-up with its lock-up depths computed for `case` at the WOB asked for
+    /// ([`lock_up_depths`]).
+    pub fn with_depths(self, case: &Case) -> LockUp {
+        LockUp {
+            depths: Some(lock_up_depths(case, self.wob_n)),
+            ..self
+        }
+    }
+
+    /// The warning's clause on the lock-up depths (empty where not computed).
+    fn depth_clause(&self) -> String {
+        let Some(d) = self.depths else {
+            return String::new();
+        };
+        let Some(at_wob) = d.at_wob_md_m else {
+            return String::new();
+        };
+        let zero = match d.at_zero_wob_md_m {
+            Some(z) => format!("even at zero WOB from {z:.0} m MD"),
+            None => "at zero WOB it reaches this depth".to_string(),
+        };
+        format!(
+            "; lock-up depth (soft string with the helix's drag, the hole drilled as surveyed): at {:.0} kN it locks up once the bit is deeper than {at_wob:.0} m MD, {zero}",
+            self.wob_n / 1e3
+        )
     }
 
     /// The warning to print.
@@ -138,10 +175,11 @@ impl LockUp {
             None => String::new(),
         };
         format!(
-            "lock-up: hook load {:.0} kN below zero, the surface would have to push the string down to put {:.0} kN on the bit while {mode}; the string can deliver at most about {:.0} kN WOB (soft string, hook load zero): less WOB or friction, rotation, or heavier pipe above the compressed part{at}",
+            "lock-up: hook load {:.0} kN below zero, the surface would have to push the string down to put {:.0} kN on the bit while {mode}; the string can deliver at most about {:.0} kN WOB (soft string, hook load zero): less WOB or friction, rotation, or heavier pipe above the compressed part{}{at}",
             self.hook_load_n / 1e3,
             self.wob_n / 1e3,
-            self.max_wob_n / 1e3
+            self.max_wob_n / 1e3,
+            self.depth_clause()
         )
     }
 }
@@ -166,6 +204,14 @@ impl LockUp {
                 w / 1e3,
                 self.max_wob_n / 1e3
             ),
+            None if self.results_without_helical_drag => format!(
+                "; the results are at the WOB asked for, from a soft string without the helix's drag: their hook load, not below zero, is one the string cannot give ({})",
+                if self.max_wob_n > 0.0 {
+                    "`--fidelity whole` solves the stiff string, which forms the helix, below the lock-up"
+                } else {
+                    "at this bit depth the string cannot be put on bottom at any WOB"
+                }
+            ),
             None => "; the results are at the WOB asked for, where the solved string's hook load is below zero too (the surface pushing)".to_string(),
         };
         let helix = match self.helical_md_m {
@@ -178,9 +224,10 @@ impl LockUp {
             format!("its hook load is {:.0} kN", self.hook_load_n / 1e3)
         };
         format!(
-            "helical lock-up: the pipe buckles into a helix whose wall force and drag grow faster than its weight; by the soft string with the helix's drag (Mitchell's r F^2/(4 EI)) {hook}, the surface would have to push to put {:.0} kN on the bit while {mode}, and it delivers at most about {:.0} kN WOB{helix}: less WOB or friction, rotation, or heavier pipe above the helix{at}",
+            "helical lock-up: the pipe buckles into a helix whose wall force and drag grow faster than its weight; by the soft string with the helix's drag (Mitchell's r F^2/(4 EI)) {hook}, the surface would have to push to put {:.0} kN on the bit while {mode}, and it delivers at most about {:.0} kN WOB{helix}: less WOB or friction, rotation, or heavier pipe above the helix{}{at}",
             self.wob_n / 1e3,
-            self.max_wob_n / 1e3
+            self.max_wob_n / 1e3,
+            self.depth_clause()
         )
     }
 }
@@ -202,6 +249,8 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
         by_helix: false,
         helical_md_m: None,
         results_at_largest_wob: false,
+        results_without_helical_drag: false,
+        depths: None,
     })
 }
 

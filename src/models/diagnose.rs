@@ -14,6 +14,7 @@ use crate::case::Case;
 use crate::models::buckling::{soft_marks, zones, BuckleState};
 use crate::models::helical_drag::helical_lock_up;
 use crate::models::levels::FemPart;
+use crate::models::lock_up_depth::lock_up_depths;
 use crate::models::softstring;
 
 /// One-sentence hints on `case` for a non-converged stiff solve (empty when the soft string
@@ -42,6 +43,10 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
             l.max_wob_n / 1e3
         ));
     }
+    let locked = soft.hook_load_n < 0.0 || !hints.is_empty();
+    if locked && case.operation.hook_load_n.is_none() {
+        hints.extend(lock_up_depth_hint(case, wob));
+    }
     let m = soft_marks(case, &soft, 0);
     let helical: Vec<_> = zones(&m)
         .into_iter()
@@ -62,6 +67,25 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
         ));
     }
     hints
+}
+
+/// The hint naming the lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB
+/// ([`lock_up_depths`]); None when the soft string with the helix's drag is not locked up at the
+/// case's bit depth.
+fn lock_up_depth_hint(case: &Case, wob_n: f64) -> Option<String> {
+    let d = lock_up_depths(case, wob_n);
+    let at_wob = d.at_wob_md_m?;
+    let zero = match d.at_zero_wob_md_m {
+        Some(z) => format!(
+            "and even at zero WOB from {z:.0} m MD: this depth cannot be reached while {} at any WOB",
+            case.operation.mode.name()
+        ),
+        None => "while at zero WOB it reaches this depth".to_string(),
+    };
+    Some(format!(
+        "lock-up depth (the soft string with the helix's drag, the string refitted to each bit depth of the surveyed hole): at {:.0} kN WOB the string locks up once the bit is deeper than {at_wob:.0} m MD, {zero}",
+        wob_n / 1e3
+    ))
 }
 
 /// "stopped at the time limit of one solve, T s (`[solver] time_limit`)", for the messages of

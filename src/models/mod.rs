@@ -10,6 +10,7 @@
 //! - [`soft_comparison`]: the soft string beside a stiff solve's surface values;
 //! - [`helical_drag`]: the soft string with the helix's drag, and its helical lock-up;
 //! - [`helical_lock_up`]: the whole string below a helical lock-up, the answer where it locks up;
+//! - [`lock_up_depth`]: the bit depth from which the string locks up in its operation;
 //! - [`diagnose`]: why a stiff solve may not converge (lock-up, helical buckling).
 
 pub mod bit;
@@ -21,6 +22,7 @@ pub mod fem;
 pub mod helical_drag;
 pub mod helical_lock_up;
 pub mod levels;
+pub mod lock_up_depth;
 pub mod soft_comparison;
 pub mod softstring;
 pub mod string_solve;

@@ -155,7 +155,10 @@ pub fn solve_string(
         .as_ref()
         .zip(last_reported_node)
         .and_then(|(part, last)| yield_check(case, &part.model, &part.results.nodes[..=last]));
-    let lock_up = delivered.or_else(|| lock_up(case, level.hook_load_n, level.wob_n).map(|l| by_helix_if_so(case, l)));
+    let lock_up = delivered
+        .or_else(|| lock_up(case, level.hook_load_n, level.wob_n).map(|l| by_helix_if_so(case, l)))
+        .or_else(|| helix_missed(case, &level))
+        .map(|l| l.with_depths(case));
     let sensors = level
         .fem
         .as_ref()
@@ -183,6 +186,20 @@ pub fn solve_string(
 fn by_helix_if_so(case: &Case, l: LockUp) -> LockUp {
     helical_drag::helical_lock_up(case).map_or(l, |h| LockUp {
         wob_n: l.wob_n,
+        ..LockUp::by_helix(&h)
+    })
+}
+
+/// The lock-up by the helix's drag of `case` where `level`'s results come from a soft string
+/// without it (`soft`, `hybrid`) and their hook load is not below zero: the helix's drag makes
+/// that hook load one the string cannot give. None otherwise (a `whole` string forms its helix).
+fn helix_missed(case: &Case, level: &LevelResult) -> Option<LockUp> {
+    let soft_above = matches!(level.choice.level, Level::Soft | Level::Hybrid);
+    if !soft_above || level.hook_load_n? < 0.0 {
+        return None;
+    }
+    helical_drag::helical_lock_up(case).map(|h| LockUp {
+        results_without_helical_drag: true,
         ..LockUp::by_helix(&h)
     })
 }

@@ -25,6 +25,7 @@ pub fn write_loads(
     }
     print_summary(&chart.rows, &plan.depths, chart.soft_seconds, units, out)?;
     warn_helical_lock_up(&chart.rows, units, out)?;
+    print_lock_up_depths(chart, units, out)?;
     if plan.choice.level != Level::Soft {
         print_stiff_summary(
             &chart.rows,
@@ -216,6 +217,28 @@ fn warn_helical_lock_up(rows: &[LoadRow], units: UnitSystem, out: &mut impl Writ
     warn_rows(out, &locked, |n| {
         format!("helical lock-up: in {n} rows the soft string with the helix's drag (Mitchell's r F^2/(4 EI), helical_drag_hook_load_kN) needs the surface to push, while the soft string's hook load is not below zero: the helically buckled pipe's drag outgrows its weight (docs/theory.md 7.7)")
     })
+}
+
+/// A line per on-bottom load case locked up at the deepest bit depth: its lock-up depths
+/// ([`Chart::lock_up_depths`]).
+fn print_lock_up_depths(chart: &Chart, units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
+    let depth = units.depth();
+    for (mode, d) in &chart.lock_up_depths {
+        let Some(at_wob) = d.at_wob_md_m else {
+            continue;
+        };
+        let zero = match d.at_zero_wob_md_m {
+            Some(z) => format!("even at zero WOB from {}", depth.fmt(z, 0)),
+            None => "at zero WOB it reaches the deepest depth".to_string(),
+        };
+        writeln!(
+            out,
+            "  lock-up depth, {}: at the chart's WOB the string locks up once the bit is deeper than {} MD, {zero} (soft string with the helix's drag, to 0.1 m)",
+            mode.name(),
+            depth.fmt(at_wob, 0)
+        )?;
+    }
+    Ok(())
 }
 
 /// The rows whose stiff outcome gives a positive `length` (m), each as "depth mode over length"

@@ -165,6 +165,9 @@ struct LockUpJson {
     helical_top_md_m: Option<Finite>,
     helical_bottom_md_m: Option<Finite>,
     results_at_largest_wob: bool,
+    lock_up_depth_m: Option<Finite>,
+    lock_up_depth_zero_wob_m: Option<Finite>,
+    results_without_helical_drag: bool,
 }
 
 /// The `soft_string_comparison` key: the soft string at the same WOB beside a `whole` or
@@ -452,6 +455,9 @@ impl SolveSummary {
                 helical_top_md_m: l.helical_md_m.map(|(top, _)| Finite(top)),
                 helical_bottom_md_m: l.helical_md_m.map(|(_, bottom)| Finite(bottom)),
                 results_at_largest_wob: l.results_at_largest_wob,
+                lock_up_depth_m: l.depths.and_then(|d| d.at_wob_md_m).map(Finite),
+                lock_up_depth_zero_wob_m: l.depths.and_then(|d| d.at_zero_wob_md_m).map(Finite),
+                results_without_helical_drag: l.results_without_helical_drag,
             }),
             warnings: s.warnings(case),
             motor_yield_deg_per_30m: None,

@@ -12,6 +12,7 @@
 use drillpath::case::Case;
 use drillpath::models::diagnose::nonconvergence_hints;
 use drillpath::models::helical_drag::{helical_lock_up, helical_soft_string, lock_up_wob_n};
+use drillpath::models::lock_up_depth::hook_load_at_depth_n;
 use drillpath::models::softstring;
 
 use crate::acceptance_grid::{well_case, GridCase};
@@ -101,7 +102,7 @@ fn vertical_helix_drag_follows_mitchells_closed_form() {
 
 /// The grid's well with its kick-off at 500 m, a 300 m lateral at 90 deg, sliding with wall
 /// friction 0.35 (the case of `acceptance_grid::buckled_start_rescues_the_helix_above_the_kick_off`).
-fn small_grid_case(wob_kn: f64) -> Case {
+pub(crate) fn small_grid_case(wob_kn: f64) -> Case {
     let g = GridCase {
         inc_deg: 90.0,
         lateral_m: 300.0,
@@ -223,7 +224,17 @@ fn helical_lock_up_is_an_answer() {
         let tolerance = lock_up_hook_tolerance_n(l.max_wob_n);
         assert!(hook < tolerance, "{hook} {tolerance}");
     }
-    assert!(s.warnings(&case).iter().any(|w| w.starts_with("helical lock-up")));
+    assert!(s
+        .warnings(&case)
+        .iter()
+        .any(|w| w.starts_with("helical lock-up") && w.contains("lock-up depth")));
+    // the lock-up depth: locked below it, the WOB delivered just above it; reaching the bit at
+    // zero WOB (the largest WOB is above zero)
+    let depths = l.depths.expect("no lock-up depths");
+    let d = depths.at_wob_md_m.expect("no lock-up depth");
+    assert!(d > 500.0 && d < case.operation.bit_md_m, "{d}");
+    assert!(hook_load_at_depth_n(&case, d, 55e3) < 0.0 && hook_load_at_depth_n(&case, d - 0.1, 55e3) >= 0.0);
+    assert_eq!(depths.at_zero_wob_md_m, None);
     println!(
         "results at {:.1} kN (the largest: {}) of a largest {:.1} kN: hook load {:.1} kN (soft string with the helix's drag {:.1} kN), {:.1} s",
         at / 1e3,

@@ -21,6 +21,7 @@ mod helical_drag;
 mod hybrid;
 mod known_truth;
 mod loads;
+mod lock_up_depth;
 mod mwd_sag;
 mod paper;
 mod predict;

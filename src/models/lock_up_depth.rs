@@ -1,0 +1,94 @@
+//! The lock-up depth: how deep the string can be drilled (or slid) in the case's operation
+//! before the surface would have to push, by the soft string with the helix's drag
+//! ([`crate::models::helical_drag`], which is the plain soft string wherever nothing is
+//! helically buckled).
+//!
+//! The string is refitted to each bit depth (the pipe shortened at the surface, as `loads` does)
+//! and its hook load computed at a fixed WOB; the lock-up depth is the bit depth from which that
+//! hook load stays negative down to the case's bit depth, found by scanning up from there in
+//! steps of [`SCAN_STEP_M`] and bisecting to [`DEPTH_TOLERANCE_M`]: how far the hole could have
+//! been drilled in this operation. The scan stops at the first depth that delivers the WOB, so a
+//! locked window higher up the hole (possible in an S-shaped well) is not reported.
+
+use crate::case::Case;
+use crate::models::helical_drag::helical_soft_string;
+
+/// Spacing of the bit depths scanned for the first negative hook load, m.
+pub const SCAN_STEP_M: f64 = 10.0;
+
+/// The lock-up depth is bisected to this, m.
+pub const DEPTH_TOLERANCE_M: f64 = 0.1;
+
+/// The hook load (N) of [`helical_soft_string`] with `case`'s string refitted to the bit depth
+/// `bit_md_m` (m) and the WOB `wob_n` (N); the case's hook-load input dropped.
+pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64) -> f64 {
+    let mut c = case.clone();
+    c.string = case.string.at_depth(bit_md_m);
+    c.operation.bit_md_m = bit_md_m;
+    c.operation.wob_n = wob_n;
+    c.operation.hook_load_n = None;
+    helical_soft_string(&c).hook_load_n
+}
+
+/// The bit depth (MD, m) from which the string of `case`, in its operation at the WOB `wob_n`
+/// (N), has a negative hook load by the soft string with the helix's drag all the way down to
+/// the case's bit depth, to within [`DEPTH_TOLERANCE_M`]: scanned up from the case's bit depth
+/// in steps of [`SCAN_STEP_M`] to the first depth with a non-negative hook load, then bisected.
+/// None when the hook load at the case's bit depth is not negative (or the case is off bottom,
+/// or gives the hook load instead of the WOB); the top of the survey when no bit depth of the
+/// surveyed hole has a non-negative hook load.
+pub fn lock_up_depth_m(case: &Case, wob_n: f64) -> Option<f64> {
+    let op = &case.operation;
+    if !op.mode.on_bottom() || op.hook_load_n.is_some() || !wob_n.is_finite() {
+        return None;
+    }
+    let locked = |md: f64| hook_load_at_depth_n(case, md, wob_n) < 0.0;
+    let top = case.well.path.md_start().max(0.0);
+    let mut below = op.bit_md_m;
+    if !locked(below) {
+        return None;
+    }
+    loop {
+        let above = below - SCAN_STEP_M;
+        if above <= top {
+            return Some(top);
+        }
+        if !locked(above) {
+            return Some(bisect(above, below, &locked));
+        }
+        below = above;
+    }
+}
+
+/// The first locked depth between `free` (not locked) and `locked_md` (locked), m: bisected to
+/// [`DEPTH_TOLERANCE_M`], the locked end returned.
+fn bisect(mut free: f64, mut locked_md: f64, locked: &dyn Fn(f64) -> bool) -> f64 {
+    while locked_md - free > DEPTH_TOLERANCE_M {
+        let mid = 0.5 * (free + locked_md);
+        if locked(mid) {
+            locked_md = mid;
+        } else {
+            free = mid;
+        }
+    }
+    locked_md
+}
+
+/// The lock-up depths of a string locked up on bottom.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LockUpDepths {
+    /// Bit depth (MD, m) from which the WOB asked for can no longer be delivered
+    /// ([`lock_up_depth_m`] at that WOB).
+    pub at_wob_md_m: Option<f64>,
+    /// Bit depth (MD, m) from which the string cannot be put on bottom even at zero WOB (None
+    /// when it reaches the case's bit depth at zero WOB).
+    pub at_zero_wob_md_m: Option<f64>,
+}
+
+/// The lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB.
+pub fn lock_up_depths(case: &Case, wob_n: f64) -> LockUpDepths {
+    LockUpDepths {
+        at_wob_md_m: lock_up_depth_m(case, wob_n),
+        at_zero_wob_md_m: lock_up_depth_m(case, 0.0),
+    }
+}

@@ -1,0 +1,194 @@
+//! The lock-up depth (`models::lock_up_depth`): the bit depth from which a string locks up in
+//! its operation, against the closed form of a string that drags only in its lateral.
+//!
+//! Reference: with no wall friction in the vertical section and the build, a soft string's axial
+//! force changes there by its buoyed weight times the change of true vertical depth, whatever the
+//! path; in a horizontal lateral with friction `f`, below the sinusoidal onset, a string slid
+//! down gains compression `f w` per metre. So with the bit in the lateral the hook load is
+//! `w (V + R) - W - f w L - f (w_bit - w) L_bit` (`V` the vertical section, `R` the build's radius
+//! and its true vertical depth, `L` the lateral's length with friction, `W` the WOB), zero at
+//! `L* = (w (V + R) - W - f (w_bit - w) L_bit) / (f w)`.
+
+use drillpath::case::Case;
+use drillpath::models::helical_drag::lock_up_wob_n;
+use drillpath::models::lock_up_depth::{hook_load_at_depth_n, lock_up_depth_m, lock_up_depths, DEPTH_TOLERANCE_M};
+
+use crate::common::{load_temp_case, DRILL_PIPE_BODY};
+
+/// Vertical to 300 m, a 90 deg build of radius 100 m (a circular arc by minimum curvature, to
+/// 457.08 m), a horizontal lateral to 1,500 m (bit there); 8.5 in hole without friction down to
+/// 460 m, with friction `friction` below; 5 in pipe without tool joints below a 0.3 m bit; 1.2 sg;
+/// sliding with `wob_kn`.
+fn lateral_case(wob_kn: f64, friction: f64) -> Case {
+    let build_end = 300.0 + 100.0 * std::f64::consts::FRAC_PI_2;
+    let survey = format!("md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n{build_end},90,0\n1500,90,0\n");
+    let text = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "460 m", diameter = "8.5 in", friction = 0 }}, {{ to_md = "1500 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+bit_md = "1500 m"
+wob = "{wob_kn} kN"
+friction = {friction}
+[[string]]
+type = "bit"
+od = "5 in"
+length = "0.3 m"
+{DRILL_PIPE_BODY}"#
+    );
+    load_temp_case(&survey, &text)
+}
+
+/// The closed-form lock-up depth of [`lateral_case`] (module docs), m.
+fn closed_form_depth_m(case: &Case, wob_n: f64, friction: f64) -> f64 {
+    let rho = case.mud.density_kg_m3;
+    let bit = &case.string.components[0];
+    let pipe = &case.string.components[1];
+    let (w, w_bit) = (pipe.buoyed_weight_n_per_m(rho), bit.buoyed_weight_n_per_m(rho));
+    let drag_free_tvd = 400.0;
+    let lateral = (w * drag_free_tvd - wob_n - friction * (w_bit - w) * bit.length_m) / (friction * w);
+    460.0 + lateral
+}
+
+/// At 30 kN and friction 0.3 the string locks up 919 m into the lateral's dragging part (1,379 m
+/// MD, below the case's bit at 1,500 m); at zero WOB not before 1,794 m, so it reaches the bit
+/// depth. Tolerance: the bisection's 0.1 m and 0.05 m for the soft string's 1 m elements.
+#[test]
+fn lock_up_depth_matches_the_closed_form() {
+    let friction = 0.3;
+    let case = lateral_case(30.0, friction);
+    let expected = closed_form_depth_m(&case, 30e3, friction);
+    let found = lock_up_depth_m(&case, 30e3).expect("locked up at 1,500 m");
+    println!("lock-up depth at 30 kN: {found:.2} m MD, closed form {expected:.2} m");
+    assert!(
+        (found - expected).abs() <= DEPTH_TOLERANCE_M + 0.05,
+        "{found} vs {expected}"
+    );
+    let zero = closed_form_depth_m(&case, 0.0, friction);
+    assert!(zero > 1500.0, "the reference reaches the bit at zero WOB: {zero}");
+    let depths = lock_up_depths(&case, 30e3);
+    assert_eq!(depths.at_wob_md_m, Some(found));
+    assert_eq!(depths.at_zero_wob_md_m, None);
+}
+
+/// The lock-up depth is what its definition says, checked by other means: the hook load is
+/// negative from it down to the bit on a 1 m grid and not negative 0.1 m above it, and the case
+/// refitted to it delivers the WOB asked for as its largest (bisection on the WOB, another
+/// search), to the WOB that 0.1 m of lateral drags. A higher WOB or friction locks up shallower.
+#[test]
+fn lock_up_depth_is_where_the_largest_wob_is_the_one_asked_for() {
+    let case = lateral_case(30.0, 0.3);
+    let d = lock_up_depth_m(&case, 30e3).unwrap();
+    assert!(hook_load_at_depth_n(&case, d - DEPTH_TOLERANCE_M, 30e3) >= 0.0);
+    let mut md = d;
+    while md <= 1500.0 {
+        assert!(hook_load_at_depth_n(&case, md, 30e3) < 0.0, "free at {md} m");
+        md += 1.0;
+    }
+    let mut at = case.clone();
+    at.string = case.string.at_depth(d);
+    at.operation.bit_md_m = d;
+    let largest = lock_up_wob_n(&at).expect("locked at the lock-up depth");
+    let per_tolerance = 0.3 * 241.0 * DEPTH_TOLERANCE_M;
+    assert!(
+        (largest - 30e3).abs() <= per_tolerance + 1.0,
+        "largest WOB there {largest} N"
+    );
+    assert!(lock_up_depth_m(&case, 40e3).unwrap() < d);
+    assert!(lock_up_depth_m(&lateral_case(30.0, 0.35), 30e3).unwrap() < d);
+    assert_eq!(lock_up_depth_m(&lateral_case(30.0, 0.1), 30e3), None);
+}
+
+/// `loads` names the lock-up depth of each on-bottom load case locked up at its deepest bit
+/// depth: the small grid well (kick-off at 500 m, 300 m lateral at 90 deg, friction 0.35) slid
+/// at 55 kN, helically locked up at 1,250 m. The depth printed is the library's, at the chart's
+/// WOB; the drilling rows, rotating, are not locked up and get no line.
+#[test]
+fn loads_prints_the_lock_up_depth() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::loads::run::{plan, run, ChartRequest};
+    use drillpath::report::display_units::UnitSystem;
+    use drillpath::report::loads_text::write_loads;
+    let case = crate::helical_drag::small_grid_case(55.0);
+    let req = ChartRequest {
+        from_md_m: 0.0,
+        to_md_m: None,
+        every_m: 250.0,
+        wob_n: None,
+        choice: choose(Fidelity::Level(Level::Soft), Purpose::Loads),
+        measured: Vec::new(),
+    };
+    let p = plan(&case, &req).unwrap();
+    let chart = run(&case, &p, &mut |_, _| {}).unwrap();
+    let mut out = Vec::new();
+    write_loads(
+        &mut out,
+        &case,
+        std::path::Path::new("case.toml"),
+        &p,
+        &chart,
+        UnitSystem::Si,
+    )
+    .unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let d = lock_up_depth_m(&case, 55e3).expect("slid at 55 kN it is locked up");
+    let line = format!("lock-up depth, sliding: at the chart's WOB the string locks up once the bit is deeper than {d:.0} m MD, at zero WOB it reaches the deepest depth");
+    assert!(text.contains(&line), "{text}");
+    assert!(!text.contains("lock-up depth, drilling"), "{text}");
+}
+
+/// The hints of a whole solve that finds no equilibrium name the lock-up depth where the soft
+/// string with the helix's drag is locked up, and none where it is not (the small grid well slid
+/// at 55 kN, locked up; at 20 kN, not).
+#[test]
+fn failure_hints_name_the_lock_up_depth() {
+    use drillpath::models::diagnose::nonconvergence_hints;
+    let case = crate::helical_drag::small_grid_case(55.0);
+    let d = lock_up_depth_m(&case, 55e3).unwrap();
+    let hints = nonconvergence_hints(&case);
+    let expected = format!("locks up once the bit is deeper than {d:.0} m MD, while at zero WOB it reaches this depth");
+    assert!(hints.iter().any(|h| h.contains(&expected)), "{hints:?}");
+    let free = nonconvergence_hints(&crate::helical_drag::small_grid_case(20.0));
+    assert!(!free.iter().any(|h| h.contains("lock-up depth")), "{free:?}");
+}
+
+/// `solve` at `soft` and `hybrid`, whose soft strings have no helix's drag, flags the helical
+/// lock-up their hook load misses: the small grid well slid at 55 kN has a plain soft hook load
+/// above zero and one below zero with the helix's drag; both levels report the lock-up by the
+/// helix with the lock-up depth, and where their own hook load is not below zero, the results
+/// flagged as without its drag (the hybrid's stiff-contact soft string may find the hook load
+/// below zero itself). At 20 kN nothing is flagged.
+#[test]
+fn soft_and_hybrid_flag_the_helical_lock_up_they_miss() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::models::string_solve::solve_string;
+    for (wob, locked) in [(55.0, true), (20.0, false)] {
+        let case = crate::helical_drag::small_grid_case(wob);
+        let ctl = SolveControls::from_settings(&case.solver);
+        for level in [Level::Soft, Level::Hybrid] {
+            let choice = choose(Fidelity::Level(level), Purpose::Solve);
+            let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+            let hook = s.level.hook_load_n.unwrap();
+            println!("{level:?} at {wob} kN: hook load {:.1} kN", hook / 1e3);
+            let Some(l) = s.lock_up else {
+                assert!(!locked, "{level:?} at {wob} kN: no lock-up");
+                continue;
+            };
+            assert!(locked, "{level:?} at {wob} kN: {l:?}");
+            // a hook load below zero is the level's own lock-up, named as the helix's
+            assert!(l.by_helix && l.results_without_helical_drag == (hook >= 0.0), "{l:?}");
+            let d = l.depths.and_then(|d| d.at_wob_md_m).unwrap();
+            assert_eq!(d, lock_up_depth_m(&case, 55e3).unwrap());
+            let w = s.warnings(&case);
+            let flagged = w
+                .iter()
+                .any(|w| w.contains("from a soft string without the helix's drag"));
+            assert_eq!(flagged, hook >= 0.0, "{w:?}");
+        }
+    }
+}
