@@ -145,20 +145,12 @@ impl LockUp {
 
     /// The warning's clause on the lock-up depths (empty where not computed).
     fn depth_clause(&self) -> String {
-        let Some(d) = self.depths else {
-            return String::new();
-        };
-        let Some(at_wob) = d.at_wob_md_m else {
-            return String::new();
-        };
-        let zero = match d.at_zero_wob_md_m {
-            Some(z) => format!("even at zero WOB from {z:.0} m MD"),
-            None => "at zero WOB it reaches this depth".to_string(),
-        };
-        format!(
-            "; lock-up depth (soft string with the helix's drag, the hole drilled as surveyed): at {:.0} kN it locks up once the bit is deeper than {at_wob:.0} m MD, {zero}",
-            self.wob_n / 1e3
-        )
+        match self.depths.and_then(|d| d.sentence(self.wob_n)) {
+            Some(d) => {
+                format!("; lock-up depth (soft string with the helix's drag, the hole drilled as surveyed): {d}")
+            }
+            None => String::new(),
+        }
     }
 
     /// The warning to print.

@@ -73,18 +73,9 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
 /// ([`lock_up_depths`]); None when the soft string with the helix's drag is not locked up at the
 /// case's bit depth.
 fn lock_up_depth_hint(case: &Case, wob_n: f64) -> Option<String> {
-    let d = lock_up_depths(case, wob_n);
-    let at_wob = d.at_wob_md_m?;
-    let zero = match d.at_zero_wob_md_m {
-        Some(z) => format!(
-            "and even at zero WOB from {z:.0} m MD: this depth cannot be reached while {} at any WOB",
-            case.operation.mode.name()
-        ),
-        None => "while at zero WOB it reaches this depth".to_string(),
-    };
+    let sentence = lock_up_depths(case, wob_n).sentence(wob_n)?;
     Some(format!(
-        "lock-up depth (the soft string with the helix's drag, the string refitted to each bit depth of the surveyed hole): at {:.0} kN WOB the string locks up once the bit is deeper than {at_wob:.0} m MD, {zero}",
-        wob_n / 1e3
+        "lock-up depth (the soft string with the helix's drag, the string refitted to each bit depth of the surveyed hole): {sentence}"
     ))
 }
 
@@ -242,14 +233,19 @@ weight = "29 kg/m"
     /// build of 450 m and a 300 m lateral of 5 in pipe (w_b = 241 N/m): the hanging weight is
     /// about 300 x 241 + 450 x 241 x 2/pi = 141 kN, so sliding with 20 kN on the bit keeps the
     /// top in tension and below the helical onset (no hint), while 250 kN needs the top pushed
-    /// (lock-up) and buckles the pipe helically (both hints).
+    /// (lock-up) and buckles the pipe helically (both hints), and no bit depth delivers it (more
+    /// than the whole string weighs: the lock-up depth's hint says so).
     #[test]
     fn lock_up_and_helical_buckling_are_named() {
         assert!(nonconvergence_hints(&case(20.0, "sliding")).is_empty());
         let h = nonconvergence_hints(&case(250.0, "sliding"));
-        assert_eq!(h.len(), 2, "{h:?}");
+        assert_eq!(h.len(), 3, "{h:?}");
         assert!(h[0].contains("lock-up") && h[0].contains("sliding"), "{h:?}");
-        assert!(h[1].contains("helically buckled"), "{h:?}");
+        assert!(
+            h[1].contains("at 250 kN WOB no bit depth of the surveyed hole"),
+            "{h:?}"
+        );
+        assert!(h[2].contains("helically buckled"), "{h:?}");
     }
 
     #[test]

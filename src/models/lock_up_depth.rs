@@ -43,7 +43,7 @@ pub fn lock_up_depth_m(case: &Case, wob_n: f64) -> Option<f64> {
         return None;
     }
     let locked = |md: f64| hook_load_at_depth_n(case, md, wob_n) < 0.0;
-    let top = case.well.path.md_start().max(0.0);
+    let top = survey_top_md_m(case);
     let mut below = op.bit_md_m;
     if !locked(below) {
         return None;
@@ -58,6 +58,11 @@ pub fn lock_up_depth_m(case: &Case, wob_n: f64) -> Option<f64> {
         }
         below = above;
     }
+}
+
+/// The shallowest bit depth scanned: the top of the survey (not above the surface), m MD.
+fn survey_top_md_m(case: &Case) -> f64 {
+    case.well.path.md_start().max(0.0)
 }
 
 /// The first locked depth between `free` (not locked) and `locked_md` (locked), m: bisected to
@@ -83,6 +88,35 @@ pub struct LockUpDepths {
     /// Bit depth (MD, m) from which the string cannot be put on bottom even at zero WOB (None
     /// when it reaches the case's bit depth at zero WOB).
     pub at_zero_wob_md_m: Option<f64>,
+    /// The top of the survey, m MD: a lock-up depth there means no bit depth of the surveyed
+    /// hole delivers that WOB.
+    pub top_md_m: f64,
+}
+
+impl LockUpDepths {
+    /// Whether no bit depth of the surveyed hole delivers the WOB (the lock-up depth at the top
+    /// of the survey).
+    pub fn locked_everywhere(&self) -> bool {
+        self.at_wob_md_m.is_some_and(|d| d <= self.top_md_m + DEPTH_TOLERANCE_M)
+    }
+
+    /// The sentence naming these depths at the WOB `wob_n` (N), depths in m MD: "at W kN WOB
+    /// the string locks up once the bit is deeper than X m MD, ..."; None without a lock-up at
+    /// that WOB.
+    pub fn sentence(&self, wob_n: f64) -> Option<String> {
+        let at_wob = self.at_wob_md_m?;
+        let wob = format!("at {:.0} kN WOB", wob_n / 1e3);
+        let first = if self.locked_everywhere() {
+            format!("{wob} no bit depth of the surveyed hole has a hook load above zero")
+        } else {
+            format!("{wob} the string locks up once the bit is deeper than {at_wob:.0} m MD")
+        };
+        let zero = match self.at_zero_wob_md_m {
+            Some(z) => format!("and even at zero WOB from {z:.0} m MD: it cannot be put on bottom there at any WOB"),
+            None => "while at zero WOB it reaches this depth".to_string(),
+        };
+        Some(format!("{first}, {zero}"))
+    }
 }
 
 /// The lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB.
@@ -90,5 +124,6 @@ pub fn lock_up_depths(case: &Case, wob_n: f64) -> LockUpDepths {
     LockUpDepths {
         at_wob_md_m: lock_up_depth_m(case, wob_n),
         at_zero_wob_md_m: lock_up_depth_m(case, 0.0),
+        top_md_m: survey_top_md_m(case),
     }
 }

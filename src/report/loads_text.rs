@@ -231,11 +231,18 @@ fn print_lock_up_depths(chart: &Chart, units: UnitSystem, out: &mut impl Write) 
             Some(z) => format!("even at zero WOB from {}", depth.fmt(z, 0)),
             None => "at zero WOB it reaches the deepest depth".to_string(),
         };
+        let first = if d.locked_everywhere() {
+            "no bit depth of the surveyed hole has a hook load above zero".to_string()
+        } else {
+            format!(
+                "the string locks up once the bit is deeper than {} MD",
+                depth.fmt(at_wob, 0)
+            )
+        };
         writeln!(
             out,
-            "  lock-up depth, {}: at the chart's WOB the string locks up once the bit is deeper than {} MD, {zero} (soft string with the helix's drag, to 0.1 m)",
-            mode.name(),
-            depth.fmt(at_wob, 0)
+            "  lock-up depth, {}: at the chart's WOB {first}, {zero} (soft string with the helix's drag, to 0.1 m)",
+            mode.name()
         )?;
     }
     Ok(())
