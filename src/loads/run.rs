@@ -9,7 +9,7 @@ use super::stiff::{hybrid_depth, stiff_depth, Solved};
 use super::{case_for_row, check_fits, depth_list, ChartOperation, MODES};
 use crate::case::fidelity::Choice;
 use crate::case::{Case, Level, Mode};
-use crate::models::lock_up_depth::{lock_up_depths, LockUpDepths};
+use crate::models::lock_up_depth::{lock_up_depths, Drag, LockUpDepths};
 use crate::models::softstring::segment_length_m;
 use std::time::Instant;
 
@@ -105,7 +105,7 @@ pub struct Chart {
     /// Time of the stiff columns, s (0 at the `soft` level).
     pub stiff_seconds: f64,
     /// The lock-up depths of the on-bottom load cases that are locked up at the deepest bit
-    /// depth (the soft string with the helix's drag at the chart's WOB,
+    /// depth (at the chart's WOB, by the model of [`Drag::of`],
     /// [`crate::models::lock_up_depth`]), in [`MODES`] order.
     pub lock_up_depths: Vec<(Mode, LockUpDepths)>,
 }
@@ -217,7 +217,7 @@ fn chart_lock_up_depths(case: &Case, plan: &ChartPlan) -> Vec<(Mode, LockUpDepth
         .filter(|m| m.on_bottom())
         .filter_map(|&mode| {
             let row_case = case_for_row(case, &string, deepest, mode, &plan.op);
-            let depths = lock_up_depths(&row_case, plan.op.wob_n);
+            let depths = lock_up_depths(&row_case, plan.op.wob_n, Drag::of(&row_case, plan.op.wob_n));
             depths.at_wob_md_m.is_some().then_some((mode, depths))
         })
         .collect()

@@ -6,7 +6,7 @@ use crate::case::Case;
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
 use crate::models::helical_drag::HelicalLockUp;
-use crate::models::lock_up_depth::{lock_up_depths, LockUpDepths};
+use crate::models::lock_up_depth::{lock_up_depths, Drag, LockUpDepths};
 use crate::models::softstring;
 use crate::string::material::grade_yield_strength_pa;
 
@@ -135,10 +135,12 @@ impl LockUp {
     }
 
     /// The lock-up with its lock-up depths computed for `case` at the WOB asked for
-    /// ([`lock_up_depths`]).
+    /// ([`lock_up_depths`]), by the soft string of its largest WOB (with the helix's drag for a
+    /// lock-up by the helix).
     pub fn with_depths(self, case: &Case) -> LockUp {
+        let drag = if self.by_helix { Drag::WithHelix } else { Drag::Plain };
         LockUp {
-            depths: Some(lock_up_depths(case, self.wob_n)),
+            depths: Some(lock_up_depths(case, self.wob_n, drag)),
             ..self
         }
     }

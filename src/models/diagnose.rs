@@ -14,7 +14,7 @@ use crate::case::Case;
 use crate::models::buckling::{soft_marks, zones, BuckleState};
 use crate::models::helical_drag::helical_lock_up;
 use crate::models::levels::FemPart;
-use crate::models::lock_up_depth::lock_up_depths;
+use crate::models::lock_up_depth::{lock_up_depths, Drag};
 use crate::models::softstring;
 
 /// One-sentence hints on `case` for a non-converged stiff solve (empty when the soft string
@@ -70,13 +70,10 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
 }
 
 /// The hint naming the lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB
-/// ([`lock_up_depths`]); None when the soft string with the helix's drag is not locked up at the
-/// case's bit depth.
+/// ([`lock_up_depths`], by the model of [`Drag::of`]); None when that soft string is not locked
+/// up at the case's bit depth.
 fn lock_up_depth_hint(case: &Case, wob_n: f64) -> Option<String> {
-    let sentence = lock_up_depths(case, wob_n).sentence(wob_n)?;
-    Some(format!(
-        "lock-up depth (the soft string with the helix's drag, the string refitted to each bit depth of the surveyed hole): {sentence}"
-    ))
+    lock_up_depths(case, wob_n, Drag::of(case, wob_n)).sentence(wob_n)
 }
 
 /// "stopped at the time limit of one solve, T s (`[solver] time_limit`)", for the messages of

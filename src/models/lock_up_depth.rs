@@ -1,7 +1,8 @@
 //! The lock-up depth: how deep the string can be drilled (or slid) in the case's operation
-//! before the surface would have to push, by the soft string with the helix's drag
-//! ([`crate::models::helical_drag`], which is the plain soft string wherever nothing is
-//! helically buckled).
+//! before the surface would have to push, by the soft string that finds the lock-up ([`Drag`]):
+//! the plain soft string where it is locked up itself, else the soft string with the helix's
+//! drag ([`crate::models::helical_drag`]), so that the depths agree with the lock-up's largest
+//! WOB.
 //!
 //! The string is refitted to each bit depth (the pipe shortened at the surface, as `loads` does)
 //! and its hook load computed at a fixed WOB; the lock-up depth is the bit depth from which that
@@ -12,6 +13,48 @@
 
 use crate::case::Case;
 use crate::models::helical_drag::helical_soft_string;
+use crate::models::softstring;
+
+/// The soft string whose hook load decides the lock-up depth.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Drag {
+    /// The plain soft string ([`softstring::from_case`]).
+    Plain,
+    /// The soft string with the helix's drag ([`helical_soft_string`]).
+    WithHelix,
+}
+
+impl Drag {
+    /// The model of a lock-up of `case` at the WOB `wob_n` (N): the plain soft string where it is
+    /// locked up itself (its largest WOB is the lock-up's, `models::checks::lock_up`), else the
+    /// one with the helix's drag.
+    pub fn of(case: &Case, wob_n: f64) -> Drag {
+        let mut c = case.clone();
+        c.operation.wob_n = wob_n;
+        c.operation.hook_load_n = None;
+        if softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n < 0.0 {
+            Drag::Plain
+        } else {
+            Drag::WithHelix
+        }
+    }
+
+    /// How the outputs name the model.
+    pub fn name(self) -> &'static str {
+        match self {
+            Drag::Plain => "soft string",
+            Drag::WithHelix => "soft string with the helix's drag",
+        }
+    }
+
+    /// The hook load of `case` by this model, N.
+    fn hook_load_n(self, case: &Case) -> f64 {
+        match self {
+            Drag::Plain => softstring::from_case(case, softstring::segment_length_m(&case.solver)).hook_load_n,
+            Drag::WithHelix => helical_soft_string(case).hook_load_n,
+        }
+    }
+}
 
 /// Spacing of the bit depths scanned for the first negative hook load, m.
 pub const SCAN_STEP_M: f64 = 10.0;
@@ -19,30 +62,29 @@ pub const SCAN_STEP_M: f64 = 10.0;
 /// The lock-up depth is bisected to this, m.
 pub const DEPTH_TOLERANCE_M: f64 = 0.1;
 
-/// The hook load (N) of [`helical_soft_string`] with `case`'s string refitted to the bit depth
+/// The hook load (N) by the model `drag` with `case`'s string refitted to the bit depth
 /// `bit_md_m` (m) and the WOB `wob_n` (N); the case's hook-load input dropped.
-pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64) -> f64 {
+pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64, drag: Drag) -> f64 {
     let mut c = case.clone();
     c.string = case.string.at_depth(bit_md_m);
     c.operation.bit_md_m = bit_md_m;
     c.operation.wob_n = wob_n;
     c.operation.hook_load_n = None;
-    helical_soft_string(&c).hook_load_n
+    drag.hook_load_n(&c)
 }
 
 /// The bit depth (MD, m) from which the string of `case`, in its operation at the WOB `wob_n`
-/// (N), has a negative hook load by the soft string with the helix's drag all the way down to
-/// the case's bit depth, to within [`DEPTH_TOLERANCE_M`]: scanned up from the case's bit depth
+/// (N), has a negative hook load by the model `drag` all the way down to the case's bit depth, to within [`DEPTH_TOLERANCE_M`]: scanned up from the case's bit depth
 /// in steps of [`SCAN_STEP_M`] to the first depth with a non-negative hook load, then bisected.
 /// None when the hook load at the case's bit depth is not negative (or the case is off bottom,
 /// or gives the hook load instead of the WOB); the top of the survey when no bit depth of the
 /// surveyed hole has a non-negative hook load.
-pub fn lock_up_depth_m(case: &Case, wob_n: f64) -> Option<f64> {
+pub fn lock_up_depth_m(case: &Case, wob_n: f64, drag: Drag) -> Option<f64> {
     let op = &case.operation;
     if !op.mode.on_bottom() || op.hook_load_n.is_some() || !wob_n.is_finite() {
         return None;
     }
-    let locked = |md: f64| hook_load_at_depth_n(case, md, wob_n) < 0.0;
+    let locked = |md: f64| hook_load_at_depth_n(case, md, wob_n, drag) < 0.0;
     let top = survey_top_md_m(case);
     let mut below = op.bit_md_m;
     if !locked(below) {
@@ -91,6 +133,8 @@ pub struct LockUpDepths {
     /// The top of the survey, m MD: a lock-up depth there means no bit depth of the surveyed
     /// hole delivers that WOB.
     pub top_md_m: f64,
+    /// The model of both depths.
+    pub drag: Drag,
 }
 
 impl LockUpDepths {
@@ -100,9 +144,9 @@ impl LockUpDepths {
         self.at_wob_md_m.is_some_and(|d| d <= self.top_md_m + DEPTH_TOLERANCE_M)
     }
 
-    /// The sentence naming these depths at the WOB `wob_n` (N), depths in m MD: "at W kN WOB
-    /// the string locks up once the bit is deeper than X m MD, ..."; None without a lock-up at
-    /// that WOB.
+    /// The sentence naming these depths at the WOB `wob_n` (N), depths in m MD: "lock-up depth
+    /// (by the ...): at W kN WOB the string locks up once the bit is deeper than X m MD, ...";
+    /// None without a lock-up at that WOB.
     pub fn sentence(&self, wob_n: f64) -> Option<String> {
         let at_wob = self.at_wob_md_m?;
         let wob = format!("at {:.0} kN WOB", wob_n / 1e3);
@@ -115,15 +159,19 @@ impl LockUpDepths {
             Some(z) => format!("and even at zero WOB from {z:.0} m MD: it cannot be put on bottom there at any WOB"),
             None => "while at zero WOB it reaches this depth".to_string(),
         };
-        Some(format!("{first}, {zero}"))
+        Some(format!(
+            "lock-up depth (by the {}, the string refitted to each bit depth of the surveyed hole): {first}, {zero}",
+            self.drag.name()
+        ))
     }
 }
 
-/// The lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB.
-pub fn lock_up_depths(case: &Case, wob_n: f64) -> LockUpDepths {
+/// The lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB by the model `drag`.
+pub fn lock_up_depths(case: &Case, wob_n: f64, drag: Drag) -> LockUpDepths {
     LockUpDepths {
-        at_wob_md_m: lock_up_depth_m(case, wob_n),
-        at_zero_wob_md_m: lock_up_depth_m(case, 0.0),
+        at_wob_md_m: lock_up_depth_m(case, wob_n, drag),
+        at_zero_wob_md_m: lock_up_depth_m(case, 0.0, drag),
         top_md_m: survey_top_md_m(case),
+        drag,
     }
 }

@@ -241,8 +241,9 @@ fn print_lock_up_depths(chart: &Chart, units: UnitSystem, out: &mut impl Write) 
         };
         writeln!(
             out,
-            "  lock-up depth, {}: at the chart's WOB {first}, {zero} (soft string with the helix's drag, to 0.1 m)",
-            mode.name()
+            "  lock-up depth, {}: at the chart's WOB {first}, {zero} ({}, to 0.1 m)",
+            mode.name(),
+            d.drag.name()
         )?;
     }
     Ok(())

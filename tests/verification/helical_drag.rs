@@ -12,7 +12,7 @@
 use drillpath::case::Case;
 use drillpath::models::diagnose::nonconvergence_hints;
 use drillpath::models::helical_drag::{helical_lock_up, helical_soft_string, lock_up_wob_n};
-use drillpath::models::lock_up_depth::hook_load_at_depth_n;
+use drillpath::models::lock_up_depth::{hook_load_at_depth_n, Drag};
 use drillpath::models::softstring;
 
 use crate::acceptance_grid::{well_case, GridCase};
@@ -231,9 +231,13 @@ fn helical_lock_up_is_an_answer() {
     // the lock-up depth: locked below it, the WOB delivered just above it; reaching the bit at
     // zero WOB (the largest WOB is above zero)
     let depths = l.depths.expect("no lock-up depths");
+    assert_eq!(depths.drag, Drag::WithHelix);
     let d = depths.at_wob_md_m.expect("no lock-up depth");
     assert!(d > 500.0 && d < case.operation.bit_md_m, "{d}");
-    assert!(hook_load_at_depth_n(&case, d, 55e3) < 0.0 && hook_load_at_depth_n(&case, d - 0.1, 55e3) >= 0.0);
+    assert!(
+        hook_load_at_depth_n(&case, d, 55e3, Drag::WithHelix) < 0.0
+            && hook_load_at_depth_n(&case, d - 0.1, 55e3, Drag::WithHelix) >= 0.0
+    );
     assert_eq!(depths.at_zero_wob_md_m, None);
     println!(
         "results at {:.1} kN (the largest: {}) of a largest {:.1} kN: hook load {:.1} kN (soft string with the helix's drag {:.1} kN), {:.1} s",

@@ -10,8 +10,9 @@
 //! `L* = (w (V + R) - W - f (w_bit - w) L_bit) / (f w)`.
 
 use drillpath::case::Case;
-use drillpath::models::helical_drag::lock_up_wob_n;
-use drillpath::models::lock_up_depth::{hook_load_at_depth_n, lock_up_depth_m, lock_up_depths, DEPTH_TOLERANCE_M};
+use drillpath::models::lock_up_depth::{
+    hook_load_at_depth_n, lock_up_depth_m, lock_up_depths, Drag, DEPTH_TOLERANCE_M,
+};
 
 use crate::common::{load_temp_case, DRILL_PIPE_BODY};
 
@@ -62,45 +63,56 @@ fn lock_up_depth_matches_the_closed_form() {
     let friction = 0.3;
     let case = lateral_case(30.0, friction);
     let expected = closed_form_depth_m(&case, 30e3, friction);
-    let found = lock_up_depth_m(&case, 30e3).expect("locked up at 1,500 m");
-    println!("lock-up depth at 30 kN: {found:.2} m MD, closed form {expected:.2} m");
-    assert!(
-        (found - expected).abs() <= DEPTH_TOLERANCE_M + 0.05,
-        "{found} vs {expected}"
-    );
     let zero = closed_form_depth_m(&case, 0.0, friction);
     assert!(zero > 1500.0, "the reference reaches the bit at zero WOB: {zero}");
-    let depths = lock_up_depths(&case, 30e3);
-    assert_eq!(depths.at_wob_md_m, Some(found));
-    assert_eq!(depths.at_zero_wob_md_m, None);
+    assert_eq!(Drag::of(&case, 30e3), Drag::Plain);
+    // no helix anywhere (no friction above the lateral, the lateral below its onsets): both
+    // models give the closed form
+    for drag in [Drag::Plain, Drag::WithHelix] {
+        let found = lock_up_depth_m(&case, 30e3, drag).expect("locked up at 1,500 m");
+        println!("{drag:?}: lock-up depth at 30 kN: {found:.2} m MD, closed form {expected:.2} m");
+        assert!(
+            (found - expected).abs() <= DEPTH_TOLERANCE_M + 0.05,
+            "{found} vs {expected}"
+        );
+        let depths = lock_up_depths(&case, 30e3, drag);
+        assert_eq!(depths.at_wob_md_m, Some(found));
+        assert_eq!(depths.at_zero_wob_md_m, None);
+    }
 }
 
 /// The lock-up depth is what its definition says, checked by other means: the hook load is
 /// negative from it down to the bit on a 1 m grid and not negative 0.1 m above it, and the case
-/// refitted to it delivers the WOB asked for as its largest (bisection on the WOB, another
-/// search), to the WOB that 0.1 m of lateral drags. A higher WOB or friction locks up shallower.
+/// refitted to it delivers the WOB asked for as its largest (the soft string solved with a zero
+/// hook load, `checks::lock_up`: another computation), to the WOB that 0.1 m of lateral drags. A
+/// higher WOB or friction locks up shallower.
 #[test]
 fn lock_up_depth_is_where_the_largest_wob_is_the_one_asked_for() {
     let case = lateral_case(30.0, 0.3);
-    let d = lock_up_depth_m(&case, 30e3).unwrap();
-    assert!(hook_load_at_depth_n(&case, d - DEPTH_TOLERANCE_M, 30e3) >= 0.0);
+    let d = lock_up_depth_m(&case, 30e3, Drag::Plain).unwrap();
+    assert!(hook_load_at_depth_n(&case, d - DEPTH_TOLERANCE_M, 30e3, Drag::Plain) >= 0.0);
     let mut md = d;
     while md <= 1500.0 {
-        assert!(hook_load_at_depth_n(&case, md, 30e3) < 0.0, "free at {md} m");
+        assert!(
+            hook_load_at_depth_n(&case, md, 30e3, Drag::Plain) < 0.0,
+            "free at {md} m"
+        );
         md += 1.0;
     }
     let mut at = case.clone();
     at.string = case.string.at_depth(d);
     at.operation.bit_md_m = d;
-    let largest = lock_up_wob_n(&at).expect("locked at the lock-up depth");
+    let largest = drillpath::models::checks::lock_up(&at, Some(-1.0), 30e3)
+        .expect("locked up")
+        .max_wob_n;
     let per_tolerance = 0.3 * 241.0 * DEPTH_TOLERANCE_M;
     assert!(
         (largest - 30e3).abs() <= per_tolerance + 1.0,
         "largest WOB there {largest} N"
     );
-    assert!(lock_up_depth_m(&case, 40e3).unwrap() < d);
-    assert!(lock_up_depth_m(&lateral_case(30.0, 0.35), 30e3).unwrap() < d);
-    assert_eq!(lock_up_depth_m(&lateral_case(30.0, 0.1), 30e3), None);
+    assert!(lock_up_depth_m(&case, 40e3, Drag::Plain).unwrap() < d);
+    assert!(lock_up_depth_m(&lateral_case(30.0, 0.35), 30e3, Drag::Plain).unwrap() < d);
+    assert_eq!(lock_up_depth_m(&lateral_case(30.0, 0.1), 30e3, Drag::Plain), None);
 }
 
 /// `loads` names the lock-up depth of each on-bottom load case locked up at its deepest bit
@@ -135,8 +147,8 @@ fn loads_prints_the_lock_up_depth() {
     )
     .unwrap();
     let text = String::from_utf8(out).unwrap();
-    let d = lock_up_depth_m(&case, 55e3).expect("slid at 55 kN it is locked up");
-    let line = format!("lock-up depth, sliding: at the chart's WOB the string locks up once the bit is deeper than {d:.0} m MD, at zero WOB it reaches the deepest depth");
+    let d = lock_up_depth_m(&case, 55e3, Drag::WithHelix).expect("slid at 55 kN it is locked up");
+    let line = format!("lock-up depth, sliding: at the chart's WOB the string locks up once the bit is deeper than {d:.0} m MD, at zero WOB it reaches the deepest depth (soft string with the helix's drag, to 0.1 m)");
     assert!(text.contains(&line), "{text}");
     assert!(!text.contains("lock-up depth, drilling"), "{text}");
 }
@@ -148,7 +160,7 @@ fn loads_prints_the_lock_up_depth() {
 fn failure_hints_name_the_lock_up_depth() {
     use drillpath::models::diagnose::nonconvergence_hints;
     let case = crate::helical_drag::small_grid_case(55.0);
-    let d = lock_up_depth_m(&case, 55e3).unwrap();
+    let d = lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap();
     let hints = nonconvergence_hints(&case);
     let expected = format!("locks up once the bit is deeper than {d:.0} m MD, while at zero WOB it reaches this depth");
     assert!(hints.iter().any(|h| h.contains(&expected)), "{hints:?}");
@@ -183,7 +195,7 @@ fn soft_and_hybrid_flag_the_helical_lock_up_they_miss() {
             // a hook load below zero is the level's own lock-up, named as the helix's
             assert!(l.by_helix && l.results_without_helical_drag == (hook >= 0.0), "{l:?}");
             let d = l.depths.and_then(|d| d.at_wob_md_m).unwrap();
-            assert_eq!(d, lock_up_depth_m(&case, 55e3).unwrap());
+            assert_eq!(d, lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap());
             let w = s.warnings(&case);
             let flagged = w
                 .iter()
