@@ -6,8 +6,9 @@
 //!
 //! The string is refitted to each bit depth (the pipe shortened at the surface, as `loads` does)
 //! and its hook load computed at a fixed WOB; the lock-up depth is the bit depth from which that
-//! hook load stays negative down to the case's bit depth, found by scanning up from there in
-//! steps of [`SCAN_STEP_M`] and bisecting to [`DEPTH_TOLERANCE_M`]: how far the hole could have
+//! hook load stays negative down to the case's bit depth, found by scanning up from there
+//! ([`scan_step_m`]: steps of 10-200 m, half the distance to the hook load's zero that its local
+//! slope predicts) and bisecting to [`DEPTH_TOLERANCE_M`]: how far the hole could have
 //! been drilled in this operation. The scan stops at the first depth that delivers the WOB, so a
 //! locked window higher up the hole (possible in an S-shaped well) is not reported.
 
@@ -56,8 +57,22 @@ impl Drag {
     }
 }
 
-/// Spacing of the bit depths scanned for the first negative hook load, m.
+/// Shortest step of the scan up the hole, m.
 pub const SCAN_STEP_M: f64 = 10.0;
+
+/// Longest step of the scan up the hole, m.
+pub const MAX_SCAN_STEP_M: f64 = 200.0;
+
+/// The next step (m) of the scan up the hole from a depth with the (negative) hook load
+/// `hook_n` (N), the hook load rising upward by `slope_n_per_m` (N/m, from the last step): half
+/// the distance to the zero the slope predicts, within [`SCAN_STEP_M`] and [`MAX_SCAN_STEP_M`];
+/// the shortest where the hook load does not rise upward.
+pub fn scan_step_m(hook_n: f64, slope_n_per_m: f64) -> f64 {
+    if slope_n_per_m.is_nan() || slope_n_per_m <= 0.0 {
+        return SCAN_STEP_M;
+    }
+    (0.5 * -hook_n / slope_n_per_m).clamp(SCAN_STEP_M, MAX_SCAN_STEP_M)
+}
 
 /// The lock-up depth is bisected to this, m.
 pub const DEPTH_TOLERANCE_M: f64 = 0.1;
@@ -74,8 +89,9 @@ pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64, drag: Drag) 
 }
 
 /// The bit depth (MD, m) from which the string of `case`, in its operation at the WOB `wob_n`
-/// (N), has a negative hook load by the model `drag` all the way down to the case's bit depth, to within [`DEPTH_TOLERANCE_M`]: scanned up from the case's bit depth
-/// in steps of [`SCAN_STEP_M`] to the first depth with a non-negative hook load, then bisected.
+/// (N), has a negative hook load by the model `drag` all the way down to the case's bit depth,
+/// to within [`DEPTH_TOLERANCE_M`]: scanned up from the case's bit depth in steps of
+/// [`scan_step_m`] to the first depth with a non-negative hook load, then bisected.
 /// None when the hook load at the case's bit depth is not negative (or the case is off bottom,
 /// or gives the hook load instead of the WOB); the top of the survey when no bit depth of the
 /// surveyed hole has a non-negative hook load.
@@ -84,21 +100,26 @@ pub fn lock_up_depth_m(case: &Case, wob_n: f64, drag: Drag) -> Option<f64> {
     if !op.mode.on_bottom() || op.hook_load_n.is_some() || !wob_n.is_finite() {
         return None;
     }
-    let locked = |md: f64| hook_load_at_depth_n(case, md, wob_n, drag) < 0.0;
+    let hook = |md: f64| hook_load_at_depth_n(case, md, wob_n, drag);
+    let locked = |md: f64| hook(md) < 0.0;
     let top = survey_top_md_m(case);
     let mut below = op.bit_md_m;
-    if !locked(below) {
+    let mut hook_below = hook(below);
+    if hook_below.is_nan() || hook_below >= 0.0 {
         return None;
     }
+    let mut step = SCAN_STEP_M;
     loop {
-        let above = below - SCAN_STEP_M;
+        let above = below - step;
         if above <= top {
             return Some(top);
         }
-        if !locked(above) {
+        let hook_above = hook(above);
+        if hook_above.is_nan() || hook_above >= 0.0 {
             return Some(bisect(above, below, &locked));
         }
-        below = above;
+        step = scan_step_m(hook_above, (hook_above - hook_below) / step);
+        (below, hook_below) = (above, hook_above);
     }
 }
 
@@ -173,5 +194,22 @@ pub fn lock_up_depths(case: &Case, wob_n: f64, drag: Drag) -> LockUpDepths {
         at_zero_wob_md_m: lock_up_depth_m(case, 0.0, drag),
         top_md_m: survey_top_md_m(case),
         drag,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The scan's step: half the distance to the zero the slope predicts (-50 kN rising by
+    /// 500 N/m: 50 m), the shortest where the hook load does not rise upward, and within bounds.
+    #[test]
+    fn the_scan_step_is_half_the_predicted_distance_within_bounds() {
+        assert_eq!(scan_step_m(-50e3, 500.0), 50.0);
+        assert_eq!(scan_step_m(-50e3, 0.0), SCAN_STEP_M);
+        assert_eq!(scan_step_m(-50e3, -10.0), SCAN_STEP_M);
+        assert_eq!(scan_step_m(-50e3, f64::NAN), SCAN_STEP_M);
+        assert_eq!(scan_step_m(-1e9, 1.0), MAX_SCAN_STEP_M);
+        assert_eq!(scan_step_m(-1.0, 1e6), SCAN_STEP_M);
     }
 }

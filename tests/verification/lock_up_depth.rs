@@ -195,7 +195,8 @@ fn soft_and_hybrid_flag_the_helical_lock_up_they_miss() {
             // a hook load below zero is the level's own lock-up, named as the helix's
             assert!(l.by_helix && l.results_without_helical_drag == (hook >= 0.0), "{l:?}");
             let d = l.depths.and_then(|d| d.at_wob_md_m).unwrap();
-            assert_eq!(d, lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap());
+            // the hybrid's lock-up is at its solved WOB, within rounding of the case's
+            assert!((d - lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap()).abs() < 1e-6);
             let w = s.warnings(&case);
             let flagged = w
                 .iter()
