@@ -104,8 +104,8 @@ pub struct Chart {
     pub soft_seconds: f64,
     /// Time of the stiff columns, s (0 at the `soft` level).
     pub stiff_seconds: f64,
-    /// The lock-up depths of the on-bottom load cases that are locked up at the deepest bit
-    /// depth (at the chart's WOB, by the model of [`Drag::of`],
+    /// The lock-up depths of the on-bottom load cases and of running in that are locked up at the
+    /// deepest bit depth (at the chart's WOB, running in at zero WOB; by the model of [`Drag::of`],
     /// [`crate::models::lock_up_depth`]), in [`MODES`] order.
     pub lock_up_depths: Vec<(Mode, LockUpDepths)>,
 }
@@ -214,10 +214,11 @@ fn chart_lock_up_depths(case: &Case, plan: &ChartPlan) -> Vec<(Mode, LockUpDepth
     let string = case.string.at_depth(deepest);
     MODES
         .iter()
-        .filter(|m| m.on_bottom())
+        .filter(|m| m.on_bottom() || **m == Mode::TripIn)
         .filter_map(|&mode| {
             let row_case = case_for_row(case, &string, deepest, mode, &plan.op);
-            let depths = lock_up_depths(&row_case, plan.op.wob_n, Drag::of(&row_case, plan.op.wob_n));
+            let wob = row_case.operation.wob_n;
+            let depths = lock_up_depths(&row_case, wob, Drag::of(&row_case, wob));
             depths.at_wob_md_m.is_some().then_some((mode, depths))
         })
         .collect()

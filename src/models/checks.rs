@@ -2,7 +2,7 @@
 //! strength, and a hook load below zero (lock-up: the surface would have to push the string
 //! down to put the WOB on the bit).
 
-use crate::case::Case;
+use crate::case::{Case, Mode};
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
 use crate::models::helical_drag::HelicalLockUp;
@@ -112,6 +112,9 @@ pub struct LockUp {
     /// has no helix's drag (`soft`, `hybrid`) at the WOB asked for, their hook load not below
     /// zero.
     pub results_without_helical_drag: bool,
+    /// Running in (`trip_in`): the string cannot be run in to the bit depth (no WOB; `wob_n` and
+    /// `max_wob_n` are 0).
+    pub running_in: bool,
     /// The bit depths from which the string locks up at the WOB asked for and at zero WOB
     /// ([`crate::models::lock_up_depth`]); None where not computed (`loads` rows).
     pub depths: Option<LockUpDepths>,
@@ -130,6 +133,7 @@ impl LockUp {
             helical_md_m: h.helical_md_m,
             results_at_largest_wob: false,
             results_without_helical_drag: false,
+            running_in: false,
             depths: None,
         }
     }
@@ -138,11 +142,34 @@ impl LockUp {
     /// ([`lock_up_depths`]), by the soft string of its largest WOB (with the helix's drag for a
     /// lock-up by the helix).
     pub fn with_depths(self, case: &Case) -> LockUp {
-        let drag = if self.by_helix { Drag::WithHelix } else { Drag::Plain };
+        let drag = match (self.by_helix, self.running_in) {
+            (true, _) => Drag::WithHelix,
+            (false, true) => Drag::of(case, 0.0),
+            (false, false) => Drag::Plain,
+        };
         LockUp {
             depths: Some(lock_up_depths(case, self.wob_n, drag)),
             ..self
         }
+    }
+
+    /// The warning of a lock-up running in ([`running_in_lock_up`]).
+    fn running_in_warning(&self) -> String {
+        let depth = match self.depths.filter(|d| !d.locked_everywhere()) {
+            Some(LockUpDepths {
+                at_wob_md_m: Some(d),
+                drag,
+                ..
+            }) => format!(
+                "; lock-up depth (by the {}, the string refitted to each bit depth of the surveyed hole): it cannot be run in deeper than {d:.0} m MD",
+                drag.name()
+            ),
+            _ => String::new(),
+        };
+        format!(
+            "lock-up running in: hook load {:.0} kN below zero, the surface would have to push the string down to run it in to this depth: less friction, rotation while running in, or heavier pipe above the compressed part{depth}",
+            self.hook_load_n / 1e3
+        )
     }
 
     /// The warning's clause on the lock-up depths (empty where not computed).
@@ -159,6 +186,9 @@ impl LockUp {
     pub fn warning(&self, mode: &str) -> String {
         if self.by_helix {
             return self.helical_warning(mode);
+        }
+        if self.running_in {
+            return self.running_in_warning();
         }
         let at = match self.results_at_wob_n {
             Some(w) => format!(
@@ -244,6 +274,28 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
         helical_md_m: None,
         results_at_largest_wob: false,
         results_without_helical_drag: false,
+        running_in: false,
+        depths: None,
+    })
+}
+
+/// The lock-up of `case` running in (`trip_in`) when `hook_load_n` is below zero: the surface
+/// would have to push the string down to run it in to the bit depth.
+pub fn running_in_lock_up(case: &Case, hook_load_n: Option<f64>) -> Option<LockUp> {
+    let h = hook_load_n?;
+    if h >= 0.0 || case.operation.mode != Mode::TripIn || case.operation.hook_load_n.is_some() {
+        return None;
+    }
+    Some(LockUp {
+        hook_load_n: h,
+        wob_n: 0.0,
+        max_wob_n: 0.0,
+        results_at_wob_n: None,
+        by_helix: false,
+        helical_md_m: None,
+        results_at_largest_wob: false,
+        results_without_helical_drag: false,
+        running_in: true,
         depths: None,
     })
 }

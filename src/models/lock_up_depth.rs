@@ -12,7 +12,7 @@
 //! been drilled in this operation. The scan stops at the first depth that delivers the WOB, so a
 //! locked window higher up the hole (possible in an S-shaped well) is not reported.
 
-use crate::case::Case;
+use crate::case::{Case, Mode};
 use crate::models::helical_drag::helical_soft_string;
 use crate::models::softstring;
 
@@ -92,12 +92,14 @@ pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64, drag: Drag) 
 /// (N), has a negative hook load by the model `drag` all the way down to the case's bit depth,
 /// to within [`DEPTH_TOLERANCE_M`]: scanned up from the case's bit depth in steps of
 /// [`scan_step_m`] to the first depth with a non-negative hook load, then bisected.
-/// None when the hook load at the case's bit depth is not negative (or the case is off bottom,
-/// or gives the hook load instead of the WOB); the top of the survey when no bit depth of the
-/// surveyed hole has a non-negative hook load.
+/// None when the hook load at the case's bit depth is not negative (or the case is off bottom
+/// other than running in at zero WOB, or gives the hook load instead of the WOB); the top of the
+/// survey when no bit depth of the surveyed hole has a non-negative hook load. Running in
+/// (`trip_in`, zero WOB), it is the depth the string cannot be run in beyond.
 pub fn lock_up_depth_m(case: &Case, wob_n: f64, drag: Drag) -> Option<f64> {
     let op = &case.operation;
-    if !op.mode.on_bottom() || op.hook_load_n.is_some() || !wob_n.is_finite() {
+    let runs_down = op.mode.on_bottom() || (op.mode == Mode::TripIn && wob_n == 0.0);
+    if !runs_down || op.hook_load_n.is_some() || !wob_n.is_finite() {
         return None;
     }
     let hook = |md: f64| hook_load_at_depth_n(case, md, wob_n, drag);

@@ -8,7 +8,7 @@
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
 use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
-use crate::models::checks::{dogleg_warning, lock_up, yield_check, LockUp, YieldCheck};
+use crate::models::checks::{dogleg_warning, lock_up, running_in_lock_up, yield_check, LockUp, YieldCheck};
 use crate::models::fem::model::Model;
 use crate::models::fem::results::{sensor_results, NodeResult, SensorResult};
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
@@ -158,6 +158,7 @@ pub fn solve_string(
     let lock_up = delivered
         .or_else(|| lock_up(case, level.hook_load_n, level.wob_n).map(|l| by_helix_if_so(case, l)))
         .or_else(|| helix_missed(case, &level))
+        .or_else(|| running_in_lock_up(case, level.hook_load_n))
         .map(|l| l.with_depths(case));
     let sensors = level
         .fem

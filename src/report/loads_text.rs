@@ -219,14 +219,28 @@ fn warn_helical_lock_up(rows: &[LoadRow], units: UnitSystem, out: &mut impl Writ
     })
 }
 
-/// A line per on-bottom load case locked up at the deepest bit depth: its lock-up depths
-/// ([`Chart::lock_up_depths`]).
+/// A line per load case locked up at the deepest bit depth (on bottom, or running in): its
+/// lock-up depths ([`Chart::lock_up_depths`]).
 fn print_lock_up_depths(chart: &Chart, units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
     let depth = units.depth();
     for (mode, d) in &chart.lock_up_depths {
         let Some(at_wob) = d.at_wob_md_m else {
             continue;
         };
+        if *mode == Mode::TripIn {
+            let first = if d.locked_everywhere() {
+                "it cannot be run in at any bit depth of the surveyed hole".to_string()
+            } else {
+                format!("it cannot be run in deeper than {} MD", depth.fmt(at_wob, 0))
+            };
+            writeln!(
+                out,
+                "  lock-up depth, {}: {first} (the hook load below zero from there; {}, to 0.1 m)",
+                mode.name(),
+                d.drag.name()
+            )?;
+            continue;
+        }
         let zero = match d.at_zero_wob_md_m {
             Some(z) => format!("even at zero WOB from {}", depth.fmt(z, 0)),
             None => "at zero WOB it reaches the deepest depth".to_string(),

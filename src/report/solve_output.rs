@@ -168,6 +168,7 @@ struct LockUpJson {
     lock_up_depth_m: Option<Finite>,
     lock_up_depth_zero_wob_m: Option<Finite>,
     results_without_helical_drag: bool,
+    running_in: bool,
 }
 
 /// The `soft_string_comparison` key: the soft string at the same WOB beside a `whole` or
@@ -458,6 +459,7 @@ impl SolveSummary {
                 lock_up_depth_m: l.depths.and_then(|d| d.at_wob_md_m).map(Finite),
                 lock_up_depth_zero_wob_m: l.depths.and_then(|d| d.at_zero_wob_md_m).map(Finite),
                 results_without_helical_drag: l.results_without_helical_drag,
+                running_in: l.running_in,
             }),
             warnings: s.warnings(case),
             motor_yield_deg_per_30m: None,

@@ -121,32 +121,8 @@ fn lock_up_depth_is_where_the_largest_wob_is_the_one_asked_for() {
 /// WOB; the drilling rows, rotating, are not locked up and get no line.
 #[test]
 fn loads_prints_the_lock_up_depth() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
-    use drillpath::loads::run::{plan, run, ChartRequest};
-    use drillpath::report::display_units::UnitSystem;
-    use drillpath::report::loads_text::write_loads;
     let case = crate::helical_drag::small_grid_case(55.0);
-    let req = ChartRequest {
-        from_md_m: 0.0,
-        to_md_m: None,
-        every_m: 250.0,
-        wob_n: None,
-        choice: choose(Fidelity::Level(Level::Soft), Purpose::Loads),
-        measured: Vec::new(),
-    };
-    let p = plan(&case, &req).unwrap();
-    let chart = run(&case, &p, &mut |_, _| {}).unwrap();
-    let mut out = Vec::new();
-    write_loads(
-        &mut out,
-        &case,
-        std::path::Path::new("case.toml"),
-        &p,
-        &chart,
-        UnitSystem::Si,
-    )
-    .unwrap();
-    let text = String::from_utf8(out).unwrap();
+    let text = loads_text(&case);
     let d = lock_up_depth_m(&case, 55e3, Drag::WithHelix).expect("slid at 55 kN it is locked up");
     let line = format!("lock-up depth, sliding: at the chart's WOB the string locks up once the bit is deeper than {d:.0} m MD, at zero WOB it reaches the deepest depth (soft string with the helix's drag, to 0.1 m)");
     assert!(text.contains(&line), "{text}");
@@ -204,4 +180,78 @@ fn soft_and_hybrid_flag_the_helical_lock_up_they_miss() {
             assert_eq!(flagged, hook >= 0.0, "{w:?}");
         }
     }
+}
+
+/// Running in (`trip_in`, zero WOB) locks up where the closed form puts a zero WOB (friction 0.45:
+/// 889 m into the lateral's dragging part, 1,349 m MD), the same depth as sliding at zero WOB (the
+/// same downward motion without rotation); tolerance as above. `loads` names it, and `solve`
+/// running in to the bit depth flags the lock-up with it.
+#[test]
+fn running_in_locks_up_where_sliding_does_at_zero_wob() {
+    use drillpath::case::Mode;
+    let friction = 0.45;
+    let sliding = lateral_case(30.0, friction);
+    let mut trip_in = sliding.clone();
+    trip_in.operation.mode = Mode::TripIn;
+    trip_in.operation.wob_n = 0.0;
+    let expected = closed_form_depth_m(&sliding, 0.0, friction);
+    let found = lock_up_depth_m(&trip_in, 0.0, Drag::Plain).expect("locked up running in");
+    println!("running in: {found:.2} m MD, closed form {expected:.2} m");
+    assert!(
+        (found - expected).abs() <= DEPTH_TOLERANCE_M + 0.05,
+        "{found} vs {expected}"
+    );
+    let at_zero = lock_up_depths(&sliding, 30e3, Drag::Plain).at_zero_wob_md_m.unwrap();
+    assert!((found - at_zero).abs() < 1e-9, "{found} {at_zero}");
+    // off bottom, a WOB is not a case of running in
+    assert_eq!(lock_up_depth_m(&trip_in, 10e3, Drag::Plain), None);
+    let text = loads_text(&sliding);
+    let line = format!("lock-up depth, trip_in: it cannot be run in deeper than {found:.0} m MD");
+    assert!(text.contains(&line), "{text}");
+    // `solve` running in at the bit depth flags the lock-up with its depth
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::models::string_solve::solve_string;
+    let ctl = SolveControls::from_settings(&trip_in.solver);
+    let choice = choose(Fidelity::Level(Level::Soft), Purpose::Solve);
+    let s = solve_string(&trip_in, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    let l = s.lock_up.expect("no lock-up running in");
+    assert!(l.running_in && l.hook_load_n < 0.0 && l.wob_n == 0.0, "{l:?}");
+    assert_eq!(l.depths.and_then(|d| d.at_wob_md_m), Some(found));
+    let w = s.warnings(&trip_in);
+    let expected = format!("it cannot be run in deeper than {found:.0} m MD");
+    assert!(
+        w.iter()
+            .any(|w| w.starts_with("lock-up running in") && w.contains(&expected)),
+        "{w:?}"
+    );
+}
+
+/// `loads`' stdout for `case` at the soft level, bit depths every 250 m to the case's.
+fn loads_text(case: &Case) -> String {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::loads::run::{plan, run, ChartRequest};
+    use drillpath::report::display_units::UnitSystem;
+    use drillpath::report::loads_text::write_loads;
+    let req = ChartRequest {
+        from_md_m: 0.0,
+        to_md_m: None,
+        every_m: 250.0,
+        wob_n: None,
+        choice: choose(Fidelity::Level(Level::Soft), Purpose::Loads),
+        measured: Vec::new(),
+    };
+    let p = plan(case, &req).unwrap();
+    let chart = run(case, &p, &mut |_, _| {}).unwrap();
+    let mut out = Vec::new();
+    write_loads(
+        &mut out,
+        case,
+        std::path::Path::new("case.toml"),
+        &p,
+        &chart,
+        UnitSystem::Si,
+    )
+    .unwrap();
+    String::from_utf8(out).unwrap()
 }
