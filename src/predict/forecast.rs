@@ -12,6 +12,7 @@ use super::tracking::references::{project as project_reference, Direction, Refer
 use super::tracking::skill::{skill, EndDirections, Skill};
 use crate::case::{Case, Level};
 use crate::models::checks::lock_up;
+use crate::models::lock_up_depth::{lock_up_depth_m, Drag};
 use crate::models::softstring;
 
 /// What to predict.
@@ -133,16 +134,38 @@ pub fn wob_warning(case: &Case, from_md_m: f64) -> Option<String> {
     ))
 }
 
+/// The warning of a prediction whose string, in the case's operation at its WOB, locks up
+/// along the predicted hole after the start and before the end: the lock-up depth there
+/// ([`lock_up_depth_m`], the string refitted to the end on the predicted path, by the soft string
+/// with the helix's drag: the plain one wherever nothing is helically buckled, and the more
+/// restrictive of the two). A string locked up at the start has [`wob_warning`] instead.
+pub fn lock_up_ahead_warning(case: &Case, prediction: &Prediction) -> Option<String> {
+    let to = prediction.to_md_m;
+    let mut c = case.clone();
+    c.well.path = prediction.path.clone();
+    c.string = case.string.at_depth(to);
+    c.operation.bit_md_m = to;
+    let wob = c.operation.wob_n;
+    let depth = lock_up_depth_m(&c, wob, Drag::WithHelix).filter(|d| *d > prediction.from_md_m + 1e-6)?;
+    Some(format!(
+        "along the predicted hole the string locks up once the bit is deeper than {depth:.1} m MD at {:.0} kN WOB while {} (by the {}, the string refitted to each bit depth): the hole predicted beyond it cannot be drilled this way without the surface pushing",
+        wob / 1e3,
+        c.operation.mode.name(),
+        Drag::WithHelix.name()
+    ))
+}
+
 /// Predict `case` as `req` asks; `on_step` hears the bit MD after each step (of both marches
 /// when extrapolating, the coarse one first).
 pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)) -> Result<Forecast, PredictError> {
     let (from, to, settings) = (req.from_md_m, req.to_md_m, &req.settings);
-    let warnings: Vec<String> = wob_warning(case, from).into_iter().collect();
+    let mut warnings: Vec<String> = wob_warning(case, from).into_iter().collect();
     let (prediction, step_error) = if req.extrapolate {
         predict_extrapolated(case, from, to, settings, on_step).map(|(p, e)| (p, Some(e)))?
     } else {
         (predict(case, from, to, settings, on_step)?, None)
     };
+    warnings.extend(lock_up_ahead_warning(case, &prediction));
     let mut rows = trajectory_rows(&prediction, Some(&case.well.path));
     let plain: Vec<TrajectoryRow> = rows.clone();
     let projection = req.assimilate.then(|| {

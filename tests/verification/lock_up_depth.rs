@@ -255,3 +255,28 @@ fn loads_text(case: &Case) -> String {
     .unwrap();
     String::from_utf8(out).unwrap()
 }
+
+/// `predict` warns where the string locks up along the predicted hole: the small grid well slid
+/// at 55 kN, predicted from 1,100 to 1,220 m; the depth the warning names is [`lock_up_depth_m`]'s
+/// on the predicted path (the soft string with the helix's drag), between the start and the end.
+/// A prediction that ends above it gets no warning.
+#[test]
+fn predict_warns_where_the_predicted_hole_locks_up() {
+    use drillpath::predict::forecast::lock_up_ahead_warning;
+    use drillpath::predict::march::{predict, MarchSettings};
+    let case = crate::helical_drag::small_grid_case(55.0);
+    let settings = MarchSettings::from_case(&case);
+    let p = predict(&case, 1100.0, 1220.0, &settings, &mut |_| {}).unwrap();
+    let w = lock_up_ahead_warning(&case, &p).expect("no lock-up along the predicted hole");
+    let mut along = case.clone();
+    along.well.path = p.path.clone();
+    along.string = case.string.at_depth(1220.0);
+    along.operation.bit_md_m = 1220.0;
+    let d = lock_up_depth_m(&along, 55e3, Drag::WithHelix).unwrap();
+    assert!(w.contains(&format!("deeper than {d:.1} m MD")), "{w}");
+    let surveyed = lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap();
+    println!("along the prediction {d:.1} m, along the survey {surveyed:.1} m");
+    assert!(d > 1100.0 && d < 1220.0, "{d}");
+    let short = predict(&case, 1100.0, d - 5.0, &settings, &mut |_| {}).unwrap();
+    assert_eq!(lock_up_ahead_warning(&case, &short), None);
+}
