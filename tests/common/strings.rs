@@ -149,6 +149,26 @@ pub fn collar_properties() -> (f64, f64, f64) {
     (ei, w_b, (HOLE - OD) / 2.0)
 }
 
+/// The `[mud]`, `[operation]` and `[[string]]` tables of a 0.3 m, 5 in bit on the 5 in pipe body
+/// ([`DRILL_PIPE_BODY`]) in 1.2 sg mud, sliding with the bit at `bit_md_m` (m), `wob_kn` (kN) and
+/// wall friction `friction`: the string of the straight-hole and lateral tests.
+pub fn slid_bit_on_pipe(bit_md_m: f64, wob_kn: f64, friction: f64) -> String {
+    format!(
+        r#"[mud]
+density = "1.2 sg"
+[operation]
+mode = "sliding"
+bit_md = "{bit_md_m} m"
+wob = "{wob_kn} kN"
+friction = {friction}
+[[string]]
+type = "bit"
+od = "5 in"
+length = "0.3 m"
+{DRILL_PIPE_BODY}"#
+    )
+}
+
 /// Bending stiffness EI (N.m2, E = 207 GPa, the body only), buoyed weight (N/m: 29 kg/m of
 /// steel, 7,850 kg/m3, in 1.2 sg mud) and radial clearance of the body in the 8.5 in hole (m)
 /// of the 5 in drill pipe ([`DRILL_PIPE_BODY`]).

@@ -11,7 +11,7 @@ use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use std::f64::consts::FRAC_PI_2;
 
-use crate::common::{load_temp_case, pipe_properties, DRILL_PIPE_BODY};
+use crate::common::{load_temp_case, pipe_properties, slid_bit_on_pipe, DRILL_PIPE_BODY};
 
 /// The 5 in pipe body ([`DRILL_PIPE_BODY`]: no tool joints, 29 kg/m, 1.2 sg) in a horizontal
 /// 8.5 in hole from the surface, 245 m long, with a seeded imperfection (azimuth alternating
@@ -203,23 +203,13 @@ pub(crate) fn straight_hole_case(
         format!("md_m,inc_deg,azi_deg\n0,{inc_deg},0\n{length_m},{inc_deg},0\n")
     };
     let mesh = element.map_or(String::new(), |e| format!("element_length = \"{e}\"\n"));
+    let string = slid_bit_on_pipe(length_m, wob_kn, friction);
     let text = format!(
         r#"
 [well]
 survey = "survey.csv"
 hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-bit_md = "{length_m} m"
-wob = "{wob_kn} kN"
-friction = {friction}
-[[string]]
-type = "bit"
-od = "5 in"
-length = "0.3 m"
-{DRILL_PIPE_BODY}[solver]
+{string}[solver]
 {mesh}"#
     );
     load_temp_case(&survey, &text)

@@ -14,7 +14,7 @@ use drillpath::models::lock_up_depth::{
     hook_load_at_depth_n, lock_up_depth_m, lock_up_depths, Drag, DEPTH_TOLERANCE_M,
 };
 
-use crate::common::{load_temp_case, DRILL_PIPE_BODY};
+use crate::common::{load_temp_case, slid_bit_on_pipe};
 
 /// Vertical to 300 m, a 90 deg build of radius 100 m (a circular arc by minimum curvature, to
 /// 457.08 m), a horizontal lateral to 1,500 m (bit there); 8.5 in hole without friction down to
@@ -28,18 +28,8 @@ fn lateral_case(wob_kn: f64, friction: f64) -> Case {
 [well]
 survey = "survey.csv"
 hole = [{{ to_md = "460 m", diameter = "8.5 in", friction = 0 }}, {{ to_md = "1500 m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "sliding"
-bit_md = "1500 m"
-wob = "{wob_kn} kN"
-friction = {friction}
-[[string]]
-type = "bit"
-od = "5 in"
-length = "0.3 m"
-{DRILL_PIPE_BODY}"#
+{}"#,
+        slid_bit_on_pipe(1500.0, wob_kn, friction)
     );
     load_temp_case(&survey, &text)
 }
