@@ -175,9 +175,7 @@ impl LockUp {
     /// The warning's clause on the lock-up depths (empty where not computed).
     fn depth_clause(&self) -> String {
         match self.depths.and_then(|d| d.sentence(self.wob_n)) {
-            Some(d) => {
-                format!("; lock-up depth (soft string with the helix's drag, the hole drilled as surveyed): {d}")
-            }
+            Some(d) => format!("; {d}"),
             None => String::new(),
         }
     }

@@ -168,6 +168,13 @@ fn soft_and_hybrid_flag_the_helical_lock_up_they_miss() {
                 .iter()
                 .any(|w| w.contains("from a soft string without the helix's drag"));
             assert_eq!(flagged, hook >= 0.0, "{w:?}");
+            // the depth is named once, with the model that found it
+            let warning = w.iter().find(|w| w.starts_with("helical lock-up")).unwrap();
+            assert_eq!(warning.matches("lock-up depth").count(), 1, "{warning}");
+            assert!(
+                warning.contains("lock-up depth (by the soft string with the helix's drag"),
+                "{warning}"
+            );
         }
     }
 }
