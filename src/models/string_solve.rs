@@ -12,7 +12,7 @@ use crate::models::checks::{dogleg_warning, lock_up, running_in_lock_up, yield_c
 use crate::models::fem::model::Model;
 use crate::models::fem::results::{sensor_results, NodeResult, SensorResult};
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
-use crate::models::fem::solve::SolveControls;
+use crate::models::fem::solve::{SolveControls, SolveStats};
 use crate::models::helical_drag;
 use crate::models::helical_lock_up;
 use crate::models::levels::{fem_part_by, run_with_progress, FidelityError, LevelResult};
@@ -288,9 +288,10 @@ fn answer_without_equilibrium(
     }
     match whole_climbed_to_wob(case, choice, &left, on_stage) {
         Ok(r) => (Some(r), None),
-        Err(reached) => {
-            if let Some(part) = level.fem.as_mut() {
-                part.stats.buckled_climb_n = reached;
+        Err(stopped) => {
+            if let (Some(part), Some((reached, work))) = (level.fem.as_mut(), stopped) {
+                part.stats.buckled_climb_n = Some(reached);
+                part.stats.add_work(&work);
             }
             (None, None)
         }
@@ -300,19 +301,20 @@ fn answer_without_equilibrium(
 /// The whole string of `case` at its WOB climbed from its buckled shape
 /// ([`helical_lock_up::climbed_to_wob`]) when the solve found no equilibrium there from its
 /// usual start and no lock-up applies ([`whole_from_climb`]). Err with the
-/// WOB the climb reached and the case's (N) where it stopped below the WOB, Err(None) where no
-/// climb ran or its answer did not converge.
+/// WOB the climb reached and the case's (N), and the climb's work, where it stopped below the
+/// WOB; Err(None) where no climb ran or its answer did not converge.
 fn whole_climbed_to_wob(
     case: &Case,
     choice: Choice,
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
-) -> Result<LevelResult, Option<(f64, f64)>> {
+) -> Result<LevelResult, Option<((f64, f64), SolveStats)>> {
     let t0 = Instant::now();
     on_stage(0, 1, "stiff whole string climbed from its buckled shape");
     let climbed = helical_lock_up::climbed_to_wob(case, ctl).ok_or(None)?;
     if climbed.climb_end != ClimbEnd::Target {
-        return Err(Some((climbed.wob_n, case.operation.wob_n)));
+        let work = climbed.solution.stats;
+        return Err(Some(((climbed.wob_n, case.operation.wob_n), work)));
     }
     whole_from_climb(case, choice, climbed, ctl, t0).ok_or(None)
 }
