@@ -286,37 +286,36 @@ fn answer_without_equilibrium(
     if let Some((l, r)) = locked {
         return (Some(r), Some(l));
     }
-    match whole_climbed_to_wob(case, choice, &left, on_stage) {
-        Ok(r) => (Some(r), None),
-        Err(stopped) => {
-            if let (Some(part), Some((reached, work))) = (level.fem.as_mut(), stopped) {
-                part.stats.buckled_climb_n = Some(reached);
-                part.stats.add_work(&work);
-            }
-            (None, None)
-        }
+    let mut stopped = SolveStats::default();
+    let climbed = whole_climbed_to_wob(case, choice, &left, on_stage, &mut stopped);
+    if let (None, Some(part)) = (&climbed, level.fem.as_mut()) {
+        part.stats.buckled_climb_n = stopped.buckled_climb_n;
+        part.stats.add_work(&stopped);
     }
+    (climbed, None)
 }
 
 /// The whole string of `case` at its WOB climbed from its buckled shape
 /// ([`helical_lock_up::climbed_to_wob`]) when the solve found no equilibrium there from its
-/// usual start and no lock-up applies ([`whole_from_climb`]). Err with the
-/// WOB the climb reached and the case's (N), and the climb's work, where it stopped below the
-/// WOB; Err(None) where no climb ran or its answer did not converge.
+/// usual start and no lock-up applies ([`whole_from_climb`]). None where no climb ran, its
+/// answer did not converge, or it stopped below the WOB: then `stopped` gets the climb's work and
+/// the WOB it reached with the case's ([`SolveStats::buckled_climb_n`]).
 fn whole_climbed_to_wob(
     case: &Case,
     choice: Choice,
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
-) -> Result<LevelResult, Option<((f64, f64), SolveStats)>> {
+    stopped: &mut SolveStats,
+) -> Option<LevelResult> {
     let t0 = Instant::now();
     on_stage(0, 1, "stiff whole string climbed from its buckled shape");
-    let climbed = helical_lock_up::climbed_to_wob(case, ctl).ok_or(None)?;
+    let climbed = helical_lock_up::climbed_to_wob(case, ctl)?;
     if climbed.climb_end != ClimbEnd::Target {
-        let work = climbed.solution.stats;
-        return Err(Some(((climbed.wob_n, case.operation.wob_n), work)));
+        stopped.add_work(&climbed.solution.stats);
+        stopped.buckled_climb_n = Some((climbed.wob_n, case.operation.wob_n));
+        return None;
     }
-    whole_from_climb(case, choice, climbed, ctl, t0).ok_or(None)
+    whole_from_climb(case, choice, climbed, ctl, t0)
 }
 
 /// The level result of the whole string of `case` climbed from its buckled shape (`climbed`, its
