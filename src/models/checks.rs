@@ -112,6 +112,9 @@ pub struct LockUp {
     /// has no helix's drag (`soft`, `hybrid`) at the WOB asked for, their hook load not below
     /// zero.
     pub results_without_helical_drag: bool,
+    /// The results are a cut model's (`bha`), which has no hook load, at the WOB asked for: the
+    /// lock-up is the soft string's at that WOB.
+    pub results_without_hook_load: bool,
     /// Running in (`trip_in`): the string cannot be run in to the bit depth (no WOB; `wob_n` and
     /// `max_wob_n` are 0).
     pub running_in: bool,
@@ -133,6 +136,7 @@ impl LockUp {
             helical_md_m: h.helical_md_m,
             results_at_largest_wob: false,
             results_without_helical_drag: false,
+            results_without_hook_load: false,
             running_in: false,
             depths: None,
         }
@@ -194,6 +198,7 @@ impl LockUp {
                 self.wob_n / 1e3,
                 w / 1e3
             ),
+            None if self.results_without_hook_load => BHA_RESULTS_CLAUSE.to_string(),
             None => String::new(),
         };
         format!(
@@ -211,6 +216,10 @@ impl LockUp {
 /// `models::helical_drag::COMPRESSION_CAP_N` and its hook load is no longer a load.
 pub const DIVERGED_HOOK_LOAD_N: f64 = -1e7;
 
+/// The clause of a lock-up warning whose results are a cut model's (`bha`), which has no hook
+/// load ([`LockUp::results_without_hook_load`]).
+const BHA_RESULTS_CLAUSE: &str = "; the results are the bottom-hole assembly's at the WOB asked for (the `bha` model has no hook load), a WOB the string cannot deliver";
+
 impl LockUp {
     /// The warning of a lock-up by the helix's drag ([`LockUp::by_helix`]).
     fn helical_warning(&self, mode: &str) -> String {
@@ -226,6 +235,7 @@ impl LockUp {
                 w / 1e3,
                 self.max_wob_n / 1e3
             ),
+            None if self.results_without_hook_load => BHA_RESULTS_CLAUSE.to_string(),
             None if self.results_without_helical_drag => format!(
                 "; the results are at the WOB asked for, from a soft string without the helix's drag: their hook load, not below zero, is one the string cannot give ({})",
                 if self.max_wob_n > 0.0 {
@@ -272,6 +282,7 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
         helical_md_m: None,
         results_at_largest_wob: false,
         results_without_helical_drag: false,
+        results_without_hook_load: false,
         running_in: false,
         depths: None,
     })
@@ -293,6 +304,7 @@ pub fn running_in_lock_up(case: &Case, hook_load_n: Option<f64>) -> Option<LockU
         helical_md_m: None,
         results_at_largest_wob: false,
         results_without_helical_drag: false,
+        results_without_hook_load: false,
         running_in: true,
         depths: None,
     })

@@ -159,6 +159,7 @@ pub fn solve_string(
         .or_else(|| lock_up(case, level.hook_load_n, level.wob_n).map(|l| by_helix_if_so(case, l)))
         .or_else(|| helix_missed(case, &level))
         .or_else(|| running_in_lock_up(case, level.hook_load_n))
+        .or_else(|| without_hook_load(case, &level))
         .map(|l| l.with_depths(case));
     let sensors = level
         .fem
@@ -202,6 +203,23 @@ fn helix_missed(case: &Case, level: &LevelResult) -> Option<LockUp> {
     helical_drag::helical_lock_up(case).map(|h| LockUp {
         results_without_helical_drag: true,
         ..LockUp::by_helix(&h)
+    })
+}
+
+/// The lock-up of `case` at its WOB for a level without a hook load (`bha`): the soft string's
+/// (named as the helix's where only the soft string with the helix's drag is locked up), its
+/// results flagged as the bottom-hole assembly's at a WOB the string cannot deliver.
+fn without_hook_load(case: &Case, level: &LevelResult) -> Option<LockUp> {
+    if level.hook_load_n.is_some() || !level.converged {
+        return None;
+    }
+    let wob = case.operation.wob_n;
+    let l = soft_lock_up_at(case, wob)
+        .map(|l| by_helix_if_so(case, l))
+        .or_else(|| helical_drag::helical_lock_up(case).map(|h| LockUp::by_helix(&h)))?;
+    Some(LockUp {
+        results_without_hook_load: true,
+        ..l
     })
 }
 

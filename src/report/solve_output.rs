@@ -168,6 +168,7 @@ struct LockUpJson {
     lock_up_depth_m: Option<Finite>,
     lock_up_depth_zero_wob_m: Option<Finite>,
     results_without_helical_drag: bool,
+    results_without_hook_load: bool,
     running_in: bool,
 }
 
@@ -459,6 +460,7 @@ impl SolveSummary {
                 lock_up_depth_m: l.depths.and_then(|d| d.at_wob_md_m).map(Finite),
                 lock_up_depth_zero_wob_m: l.depths.and_then(|d| d.at_zero_wob_md_m).map(Finite),
                 results_without_helical_drag: l.results_without_helical_drag,
+                results_without_hook_load: l.results_without_hook_load,
                 running_in: l.running_in,
             }),
             warnings: s.warnings(case),

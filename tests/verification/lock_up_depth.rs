@@ -277,3 +277,36 @@ fn predict_warns_where_the_predicted_hole_locks_up() {
     let short = predict(&case, 1100.0, d - 5.0, &settings, &mut |_| {}).unwrap();
     assert_eq!(lock_up_ahead_warning(&case, &short), None);
 }
+
+/// `solve` at `bha`, a cut model without a hook load, flags a WOB the string cannot deliver by
+/// the soft string: the small grid well slid at 55 kN (locked up by the helix's drag) reports the
+/// lock-up with its results flagged as the assembly's (`results_without_hook_load`) and its
+/// lock-up depth; at 20 kN nothing.
+#[test]
+fn bha_flags_a_wob_the_string_cannot_deliver() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::models::string_solve::solve_string;
+    for (wob, locked) in [(55.0, true), (20.0, false)] {
+        let case = crate::helical_drag::small_grid_case(wob);
+        let ctl = SolveControls::from_settings(&case.solver);
+        let choice = choose(Fidelity::Level(Level::Bha), Purpose::Solve);
+        let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+        assert!(s.level.converged && s.level.hook_load_n.is_none());
+        assert_eq!(s.lock_up.is_some(), locked, "{wob} kN: {:?}", s.lock_up);
+        let Some(l) = s.lock_up else {
+            continue;
+        };
+        assert!(
+            l.by_helix && l.results_without_hook_load && !l.results_without_helical_drag,
+            "{l:?}"
+        );
+        let d = l.depths.and_then(|d| d.at_wob_md_m).unwrap();
+        assert!((d - lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap()).abs() < 1e-9);
+        let w = s.warnings(&case);
+        assert!(
+            w.iter().any(|w| w.ends_with("a WOB the string cannot deliver")),
+            "{w:?}"
+        );
+    }
+}
