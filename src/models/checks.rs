@@ -128,12 +128,22 @@ impl LockUp {
     /// for.
     pub fn by_helix(h: &HelicalLockUp) -> LockUp {
         LockUp {
-            hook_load_n: h.hook_load_n,
-            wob_n: h.wob_n,
-            max_wob_n: h.max_wob_n,
-            results_at_wob_n: None,
             by_helix: true,
             helical_md_m: h.helical_md_m,
+            ..LockUp::at(h.hook_load_n, h.wob_n, h.max_wob_n)
+        }
+    }
+
+    /// A lock-up with the hook load `hook_load_n`, the WOB asked for `wob_n` and the largest WOB
+    /// `max_wob_n` (N): its results at the WOB asked for, no flag set, no depths computed.
+    fn at(hook_load_n: f64, wob_n: f64, max_wob_n: f64) -> LockUp {
+        LockUp {
+            hook_load_n,
+            wob_n,
+            max_wob_n,
+            results_at_wob_n: None,
+            by_helix: false,
+            helical_md_m: None,
             results_at_largest_wob: false,
             results_without_helical_drag: false,
             results_without_hook_load: false,
@@ -273,19 +283,7 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
     }
     let soft = softstring::at_zero_hook_load(case, softstring::segment_length_m(&case.solver));
     let max_wob_n = (-soft.points.first()?.tension_n).max(0.0);
-    Some(LockUp {
-        hook_load_n: h,
-        wob_n,
-        max_wob_n,
-        results_at_wob_n: None,
-        by_helix: false,
-        helical_md_m: None,
-        results_at_largest_wob: false,
-        results_without_helical_drag: false,
-        results_without_hook_load: false,
-        running_in: false,
-        depths: None,
-    })
+    Some(LockUp::at(h, wob_n, max_wob_n))
 }
 
 /// The lock-up of `case` running in (`trip_in`) when `hook_load_n` is below zero: the surface
@@ -296,17 +294,8 @@ pub fn running_in_lock_up(case: &Case, hook_load_n: Option<f64>) -> Option<LockU
         return None;
     }
     Some(LockUp {
-        hook_load_n: h,
-        wob_n: 0.0,
-        max_wob_n: 0.0,
-        results_at_wob_n: None,
-        by_helix: false,
-        helical_md_m: None,
-        results_at_largest_wob: false,
-        results_without_helical_drag: false,
-        results_without_hook_load: false,
         running_in: true,
-        depths: None,
+        ..LockUp::at(h, 0.0, 0.0)
     })
 }
 
