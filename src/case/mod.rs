@@ -63,6 +63,16 @@ pub const DEFAULT_ROTATING_RPM: f64 = 60.0;
 pub const ABOVE_SURVEY_NOTE_M: f64 = 1.0;
 
 impl Case {
+    /// The case with its string refitted to the bit depth `bit_md_m` (m,
+    /// [`crate::string::DrillString::at_depth`]: the pipe shortened or lengthened at the surface)
+    /// and its operation's bit depth set there; nothing else changed.
+    pub fn at_bit_depth(&self, bit_md_m: f64) -> Case {
+        let mut c = self.clone();
+        c.string = self.string.at_depth(bit_md_m);
+        c.operation.bit_md_m = bit_md_m;
+        c
+    }
+
     /// Every file the case was read from: the case file, its survey, its caliper, and the
     /// WITSML wbGeometry of its hole and tubular of its string.
     pub fn input_files(&self) -> Vec<PathBuf> {

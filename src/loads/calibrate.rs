@@ -17,7 +17,7 @@
 //! [`JACOBIAN_STEP`]), friction kept in `[0, 1.5]`. Standard errors from the linearized
 //! covariance `s^2 (J^T J)^-1`, `s^2 = RSS / (m - p)`.
 
-use super::chart::{case_at_depth, soft_row};
+use super::chart::soft_row;
 use super::{set_row_operation, ChartOperation};
 use crate::case::{Case, Mode};
 use crate::geometry::{HoleSection, HoleSize};
@@ -164,7 +164,7 @@ impl Evaluator {
         let cases = data
             .iter()
             .map(|p| {
-                let mut c = case_at_depth(case, p.bit_md_m);
+                let mut c = case.at_bit_depth(p.bit_md_m);
                 let mut o = *op;
                 if let Some(w) = p.wob_n {
                     o.wob_n = w;

@@ -97,14 +97,6 @@ pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
     }
 }
 
-/// The case with its string refitted to `bit_md_m` (operation not yet set for a row).
-pub fn case_at_depth(base: &Case, bit_md_m: f64) -> Case {
-    let mut c = base.clone();
-    c.string = base.string.at_depth(bit_md_m);
-    c.operation.bit_md_m = bit_md_m;
-    c
-}
-
 /// Soft-string chart of `case` at the bit depths `depths` (m, each inside the surveyed hole),
 /// rows in depth order, load cases in [`MODES`] order.
 ///
@@ -113,7 +105,7 @@ pub fn case_at_depth(base: &Case, bit_md_m: f64) -> Case {
 pub fn soft_chart(case: &Case, depths: &[f64], settings: &ChartSettings) -> Vec<LoadRow> {
     let mut rows = Vec::with_capacity(depths.len() * MODES.len());
     for &d in depths {
-        let mut c = case_at_depth(case, d);
+        let mut c = case.at_bit_depth(d);
         for mode in MODES {
             set_row_operation(&mut c, d, mode, &settings.op);
             rows.push(soft_row(&c, settings.max_element_m));

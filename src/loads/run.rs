@@ -3,7 +3,7 @@
 //! soft-string rows and, at the `hybrid` or `whole` level, their stiff columns.
 
 use super::calibrate::{calibrate, calibrated_case, Calibration, CalibrationError, MeasuredPoint};
-use super::chart::{case_at_depth, soft_chart, ChartSettings};
+use super::chart::{soft_chart, ChartSettings};
 use super::row::LoadRow;
 use super::stiff::{hybrid_depth, stiff_depth, Solved};
 use super::{case_for_row, check_fits, depth_list, ChartOperation, MODES};
@@ -239,7 +239,7 @@ pub fn stiff_rows(
     let mut previous: Vec<Option<Solved>> = Vec::new();
     for (k, &d) in depths.iter().enumerate() {
         on_depth(k, d);
-        let c = case_at_depth(case, d);
+        let c = case.at_bit_depth(d);
         let depth_rows = &mut rows[k * MODES.len()..(k + 1) * MODES.len()];
         let wobs: Vec<f64> = depth_rows.iter().map(|r| r.wob_n).collect();
         let outcomes = if level == Level::Hybrid {

@@ -371,7 +371,7 @@ fn unbuckled_length_m(case: &Case, model: &Model, nodes: &[NodeResult]) -> f64 {
 }
 
 /// Stiff outcomes of the five load cases ([`MODES`] order) for `case` with its string already
-/// refitted to `bit_md_m` (see [`super::chart::case_at_depth`]). `wob_n[j]` is the WOB of case
+/// refitted to `bit_md_m` (see [`Case::at_bit_depth`]). `wob_n[j]` is the WOB of case
 /// `MODES[j]` (the soft rows' WOB, which may be below the chart's where the string cannot give
 /// it). `previous_depth[j]` is case `MODES[j]`'s converged solve at the previous bit depth
 /// (empty or `None`: none); each case starts from it, or else from the last converged case of

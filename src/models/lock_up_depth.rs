@@ -80,9 +80,7 @@ pub const DEPTH_TOLERANCE_M: f64 = 0.1;
 /// The hook load (N) by the model `drag` with `case`'s string refitted to the bit depth
 /// `bit_md_m` (m) and the WOB `wob_n` (N); the case's hook-load input dropped.
 pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64, drag: Drag) -> f64 {
-    let mut c = case.clone();
-    c.string = case.string.at_depth(bit_md_m);
-    c.operation.bit_md_m = bit_md_m;
+    let mut c = case.at_bit_depth(bit_md_m);
     c.operation.wob_n = wob_n;
     c.operation.hook_load_n = None;
     drag.hook_load_n(&c)

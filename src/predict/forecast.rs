@@ -123,9 +123,7 @@ fn tracking_skill(
 /// The warning of a prediction whose WOB the string cannot put on the bit at `from_md_m` (the
 /// soft string's hook load below zero with the string refitted to that depth: lock-up).
 pub fn wob_warning(case: &Case, from_md_m: f64) -> Option<String> {
-    let mut c = case.clone();
-    c.string = case.string.at_depth(from_md_m);
-    c.operation.bit_md_m = from_md_m;
+    let c = case.at_bit_depth(from_md_m);
     let soft = softstring::from_case(&c, softstring::segment_length_m(&c.solver));
     let l = lock_up(&c, Some(soft.hook_load_n), c.operation.wob_n)?;
     Some(format!(
@@ -141,10 +139,8 @@ pub fn wob_warning(case: &Case, from_md_m: f64) -> Option<String> {
 /// restrictive of the two). A string locked up at the start has [`wob_warning`] instead.
 pub fn lock_up_ahead_warning(case: &Case, prediction: &Prediction) -> Option<String> {
     let to = prediction.to_md_m;
-    let mut c = case.clone();
+    let mut c = case.at_bit_depth(to);
     c.well.path = prediction.path.clone();
-    c.string = case.string.at_depth(to);
-    c.operation.bit_md_m = to;
     let wob = c.operation.wob_n;
     let depth = lock_up_depth_m(&c, wob, Drag::WithHelix).filter(|d| *d > prediction.from_md_m + 1e-6)?;
     Some(format!(

@@ -237,7 +237,7 @@ fn soft_string_is_the_same_in_every_model() {
     // case's depth and the non-convergence diagnosis. With 6 m pipe elements the three must give
     // the same hook load and torque to round-off (1e-12 relative), and differ from a pass at the
     // element length itself (the rule is in force).
-    use drillpath::loads::chart::{case_at_depth, soft_row};
+    use drillpath::loads::chart::soft_row;
     use drillpath::loads::{set_row_operation, ChartOperation};
     use drillpath::models::softstring::{from_case, segment_length_m};
     let mut case = example("j-shape");
@@ -246,7 +246,7 @@ fn soft_string_is_the_same_in_every_model() {
     assert_eq!(seg, 1.0);
     let level = at(&case, Fidelity::Level(Level::Soft));
     let direct = from_case(&case, seg);
-    let mut row_case = case_at_depth(&case, case.operation.bit_md_m);
+    let mut row_case = case.at_bit_depth(case.operation.bit_md_m);
     set_row_operation(
         &mut row_case,
         case.operation.bit_md_m,

@@ -4,7 +4,7 @@
 use drillpath::case::{Case, Mode};
 use drillpath::loads::calibrate::calibrate;
 use drillpath::loads::calibrate::MeasuredPoint;
-use drillpath::loads::chart::{case_at_depth, soft_chart, ChartSettings};
+use drillpath::loads::chart::{soft_chart, ChartSettings};
 use drillpath::loads::row::{LoadRow, StiffOutcome};
 use drillpath::loads::stiff::stiff_row;
 use drillpath::loads::{set_row_operation, ChartOperation, MODES};
@@ -69,7 +69,7 @@ fn row(rows: &[LoadRow], depth_index: usize, mode: Mode) -> &LoadRow {
 }
 
 fn stiff(case: &Case, bit_md: f64, mode: Mode) -> drillpath::loads::row::RowLoads {
-    let mut c = case_at_depth(case, bit_md);
+    let mut c = case.at_bit_depth(bit_md);
     set_row_operation(&mut c, bit_md, mode, &ChartOperation::from_case(case));
     match stiff_row(&c, None).0 {
         StiffOutcome::Converged { loads, .. } => loads,
@@ -373,7 +373,7 @@ fn warm_started_rows_equal_cold_started_rows() {
     let mut previous = Vec::new();
     let (mut it_warm, mut it_cold) = (0, 0);
     for (k, d) in [677.0, 702.0, 727.0].into_iter().enumerate() {
-        let c = case_at_depth(&case, d);
+        let c = case.at_bit_depth(d);
         let (warm, solved) = stiff_depth(&c, d, &op, &wobs, &previous);
         previous = solved;
         for (j, mode) in MODES.into_iter().enumerate() {
@@ -443,7 +443,7 @@ fn transport_between_depths_keeps_the_state() {
         1.0,
     );
     let op = ChartOperation::from_case(&case);
-    let mut c = case_at_depth(&case, 500.0);
+    let mut c = case.at_bit_depth(500.0);
     set_row_operation(&mut c, 500.0, Mode::TripOut, &op);
     let (out, solved) = stiff_row(&c, None);
     assert!(matches!(out, StiffOutcome::Converged { .. }), "{out:?}");
@@ -456,7 +456,7 @@ fn transport_between_depths_keeps_the_state() {
     }
     // two joints deeper: the new nodes sit at the MDs of the old ones
     let d2 = 500.0 + 2.0 * 9.144;
-    let mut c2 = case_at_depth(&case, d2);
+    let mut c2 = case.at_bit_depth(d2);
     set_row_operation(&mut c2, d2, Mode::TripOut, &op);
     let m2 = drillpath::models::fem::model::Model::from_case(&c2);
     let moved = transport_to_depth(&(m.clone(), st.clone()), &m2, &c2.string);

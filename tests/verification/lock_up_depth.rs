@@ -89,9 +89,7 @@ fn lock_up_depth_is_where_the_largest_wob_is_the_one_asked_for() {
         );
         md += 1.0;
     }
-    let mut at = case.clone();
-    at.string = case.string.at_depth(d);
-    at.operation.bit_md_m = d;
+    let at = case.at_bit_depth(d);
     let largest = drillpath::models::checks::lock_up(&at, Some(-1.0), 30e3)
         .expect("locked up")
         .max_wob_n;
@@ -265,10 +263,8 @@ fn predict_warns_where_the_predicted_hole_locks_up() {
     let settings = MarchSettings::from_case(&case);
     let p = predict(&case, 1100.0, 1220.0, &settings, &mut |_| {}).unwrap();
     let w = lock_up_ahead_warning(&case, &p).expect("no lock-up along the predicted hole");
-    let mut along = case.clone();
+    let mut along = case.at_bit_depth(1220.0);
     along.well.path = p.path.clone();
-    along.string = case.string.at_depth(1220.0);
-    along.operation.bit_md_m = 1220.0;
     let d = lock_up_depth_m(&along, 55e3, Drag::WithHelix).unwrap();
     assert!(w.contains(&format!("deeper than {d:.1} m MD")), "{w}");
     let surveyed = lock_up_depth_m(&case, 55e3, Drag::WithHelix).unwrap();
