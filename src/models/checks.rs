@@ -6,7 +6,7 @@ use crate::case::{Case, Mode};
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
 use crate::models::helical_drag::HelicalLockUp;
-use crate::models::lock_up_depth::{lock_up_depths, Drag, LockUpDepths};
+use crate::models::lock_up_depth::{lock_up_depths, metres, Drag, LockUpDepths};
 use crate::models::softstring;
 use crate::string::material::grade_yield_strength_pa;
 
@@ -169,17 +169,17 @@ impl LockUp {
 
     /// The warning of a lock-up running in ([`running_in_lock_up`]).
     fn running_in_warning(&self) -> String {
-        let depth = match self.depths.filter(|d| !d.locked_everywhere()) {
-            Some(LockUpDepths {
-                at_wob_md_m: Some(d),
-                drag,
-                ..
-            }) => format!(
-                "; lock-up depth (by the {}, the string refitted to each bit depth of the surveyed hole): it cannot be run in deeper than {d:.0} m MD",
-                drag.name()
-            ),
-            _ => String::new(),
-        };
+        let depth = self
+            .depths
+            .filter(|d| !d.locked_everywhere())
+            .and_then(|d| {
+                Some(format!(
+                    "; lock-up depth (by the {}, the string refitted to each bit depth of the surveyed hole): {}",
+                    d.drag.name(),
+                    d.running_in_clause(metres)?
+                ))
+            })
+            .unwrap_or_default();
         format!(
             "lock-up running in: hook load {:.0} kN below zero, the surface would have to push the string down to run it in to this depth: less friction, rotation while running in, or heavier pipe above the compressed part{depth}",
             self.hook_load_n / 1e3

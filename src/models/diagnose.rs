@@ -34,7 +34,8 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
             case.operation.mode.name()
         ));
     }
-    if let Some(l) = helical_lock_up(case) {
+    let helical = helical_lock_up(case);
+    if let Some(l) = &helical {
         hints.push(format!(
             "helical lock-up: the soft string with the helix's drag (Mitchell's r F^2/(4 EI) added to the wall force beyond the helical onset) has a hook load of {:.0} kN at {:.0} kN WOB while {}: it delivers at most about {:.0} kN WOB; the whole string's drag lies at or above that soft string's in the buckled sliding cases measured (docs/performance.md), so the WOB asked for is most likely beyond the string's reach",
             l.hook_load_n / 1e3,
@@ -43,7 +44,7 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
             l.max_wob_n / 1e3
         ));
     }
-    let locked = soft.hook_load_n < 0.0 || !hints.is_empty();
+    let locked = soft.hook_load_n < 0.0 || helical.is_some();
     if locked && case.operation.hook_load_n.is_none() {
         hints.extend(lock_up_depth_hint(case, wob));
     }

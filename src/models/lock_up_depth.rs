@@ -33,7 +33,7 @@ impl Drag {
         let mut c = case.clone();
         c.operation.wob_n = wob_n;
         c.operation.hook_load_n = None;
-        if softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n < 0.0 {
+        if Drag::Plain.hook_load_n(&c) < 0.0 {
             Drag::Plain
         } else {
             Drag::WithHelix
@@ -165,19 +165,38 @@ impl LockUpDepths {
         self.at_wob_md_m.is_some_and(|d| d <= self.top_md_m + DEPTH_TOLERANCE_M)
     }
 
+    /// "the string locks up once the bit is deeper than X MD" (`depth` formats X, an MD in m), or
+    /// that no bit depth of the surveyed hole delivers the WOB; None without a lock-up at it.
+    pub fn at_wob_clause(&self, depth: impl Fn(f64) -> String) -> Option<String> {
+        let at_wob = self.at_wob_md_m?;
+        Some(if self.locked_everywhere() {
+            "no bit depth of the surveyed hole has a hook load above zero".to_string()
+        } else {
+            format!("the string locks up once the bit is deeper than {} MD", depth(at_wob))
+        })
+    }
+
+    /// For a string running in (zero WOB): "it cannot be run in deeper than X MD" (`depth`
+    /// formats X, an MD in m), or at no bit depth of the surveyed hole; None without a lock-up.
+    pub fn running_in_clause(&self, depth: impl Fn(f64) -> String) -> Option<String> {
+        let at_wob = self.at_wob_md_m?;
+        Some(if self.locked_everywhere() {
+            "it cannot be run in at any bit depth of the surveyed hole".to_string()
+        } else {
+            format!("it cannot be run in deeper than {} MD", depth(at_wob))
+        })
+    }
+
     /// The sentence naming these depths at the WOB `wob_n` (N), depths in m MD: "lock-up depth
     /// (by the ...): at W kN WOB the string locks up once the bit is deeper than X m MD, ...";
     /// None without a lock-up at that WOB.
     pub fn sentence(&self, wob_n: f64) -> Option<String> {
-        let at_wob = self.at_wob_md_m?;
-        let wob = format!("at {:.0} kN WOB", wob_n / 1e3);
-        let first = if self.locked_everywhere() {
-            format!("{wob} no bit depth of the surveyed hole has a hook load above zero")
-        } else {
-            format!("{wob} the string locks up once the bit is deeper than {at_wob:.0} m MD")
-        };
+        let first = format!("at {:.0} kN WOB {}", wob_n / 1e3, self.at_wob_clause(metres)?);
         let zero = match self.at_zero_wob_md_m {
-            Some(z) => format!("and even at zero WOB from {z:.0} m MD: it cannot be put on bottom there at any WOB"),
+            Some(z) => format!(
+                "and even at zero WOB from {} MD: it cannot be put on bottom there at any WOB",
+                metres(z)
+            ),
             None => "while at zero WOB it reaches this depth".to_string(),
         };
         Some(format!(
@@ -187,11 +206,22 @@ impl LockUpDepths {
     }
 }
 
-/// The lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB by the model `drag`.
+/// An MD in m as the warnings print it: "1166 m".
+pub fn metres(md_m: f64) -> String {
+    format!("{md_m:.0} m")
+}
+
+/// The lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB by the model `drag` (one
+/// search when the WOB is zero).
 pub fn lock_up_depths(case: &Case, wob_n: f64, drag: Drag) -> LockUpDepths {
+    let at_wob_md_m = lock_up_depth_m(case, wob_n, drag);
     LockUpDepths {
-        at_wob_md_m: lock_up_depth_m(case, wob_n, drag),
-        at_zero_wob_md_m: lock_up_depth_m(case, 0.0, drag),
+        at_wob_md_m,
+        at_zero_wob_md_m: if wob_n == 0.0 {
+            at_wob_md_m
+        } else {
+            lock_up_depth_m(case, 0.0, drag)
+        },
         top_md_m: survey_top_md_m(case),
         drag,
     }

@@ -223,15 +223,11 @@ fn warn_helical_lock_up(rows: &[LoadRow], units: UnitSystem, out: &mut impl Writ
 /// lock-up depths ([`Chart::lock_up_depths`]).
 fn print_lock_up_depths(chart: &Chart, units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
     let depth = units.depth();
+    let md = |m: f64| depth.fmt(m, 0);
     for (mode, d) in &chart.lock_up_depths {
-        let Some(at_wob) = d.at_wob_md_m else {
-            continue;
-        };
         if *mode == Mode::TripIn {
-            let first = if d.locked_everywhere() {
-                "it cannot be run in at any bit depth of the surveyed hole".to_string()
-            } else {
-                format!("it cannot be run in deeper than {} MD", depth.fmt(at_wob, 0))
+            let Some(first) = d.running_in_clause(md) else {
+                continue;
             };
             writeln!(
                 out,
@@ -241,17 +237,12 @@ fn print_lock_up_depths(chart: &Chart, units: UnitSystem, out: &mut impl Write) 
             )?;
             continue;
         }
-        let zero = match d.at_zero_wob_md_m {
-            Some(z) => format!("even at zero WOB from {}", depth.fmt(z, 0)),
-            None => "at zero WOB it reaches the deepest depth".to_string(),
+        let Some(first) = d.at_wob_clause(md) else {
+            continue;
         };
-        let first = if d.locked_everywhere() {
-            "no bit depth of the surveyed hole has a hook load above zero".to_string()
-        } else {
-            format!(
-                "the string locks up once the bit is deeper than {} MD",
-                depth.fmt(at_wob, 0)
-            )
+        let zero = match d.at_zero_wob_md_m {
+            Some(z) => format!("even at zero WOB from {}", md(z)),
+            None => "at zero WOB it reaches the deepest depth".to_string(),
         };
         writeln!(
             out,
