@@ -71,13 +71,21 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         outputs.stage(dir.join("summary.json"), summary.as_bytes());
         outputs.stage(dir.join("string.csv"), csv);
     }
-    if let Some(file) = &a.view.report {
+    // a whole solve answered by the soft string (lock-up at zero WOB) has nothing to draw
+    let report = a.view.report.as_ref().filter(|_| s.level.fem.is_some());
+    if let Some(file) = report {
         outputs.stage(
             file.clone(),
             solve_html(&case, &s, a.view.units, steering.as_ref(), rss.as_ref())?,
         );
     }
     outputs.commit()?;
+    if let (Some(file), None) = (&a.view.report, report) {
+        eprintln!(
+            "note: {} not written: the answer is the soft string's (lock-up at zero WOB), which has no stiff results to draw",
+            file.display()
+        );
+    }
     let mut out = std::io::stdout().lock();
     if a.view.json {
         writeln!(out, "{summary}")?;
@@ -87,7 +95,7 @@ pub fn run(a: SolveArgs, quiet: bool) -> anyhow::Result<()> {
         case_file: &a.case,
         units: a.view.units,
         out_dir: a.out.as_deref(),
-        report: a.view.report.as_deref(),
+        report: report.map(|p| p.as_path()),
         steering: steering.as_ref(),
         rss: rss.as_ref(),
     };

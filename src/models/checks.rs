@@ -118,6 +118,10 @@ pub struct LockUp {
     /// Running in (`trip_in`): the string cannot be run in to the bit depth (no WOB; `wob_n` and
     /// `max_wob_n` are 0).
     pub running_in: bool,
+    /// The whole string found no equilibrium on bottom and the string cannot be put on bottom
+    /// at any WOB at this bit depth (`max_wob_n` zero): the results are the soft string's at the
+    /// WOB asked for (`solve --fidelity whole` answers with the `soft` level).
+    pub results_from_soft_string: bool,
     /// The bit depths from which the string locks up at the WOB asked for and at zero WOB
     /// ([`crate::models::lock_up_depth`]); None where not computed (`loads` rows).
     pub depths: Option<LockUpDepths>,
@@ -148,6 +152,7 @@ impl LockUp {
             results_without_helical_drag: false,
             results_without_hook_load: false,
             running_in: false,
+            results_from_soft_string: false,
             depths: None,
         }
     }
@@ -209,6 +214,7 @@ impl LockUp {
                 w / 1e3
             ),
             None if self.results_without_hook_load => BHA_RESULTS_CLAUSE.to_string(),
+            None if self.results_from_soft_string => SOFT_RESULTS_CLAUSE.to_string(),
             None => String::new(),
         };
         format!(
@@ -230,6 +236,10 @@ pub const DIVERGED_HOOK_LOAD_N: f64 = -1e7;
 /// load ([`LockUp::results_without_hook_load`]).
 const BHA_RESULTS_CLAUSE: &str = "; the results are the bottom-hole assembly's at the WOB asked for (the `bha` model has no hook load), a WOB the string cannot deliver";
 
+/// The clause of a lock-up warning whose results are the soft string's because the whole string
+/// has no equilibrium on bottom at any WOB ([`LockUp::results_from_soft_string`]).
+const SOFT_RESULTS_CLAUSE: &str = "; the whole string finds no equilibrium on bottom, and at this bit depth the string cannot be put on bottom at any WOB (lock-up at zero WOB): no stiff-string results exist there, and the results are the soft string's at the WOB asked for (`fidelity.used` soft)";
+
 impl LockUp {
     /// The warning of a lock-up by the helix's drag ([`LockUp::by_helix`]).
     fn helical_warning(&self, mode: &str) -> String {
@@ -246,6 +256,9 @@ impl LockUp {
                 self.max_wob_n / 1e3
             ),
             None if self.results_without_hook_load => BHA_RESULTS_CLAUSE.to_string(),
+            None if self.results_from_soft_string => format!(
+                "{SOFT_RESULTS_CLAUSE}: a soft string without the helix's drag, whose hook load, not below zero, is one the string cannot give"
+            ),
             None if self.results_without_helical_drag => format!(
                 "; the results are at the WOB asked for, from a soft string without the helix's drag: their hook load, not below zero, is one the string cannot give ({})",
                 if self.max_wob_n > 0.0 {

@@ -121,7 +121,13 @@ pub fn solve_string(
 ) -> Result<StringSolve, FidelityError> {
     let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
     let mut delivered = None;
-    if !level.converged && choice.level == Level::Whole {
+    let mut from_soft_string = false;
+    if !level.converged && choice.level == Level::Whole && locked_at_zero_wob(case) {
+        if let Some(r) = soft_answer(case, &choice, ctl, &level, on_stage) {
+            from_soft_string = true;
+            level = r;
+        }
+    } else if !level.converged && choice.level == Level::Whole {
         let (answer, lock_up) = answer_without_equilibrium(case, choice, ctl, &mut level, on_stage);
         if let Some(mut r) = answer {
             // the statistics count the solve that found no equilibrium too
@@ -160,7 +166,10 @@ pub fn solve_string(
         .or_else(|| helix_missed(case, &level))
         .or_else(|| running_in_lock_up(case, level.hook_load_n))
         .or_else(|| without_hook_load(case, &level))
-        .map(|l| l.with_depths(case));
+        .map(|l| LockUp {
+            results_from_soft_string: from_soft_string,
+            ..l.with_depths(case)
+        });
     let sensors = level
         .fem
         .as_ref()
@@ -213,14 +222,50 @@ fn without_hook_load(case: &Case, level: &LevelResult) -> Option<LockUp> {
     if level.hook_load_n.is_some() || !level.converged {
         return None;
     }
-    let wob = case.operation.wob_n;
-    let l = soft_lock_up_at(case, wob)
-        .map(|l| by_helix_if_so(case, l))
-        .or_else(|| helical_drag::helical_lock_up(case).map(|h| LockUp::by_helix(&h)))?;
     Some(LockUp {
         results_without_hook_load: true,
-        ..l
+        ..soft_lock_up(case)?
     })
+}
+
+/// The soft string's lock-up of `case` at its WOB: the plain soft string's, else the one with
+/// the helix's drag ([`helical_drag::helical_lock_up`], which is None where the plain one is
+/// locked up); None where neither is locked up.
+fn soft_lock_up(case: &Case) -> Option<LockUp> {
+    soft_lock_up_at(case, case.operation.wob_n)
+        .or_else(|| helical_drag::helical_lock_up(case).map(|h| LockUp::by_helix(&h)))
+}
+
+/// Whether the soft string of `case`'s lock-up ([`soft_lock_up`]) delivers no WOB at all at its
+/// bit depth: the string cannot be put on bottom there, so no whole-string equilibrium on
+/// bottom exists and no WOB path can reach one.
+fn locked_at_zero_wob(case: &Case) -> bool {
+    soft_lock_up(case).is_some_and(|l| l.max_wob_n <= 0.0)
+}
+
+/// The answer of a whole-string solve `failed` of `case` that found no equilibrium where the
+/// string is locked up at zero WOB ([`locked_at_zero_wob`]): the `soft` level at the WOB asked
+/// for, with the time of the failed solve, the reason naming the lock-up. None if the soft level
+/// fails.
+fn soft_answer(
+    case: &Case,
+    choice: &Choice,
+    ctl: &SolveControls,
+    failed: &LevelResult,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Option<LevelResult> {
+    let soft = Choice {
+        requested: choice.requested,
+        level: Level::Soft,
+        reason: format!(
+            "requested {}: the whole string finds no equilibrium on bottom ({} Newton iterations) and the string cannot be put on bottom at any WOB at this bit depth (lock-up at zero WOB), so the soft string runs",
+            choice.requested.name(),
+            failed.fem.as_ref().map_or(0, |p| p.stats.iterations)
+        ),
+    };
+    let mut r = run_with_progress(case, soft, ctl, on_stage).ok()?;
+    r.seconds += failed.seconds;
+    Some(r)
 }
 
 /// The soft string beside `level`'s solve of `case`: for a converged `whole` or `hybrid` solve

@@ -170,6 +170,7 @@ struct LockUpJson {
     results_without_helical_drag: bool,
     results_without_hook_load: bool,
     running_in: bool,
+    results_from_soft_string: bool,
 }
 
 /// The `soft_string_comparison` key: the soft string at the same WOB beside a `whole` or
@@ -461,6 +462,7 @@ impl SolveSummary {
                 lock_up_depth_zero_wob_m: l.depths.and_then(|d| d.at_zero_wob_md_m).map(Finite),
                 results_without_helical_drag: l.results_without_helical_drag,
                 results_without_hook_load: l.results_without_hook_load,
+                results_from_soft_string: l.results_from_soft_string,
                 running_in: l.running_in,
             }),
             warnings: s.warnings(case),

@@ -397,3 +397,50 @@ fn the_reactive_torque_turns_the_toolface_in_solve() {
         assert!(j["steering"][key].is_null(), "{key}");
     }
 }
+
+/// A whole-string solve that finds no equilibrium where the string cannot be put on bottom at any
+/// WOB answers with the soft string and exit 0 (the library's answer is checked in
+/// tests/verification/lock_up_depth.rs): `fidelity.used` soft, `lock_up.results_from_soft_string`,
+/// `summary.json` and `string.csv` written without NaN, and the report asked for not written
+/// (nothing stiff to draw) with a note on stderr. The case: vertical to 300 m, a 90 deg build of
+/// radius 100 m, a lateral to 1,500 m slid at 30 kN with friction 0.5 below 460 m (locked up at
+/// zero WOB from about 1,260 m); the whole solve is made to fail by an iteration limit of 2.
+#[test]
+fn whole_locked_at_zero_wob_answers_with_the_soft_string() {
+    let dir = tempfile::tempdir().unwrap();
+    let build_end = 300.0 + 100.0 * std::f64::consts::FRAC_PI_2;
+    let survey = format!("md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n{build_end},90,0\n1500,90,0\n");
+    std::fs::write(dir.path().join("survey.csv"), survey).unwrap();
+    let case = format!(
+        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"460 m\", diameter = \"8.5 in\", friction = 0 }}, {{ to_md = \"1500 m\", diameter = \"8.5 in\" }}]\n[solver]\nmax_iterations = 2\n{}",
+        crate::common::slid_bit_on_pipe(1500.0, 30.0, 0.5)
+    );
+    std::fs::write(dir.path().join("case.toml"), case).unwrap();
+    let out = run_in(
+        dir.path(),
+        &[
+            "solve",
+            "case.toml",
+            "--fidelity",
+            "whole",
+            "--out",
+            "out",
+            "--report",
+            "r.html",
+        ],
+    );
+    assert!(out.success(), "{}", out.describe());
+    assert!(out.stderr.contains("r.html not written"), "{}", out.describe());
+    assert!(!dir.path().join("r.html").exists());
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/summary.json")).unwrap()).unwrap();
+    assert_eq!(
+        (s["fidelity"]["requested"].as_str(), s["fidelity"]["used"].as_str()),
+        (Some("whole"), Some("soft"))
+    );
+    assert_eq!(s["lock_up"]["results_from_soft_string"], true);
+    assert_eq!(s["lock_up"]["max_wob_kN"], 0.0);
+    assert!(s["surface"]["hook_load_kN"].as_f64().unwrap() < 0.0);
+    let csv = std::fs::read_to_string(dir.path().join("out/string.csv")).unwrap();
+    assert!(csv.lines().count() > 10 && !csv.to_lowercase().contains("nan"));
+}

@@ -173,7 +173,8 @@ pub struct Outcome {
     pub buckled_start: Option<bool>,
     /// The hook load of the soft string with the helix's drag, kN (below zero: helical lock-up).
     pub helical_soft_hook_kn: f64,
-    /// The WOB of the results when `solve` answered with a lock-up below the WOB asked for, kN.
+    /// The WOB of the results when `solve` answered with a lock-up below the WOB asked for, kN
+    /// (0 for a lock-up at zero WOB, answered with the soft string's results).
     pub lock_up_at_kn: Option<f64>,
 }
 
@@ -246,9 +247,17 @@ pub fn solve_case(case: &Case) -> Outcome {
     let lock_up_at_kn = whole
         .as_ref()
         .ok()
-        .and_then(|s| s.lock_up?.results_at_wob_n)
+        .and_then(|s| {
+            let l = s.lock_up?;
+            l.results_at_wob_n.or(l.results_from_soft_string.then_some(0.0))
+        })
         .map(|w| w / 1e3);
     let (converged, whole_hook_kn, helix, buckled_start) = match &whole {
+        // locked up at zero WOB: no whole-string equilibrium on bottom exists, the answer is the
+        // lock-up with the soft string's results (counted as answered, its WOB zero)
+        Ok(s) if s.lock_up.is_some_and(|l| l.results_from_soft_string) => {
+            (true, s.level.hook_load_n.unwrap_or(f64::NAN) / 1e3, None, None)
+        }
         Ok(s) => {
             let fem = s.level.fem.as_ref().unwrap();
             let r = &fem.results;

@@ -306,3 +306,53 @@ fn bha_flags_a_wob_the_string_cannot_deliver() {
         );
     }
 }
+
+/// A whole-string solve that finds no equilibrium where the string cannot be put on bottom at any
+/// WOB (the lateral case slid at friction 0.5: locked up at zero WOB from 1,260 m by the closed
+/// form, the bit at 1,500 m) answers with the soft string, exit 0: `fidelity.used` soft, the
+/// lock-up flagged `results_from_soft_string`, the results the soft string's at the WOB asked for
+/// (its hook load against `softstring::from_case`, another call, to 1e-9 N). The whole solve is
+/// made to fail by an iteration limit of 2. With a WOB the string delivers (friction 0.3), the
+/// same failure gives no answer.
+#[test]
+fn whole_locked_at_zero_wob_answers_with_the_soft_string() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::models::softstring;
+    use drillpath::models::string_solve::solve_string;
+    for (friction, zero_locked) in [(0.5, true), (0.3, false)] {
+        let mut case = lateral_case(30.0, friction);
+        assert_eq!(closed_form_depth_m(&case, 0.0, friction) < 1500.0, zero_locked);
+        case.solver.max_iterations = 2;
+        let ctl = SolveControls::from_settings(&case.solver);
+        let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
+        let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+        assert_eq!(s.level.converged, zero_locked, "friction {friction}");
+        if !zero_locked {
+            assert_eq!(s.level.choice.level, Level::Whole);
+            continue;
+        }
+        assert_eq!(
+            (s.level.choice.requested, s.level.choice.level),
+            (Fidelity::Level(Level::Whole), Level::Soft)
+        );
+        let l = s.lock_up.expect("a lock-up");
+        assert!(l.results_from_soft_string && !l.by_helix && l.max_wob_n == 0.0, "{l:?}");
+        let soft = softstring::from_case(&case, softstring::segment_length_m(&case.solver)).hook_load_n;
+        assert!(
+            (s.level.hook_load_n.unwrap() - soft).abs() < 1e-9 && soft < 0.0,
+            "{soft}"
+        );
+        let zero = l.depths.and_then(|d| d.at_zero_wob_md_m).unwrap();
+        let expected = closed_form_depth_m(&case, 0.0, friction);
+        assert!(
+            (zero - expected).abs() <= DEPTH_TOLERANCE_M + 0.05,
+            "{zero} vs {expected}"
+        );
+        let w = s.warnings(&case).join("\n");
+        assert!(
+            w.contains("the results are the soft string's at the WOB asked for"),
+            "{w}"
+        );
+    }
+}
