@@ -53,6 +53,14 @@ pub enum StiffOutcome {
         /// Last relative residual.
         residual: f64,
     },
+    /// The solver stopped without an equilibrium on a row whose string cannot be put on bottom
+    /// at any WOB (the soft string of its lock-up locked up at zero WOB,
+    /// [`crate::models::checks::locked_at_zero_wob`]): no whole-string equilibrium on bottom
+    /// exists, the lock-up is the row's answer and its soft-string numbers stand.
+    LockedAtZeroWob {
+        /// Newton iterations of the solve that found no equilibrium.
+        iterations: usize,
+    },
     /// The solver failed (e.g. singular stiffness); the message says why.
     Failed(String),
 }
@@ -98,18 +106,21 @@ impl StiffOutcome {
             _ => None,
         }
     }
-    /// Status word for `loads.csv`: `converged`, `not_converged` or `failed`.
+    /// Status word for `loads.csv`: `converged`, `not_converged`, `locked_up` or `failed`.
     pub fn status(&self) -> &'static str {
         match self {
             StiffOutcome::Converged { .. } => "converged",
             StiffOutcome::NotConverged { .. } => "not_converged",
+            StiffOutcome::LockedAtZeroWob { .. } => "locked_up",
             StiffOutcome::Failed(_) => "failed",
         }
     }
     /// Newton iterations (0 for a failed solve).
     pub fn iterations(&self) -> usize {
         match self {
-            StiffOutcome::Converged { iterations, .. } | StiffOutcome::NotConverged { iterations, .. } => *iterations,
+            StiffOutcome::Converged { iterations, .. }
+            | StiffOutcome::NotConverged { iterations, .. }
+            | StiffOutcome::LockedAtZeroWob { iterations } => *iterations,
             StiffOutcome::Failed(_) => 0,
         }
     }

@@ -39,6 +39,7 @@ use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
 use crate::models::buckled_start;
 use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
+use crate::models::checks::locked_at_zero_wob;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, NodeResult, SolveResults};
 use crate::models::fem::solve::continuation::ClimbEnd;
@@ -219,6 +220,10 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
         Ok(sol) => {
             let before = iterations;
             let iterations = before + sol.stats.iterations;
+            if locked_at_zero_wob(case) {
+                // no equilibrium on bottom exists: no WOB path or climb can reach one
+                return (StiffOutcome::LockedAtZeroWob { iterations }, None);
+            }
             if let Some(out) = at_lock_up(case, &model, &ctl, iterations, t0) {
                 return (out, None);
             }

@@ -185,8 +185,13 @@ impl LockUp {
                 ))
             })
             .unwrap_or_default();
+        let soft = if self.results_from_soft_string {
+            "; the whole string finds no equilibrium running in to this depth: no stiff-string results exist there, and the results are the soft string's (`fidelity.used` soft)"
+        } else {
+            ""
+        };
         format!(
-            "lock-up running in: hook load {:.0} kN below zero, the surface would have to push the string down to run it in to this depth: less friction, rotation while running in, or heavier pipe above the compressed part{depth}",
+            "lock-up running in: hook load {:.0} kN below zero, the surface would have to push the string down to run it in to this depth: less friction, rotation while running in, or heavier pipe above the compressed part{depth}{soft}",
             self.hook_load_n / 1e3
         )
     }
@@ -297,6 +302,34 @@ pub fn lock_up(case: &Case, hook_load_n: Option<f64>, wob_n: f64) -> Option<Lock
     let soft = softstring::at_zero_hook_load(case, softstring::segment_length_m(&case.solver));
     let max_wob_n = (-soft.points.first()?.tension_n).max(0.0);
     Some(LockUp::at(h, wob_n, max_wob_n))
+}
+
+/// The lock-up of `case` at the WOB `wob_n` (N) by the soft string's hook load there.
+pub fn soft_lock_up_at(case: &Case, wob_n: f64) -> Option<LockUp> {
+    let mut c = case.clone();
+    c.operation.wob_n = wob_n;
+    let hook = softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n;
+    lock_up(&c, Some(hook), wob_n)
+}
+
+/// The soft string's lock-up of `case` at its WOB: the plain soft string's, else the one with
+/// the helix's drag ([`crate::models::helical_drag::helical_lock_up`], which is None where the
+/// plain one is locked up); None where neither is locked up.
+pub fn soft_lock_up(case: &Case) -> Option<LockUp> {
+    soft_lock_up_at(case, case.operation.wob_n)
+        .or_else(|| crate::models::helical_drag::helical_lock_up(case).map(|h| LockUp::by_helix(&h)))
+}
+
+/// Whether the soft string of `case`'s lock-up ([`soft_lock_up`]) delivers no WOB at all at its
+/// bit depth: the string cannot be put on bottom there, so no whole-string equilibrium on
+/// bottom exists and no WOB path can reach one. Running in (`trip_in`): whether the soft
+/// string cannot be run in to the bit depth ([`running_in_lock_up`]), the same at zero WOB.
+pub fn locked_at_zero_wob(case: &Case) -> bool {
+    if case.operation.mode == Mode::TripIn {
+        let hook = softstring::from_case(case, softstring::segment_length_m(&case.solver)).hook_load_n;
+        return running_in_lock_up(case, Some(hook)).is_some();
+    }
+    soft_lock_up(case).is_some_and(|l| l.max_wob_n <= 0.0)
 }
 
 /// The lock-up of `case` running in (`trip_in`) when `hook_load_n` is below zero: the surface

@@ -6,9 +6,12 @@
 //! climbed to its WOB from its buckled shape.
 
 use crate::case::fidelity::{Choice, Level};
-use crate::case::Case;
+use crate::case::{Case, Mode};
 use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
-use crate::models::checks::{dogleg_warning, lock_up, running_in_lock_up, yield_check, LockUp, YieldCheck};
+use crate::models::checks::{
+    dogleg_warning, lock_up, locked_at_zero_wob, running_in_lock_up, soft_lock_up, soft_lock_up_at, yield_check,
+    LockUp, YieldCheck,
+};
 use crate::models::fem::model::Model;
 use crate::models::fem::results::{sensor_results, NodeResult, SensorResult};
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
@@ -17,7 +20,6 @@ use crate::models::helical_drag;
 use crate::models::helical_lock_up;
 use crate::models::levels::{fem_part_by, run_with_progress, FidelityError, LevelResult};
 use crate::models::soft_comparison::{soft_comparison, SoftComparison};
-use crate::models::softstring;
 use crate::models::whirl::whirl_intervals;
 use std::time::Instant;
 
@@ -228,21 +230,6 @@ fn without_hook_load(case: &Case, level: &LevelResult) -> Option<LockUp> {
     })
 }
 
-/// The soft string's lock-up of `case` at its WOB: the plain soft string's, else the one with
-/// the helix's drag ([`helical_drag::helical_lock_up`], which is None where the plain one is
-/// locked up); None where neither is locked up.
-fn soft_lock_up(case: &Case) -> Option<LockUp> {
-    soft_lock_up_at(case, case.operation.wob_n)
-        .or_else(|| helical_drag::helical_lock_up(case).map(|h| LockUp::by_helix(&h)))
-}
-
-/// Whether the soft string of `case`'s lock-up ([`soft_lock_up`]) delivers no WOB at all at its
-/// bit depth: the string cannot be put on bottom there, so no whole-string equilibrium on
-/// bottom exists and no WOB path can reach one.
-fn locked_at_zero_wob(case: &Case) -> bool {
-    soft_lock_up(case).is_some_and(|l| l.max_wob_n <= 0.0)
-}
-
 /// The answer of a whole-string solve `failed` of `case` that found no equilibrium where the
 /// string is locked up at zero WOB ([`locked_at_zero_wob`]): the `soft` level at the WOB asked
 /// for, with the time of the failed solve, the reason naming the lock-up. None if the soft level
@@ -258,9 +245,14 @@ fn soft_answer(
         requested: choice.requested,
         level: Level::Soft,
         reason: format!(
-            "requested {}: the whole string finds no equilibrium on bottom ({} Newton iterations) and the string cannot be put on bottom at any WOB at this bit depth (lock-up at zero WOB), so the soft string runs",
+            "requested {}: the whole string finds no equilibrium ({} Newton iterations) and the string {}, so the soft string runs",
             choice.requested.name(),
-            failed.fem.as_ref().map_or(0, |p| p.stats.iterations)
+            failed.fem.as_ref().map_or(0, |p| p.stats.iterations),
+            if case.operation.mode == Mode::TripIn {
+                "cannot be run in to this bit depth (lock-up running in)"
+            } else {
+                "cannot be put on bottom at any WOB at this bit depth (lock-up at zero WOB)"
+            }
         ),
     };
     let mut r = run_with_progress(case, soft, ctl, on_stage).ok()?;
@@ -280,14 +272,6 @@ fn beside_soft(case: &Case, level: &LevelResult) -> Option<SoftComparison> {
         level.hook_load_n?,
         level.surface_torque_nm?,
     ))
-}
-
-/// The lock-up of `case` at the WOB `wob_n` (N) by the soft string's hook load there.
-fn soft_lock_up_at(case: &Case, wob_n: f64) -> Option<LockUp> {
-    let mut c = case.clone();
-    c.operation.wob_n = wob_n;
-    let hook = softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n;
-    lock_up(&c, Some(hook), wob_n)
 }
 
 /// Lock-up as an answer: when the whole string found no equilibrium at `case`'s WOB and the

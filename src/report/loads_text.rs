@@ -167,11 +167,24 @@ fn print_stiff_summary(
     )?;
     let bad: Vec<String> = rows
         .iter()
-        .filter(|r| !matches!(r.stiff, Some(StiffOutcome::Converged { .. })))
+        .filter(|r| {
+            !matches!(
+                r.stiff,
+                Some(StiffOutcome::Converged { .. } | StiffOutcome::LockedAtZeroWob { .. })
+            )
+        })
         .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
         .collect();
     warn_rows(out, &bad, |n| {
         format!("stiff solve not converged for {n} rows (no stiff numbers written for them)")
+    })?;
+    let at_zero: Vec<String> = rows
+        .iter()
+        .filter(|r| matches!(r.stiff, Some(StiffOutcome::LockedAtZeroWob { .. })))
+        .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
+        .collect();
+    warn_rows(out, &at_zero, |n| {
+        format!("lock-up at zero WOB: in {n} rows the string cannot be put on bottom at any WOB, or run in (trip_in), by the soft string of the lock-up (plain, or with the helix's drag), so no whole-string equilibrium exists there: stiff_status locked_up, no stiff numbers; the soft string's numbers and the lock-up depths are the answer")
     })?;
     let locked = |by_helix: bool| -> Vec<String> {
         rows.iter()

@@ -429,19 +429,32 @@ fn errors_say_why() {
 
 #[test]
 fn a_hold_beyond_90_deg_names_the_known_limit() {
-    let survey = "md_m,inc_deg,azi_deg\n0,0,0\n200,0,0\n300,30,0\n400,60,0\n500,90,0\n600,120,0\n700,150,0\n800,180,0\n1500,180,0\n";
-    let text = case_text("20 kN", "max_iterations = 20").replace("600 m", "1500 m");
+    // vertical to 1,200 m, built to 120 deg at 1,600 m, held to the bit at 1,700 m: the string
+    // delivers the WOB (it converges with the default limit); two iterations make it fail
+    let survey = "md_m,inc_deg,azi_deg\n0,0,0\n1200,0,0\n1300,30,0\n1400,60,0\n1500,90,0\n1600,120,0\n1700,120,0\n";
+    let text = case_text("20 kN", "max_iterations = 2").replace("600 m", "1700 m");
     let dir = case_dir(survey, &text);
-    // the iteration cap keeps the test short; the error names the cap and the known limit
     let r = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "whole"]);
     assert_error_names(
         &r,
         &[
-            "max_iterations` = 20",
-            "180.0 deg",
+            "max_iterations` = 2",
+            "120.0 deg",
             "beyond 90 deg is a known limit",
             "Limits",
         ],
+    );
+    // drilled up to 180 deg for 700 m below 200 m of vertical hole, the string cannot be put on
+    // bottom at any WOB: not a refusal but a lock-up, answered with the soft string (exit 0)
+    let survey = "md_m,inc_deg,azi_deg\n0,0,0\n200,0,0\n300,30,0\n400,60,0\n500,90,0\n600,120,0\n700,150,0\n800,180,0\n1500,180,0\n";
+    let text = case_text("20 kN", "max_iterations = 20").replace("600 m", "1500 m");
+    let dir = case_dir(survey, &text);
+    let r = run_in(dir.path(), &["solve", "case.toml", "--fidelity", "whole"]);
+    assert!(r.success(), "{}", r.describe());
+    assert!(
+        r.stdout.contains("fidelity soft: requested whole") && r.stdout.contains("cannot be put on bottom at any WOB"),
+        "{}",
+        r.describe()
     );
 }
 

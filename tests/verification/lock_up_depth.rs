@@ -356,3 +356,30 @@ fn whole_locked_at_zero_wob_answers_with_the_soft_string() {
         );
     }
 }
+
+/// A `loads` whole-string row that finds no equilibrium where the string cannot be put on bottom
+/// at any WOB (the lateral case slid at friction 0.5), or run in (the same running in), is a
+/// lock-up, `stiff_status` `locked_up`, with no stiff numbers; at friction 0.3 (a WOB delivered
+/// at zero WOB) the same failure is not. The solves are made to fail by an iteration limit of 2.
+#[test]
+fn loads_row_locked_at_zero_wob_is_a_lock_up() {
+    use drillpath::case::Mode;
+    use drillpath::loads::stiff::stiff_row;
+    for (friction, mode, locked) in [
+        (0.5, Mode::Sliding, true),
+        (0.5, Mode::TripIn, true),
+        (0.3, Mode::Sliding, false),
+    ] {
+        let mut case = lateral_case(30.0, friction);
+        case.solver.max_iterations = 2;
+        case.operation.mode = mode;
+        if mode == Mode::TripIn {
+            case.operation.wob_n = 0.0;
+        }
+        let (out, _) = stiff_row(&case, None);
+        assert_eq!(out.status() == "locked_up", locked, "{friction} {mode:?}: {out:?}");
+        if locked {
+            assert!(out.loads().is_none() && out.iterations() > 0);
+        }
+    }
+}
