@@ -35,7 +35,7 @@ fn md_intervals(intervals: &[(f64, f64)]) -> String {
 
 /// The warning of a rotating string that whirls in the MD intervals `whirl_md_m` (m,
 /// [`crate::models::whirl`]).
-fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
+pub fn whirl_warning(whirl_md_m: &[(f64, f64)]) -> String {
     format!(
         "the rotating pipe is helically buckled at {} (soft string beyond the helical onset): a real string whirls there, and the model keeps the wall friction's torque and drag there but not its lateral push round the wall, which has no static equilibrium on a helix (docs/theory.md 7.5); the wall forces there are a static helix's",
         md_intervals(whirl_md_m)

@@ -110,6 +110,11 @@ pub fn richardson(
             seconds: coarse.seconds + fine.seconds,
             start_warm: coarse.start_warm.clone(),
             ripple_deg: coarse.ripple_deg.max(fine.ripple_deg),
+            whirl_md_m: coarse.whirl_md_m.clone(),
+            buckled_start_md_m: match (coarse.buckled_start_md_m, fine.buckled_start_md_m) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            },
         },
         est,
     ))

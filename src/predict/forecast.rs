@@ -14,6 +14,7 @@ use crate::case::{Case, Level};
 use crate::models::checks::lock_up;
 use crate::models::lock_up_depth::{lock_up_depth_m, Drag};
 use crate::models::softstring;
+use crate::models::string_solve::{whirl_warning, BUCKLED_START_WARNING};
 
 /// What to predict.
 #[derive(Debug, Clone, Copy)]
@@ -151,6 +152,25 @@ pub fn lock_up_ahead_warning(case: &Case, prediction: &Prediction) -> Option<Str
     ))
 }
 
+/// The warnings of a whole-string prediction as `solve` gives them: where its rotating string
+/// whirls at the start ([`whirl_warning`]), and from which bit depth on its solves came from the
+/// re-solve from the buckled shape ([`BUCKLED_START_WARNING`]).
+pub fn whole_string_warnings(prediction: &Prediction) -> Vec<String> {
+    let mut w = Vec::new();
+    if !prediction.whirl_md_m.is_empty() {
+        w.push(format!(
+            "with the bit at the start, {}",
+            whirl_warning(&prediction.whirl_md_m)
+        ));
+    }
+    if let Some(md) = prediction.buckled_start_md_m {
+        w.push(format!(
+            "with the bit at {md:.2} m MD {BUCKLED_START_WARNING}; the march went on from that shape"
+        ));
+    }
+    w
+}
+
 /// Predict `case` as `req` asks; `on_step` hears the bit MD after each step (of both marches
 /// when extrapolating, the coarse one first).
 pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)) -> Result<Forecast, PredictError> {
@@ -162,6 +182,7 @@ pub fn forecast(case: &Case, req: &ForecastRequest, on_step: &mut dyn FnMut(f64)
         (predict(case, from, to, settings, on_step)?, None)
     };
     warnings.extend(lock_up_ahead_warning(case, &prediction));
+    warnings.extend(whole_string_warnings(&prediction));
     let mut rows = trajectory_rows(&prediction, Some(&case.well.path));
     let plain: Vec<TrajectoryRow> = rows.clone();
     let projection = req.assimilate.then(|| {

@@ -295,6 +295,8 @@ fn joined(first: Prediction, next: Prediction) -> Prediction {
         seconds: first.seconds + next.seconds,
         start_warm: first.start_warm,
         ripple_deg: next.ripple_deg,
+        whirl_md_m: first.whirl_md_m,
+        buckled_start_md_m: first.buckled_start_md_m.or(next.buckled_start_md_m),
     }
 }
 

@@ -645,3 +645,66 @@ fn erd_case(mode: &str, friction: f64) -> (String, String) {
     let csv = build_and_hold(500.0, 3.0, 80.0, hold_to);
     (csv, case_toml(3000.0, hold_to, mode, 30.0, friction))
 }
+
+/// `predict` at `whole` solves the rotating helix above the kick-off as `solve` does (whirling,
+/// issue 16): the well of [`grid_case`] with its kick-off at 500 m and an 800 m lateral at 100
+/// deg, drilling at 60 kN, friction 0.2, whose vertical pipe whirls at 453-498 m (without the
+/// whirl the march's first solve does not converge: 860 iterations, exit 2). References: the
+/// march's whirling intervals are `solve`'s ([`whirl_intervals`] of the case's whole-string
+/// model, to 1e-9 m); its start's bit forces and tilt agree with `solve --fidelity whole` on the
+/// same (unrefined) mesh within 1e-4 of the lateral bit force and of the tilt (the solves start
+/// differently and stop at the residual tolerance); the prediction warns of the whirl.
+#[test]
+fn predict_whole_string_whirls_as_solve_does() {
+    use drillpath::predict::forecast::{settings_at_level, whole_string_warnings};
+    use drillpath::predict::march::predict;
+    let g = GridCase {
+        inc_deg: 100.0,
+        lateral_m: 800.0,
+        mode: "drilling",
+        wob_kn: 60.0,
+        friction: 0.2,
+    };
+    let (csv, toml) = well_case(&g, 500.0);
+    let mut case: Case = load_temp_case(&csv, &toml);
+    case.solver.refine_contacts = false;
+    let whirl = whirl_intervals(&case, &Model::from_case(&case));
+    assert!(
+        !whirl.is_empty(),
+        "no rotating helix: the case no longer tests the whirl"
+    );
+    let bit = case.operation.bit_md_m;
+    let settings = settings_at_level(&case, Level::Whole, None, None).unwrap();
+    let p = predict(&case, bit, bit + 4.0, &settings, &mut |_| {}).expect("the whirling march converges");
+    assert_eq!(p.whirl_md_m.len(), whirl.len());
+    for (a, b) in p.whirl_md_m.iter().zip(&whirl) {
+        assert!((a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9, "{a:?} vs {b:?}");
+    }
+    let ctl = SolveControls::from_settings(&case.solver);
+    let s = solve_string(
+        &case,
+        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
+        &ctl,
+        &mut |_, _, _| {},
+    )
+    .unwrap();
+    let solved = s.level.fem.as_ref().unwrap().results.bit;
+    let start = p.steps[0].bit;
+    let lateral = solved.build_force_n.hypot(solved.walk_force_n);
+    let tilt = solved.tilt_inc_rad.hypot(solved.tilt_azi_rad);
+    println!(
+        "build {:.4} / {:.4} kN, walk {:.4} / {:.4} kN, tilt {:.6} / {:.6} deg (march start / solve)",
+        start.build_force_n / 1e3,
+        solved.build_force_n / 1e3,
+        start.walk_force_n / 1e3,
+        solved.walk_force_n / 1e3,
+        start.tilt_inc_rad.to_degrees(),
+        solved.tilt_inc_rad.to_degrees()
+    );
+    assert!((start.build_force_n - solved.build_force_n).abs() < 1e-4 * lateral);
+    assert!((start.walk_force_n - solved.walk_force_n).abs() < 1e-4 * lateral);
+    assert!((start.tilt_inc_rad - solved.tilt_inc_rad).abs() < 1e-4 * tilt);
+    assert!((start.tilt_azi_rad - solved.tilt_azi_rad).abs() < 1e-4 * tilt);
+    let w = whole_string_warnings(&p);
+    assert!(w.iter().any(|w| w.contains("a real string whirls there")), "{w:?}");
+}

@@ -6,12 +6,14 @@
 use super::PredictError;
 use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
+use crate::models::buckled_start::solve_from_buckled_start;
 use crate::models::fem::bha::bha_model;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{bit_with_sensor, BitResult};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::transport_state;
+use crate::models::whirl::whirl_intervals;
 use crate::predict::law::BitAction;
 use crate::predict::law::{drilling_direction, LawParams};
 use crate::predict::revolution::{mean_bit, mean_direction, SteerState};
@@ -68,6 +70,8 @@ pub(crate) struct BitSolve {
     /// The turn of a sliding bent housing's toolface by the motor's reactive torque, rad
     /// (the first state's; None when `reactive_torque` is off or the string rotates).
     pub(crate) reactive_turn_rad: Option<f64>,
+    /// Whether a state's solve came from the re-solve from the buckled shape.
+    pub(crate) buckled_start: bool,
 }
 
 impl BitSolve {
@@ -103,12 +107,16 @@ pub fn bit_action(bit: &BitResult) -> BitAction {
 }
 
 /// Solve the model warm-started from `warm` with at most `warm_iterations` Newton iterations;
-/// without one, or when the warm start fails, the full cold [`solve`] (its own start).
+/// without one, or when the warm start fails, the full cold [`solve`] (its own start), and
+/// where that finds no equilibrium on a whole-string model, the re-solve from the buckled shape
+/// ([`solve_from_buckled_start`]; `whole_case`: the case refitted to the model's bit depth and
+/// path, None for a cut model).
 fn solve_step(
     model: &Model,
     warm: Option<State>,
     warm_iterations: usize,
     ctl: &SolveControls,
+    whole_case: Option<&Case>,
 ) -> Result<Solution, PredictError> {
     let md = model.bit_md_m;
     let wrap = |source| PredictError::Solve { md_m: md, source };
@@ -125,7 +133,10 @@ fn solve_step(
             Err(e) => tracing::info!(md, error = %e, "warm-started solve failed; solving from scratch"),
         }
     }
-    let sol = solve(model, ctl).map_err(wrap)?;
+    let mut sol = solve(model, ctl).map_err(wrap)?;
+    if let (false, Some(case)) = (sol.converged, whole_case) {
+        sol = solve_from_buckled_start(case, model, sol, ctl);
+    }
     if sol.converged {
         return Ok(sol);
     }
@@ -209,17 +220,21 @@ struct StateSolve {
     bit: BitResult,
     iterations: usize,
     reactive_turn_rad: Option<f64>,
+    buckled_start: bool,
 }
 
 /// Solve the string of `base` (the cut model of the case at the state `st`: the RSS neutral or
 /// not, its consistent tangent on; `case` gives the mud and the sensors) at the state `st` from
 /// `start`; a bent housing's kink is held at the state's toolface ([`solve_holding_toolface`]).
+/// `whole_case`: for a whole-string `base`, the case refitted to its bit depth and path (for
+/// the re-solve from the buckled shape, [`solve_step`]).
 fn solve_state(
     case: &Case,
     base: &Model,
     st: &SteerState,
     start: Start<'_>,
     ctl: &SolveControls,
+    whole_case: Option<&Case>,
 ) -> Result<StateSolve, PredictError> {
     let md_m = base.bit_md_m;
     let mut model = base.clone();
@@ -231,7 +246,7 @@ fn solve_state(
         .map(|(m, s)| transport_state(m, s, &model));
     // the Newton holds the housing at the state's toolface as it iterates
     model.toolface_hold_rad = model.kink.and(model.reactive.is_none().then_some(st.toolface_rad));
-    let mut sol = solve_step(&model, warm_state, start.warm_iterations, ctl)?;
+    let mut sol = solve_step(&model, warm_state, start.warm_iterations, ctl, whole_case)?;
     if model.kink.is_some() {
         // the housing turned back to its toolface against the string's twist
         sol = solve_holding_toolface(&mut model, ctl, |_| Ok(sol))
@@ -244,6 +259,7 @@ fn solve_state(
     Ok(StateSolve {
         model,
         reactive_turn_rad: sol.stats.reactive_turn.map(|t| t.turn_rad),
+        buckled_start: sol.stats.buckled_start == Some(true),
         state: sol.state,
         bit,
         iterations: sol.stats.iterations,
@@ -271,10 +287,19 @@ pub(crate) fn solve_bit(
     faces: &[SteerState],
 ) -> Result<BitSolve, PredictError> {
     // the cut model of the case, and of the case with its rotary steerable system neutral for
-    // the share of the time it does not steer, each built once for its states
+    // the share of the time it does not steer, each built once for its states; a whole string
+    // whirls where its rotating pipe is helically buckled, as in `solve`
+    let whole_case = (cut_m >= case.string.length_m() - 1e-6).then(|| {
+        let mut c = case.at_bit_depth(md_m);
+        c.well.path = path.clone();
+        c
+    });
     let model_of = |c: &Case| {
         let mut m = bha_model(c, path, hole, md_m, cut_m);
         m.consistent_tangent = true;
+        if let Some(w) = &whole_case {
+            m.whirl_md_m = whirl_intervals(w, &m);
+        }
         m
     };
     let steering = faces.iter().any(|f| !f.neutral).then(|| model_of(case));
@@ -286,7 +311,14 @@ pub(crate) fn solve_bit(
     let solve_at = |k: usize, st: &SteerState| {
         let base = if st.neutral { &neutral } else { &steering };
         let base = base.as_ref().expect("a model for each kind of state");
-        solve_state(case, base, st, start_of(k, faces, warm, latest), ctl)
+        solve_state(
+            case,
+            base,
+            st,
+            start_of(k, faces, warm, latest),
+            ctl,
+            whole_case.as_ref(),
+        )
     };
     let solved: Vec<Result<StateSolve, PredictError>> = if faces.len() == 1 {
         vec![solve_at(0, &faces[0])]
@@ -304,6 +336,7 @@ pub(crate) fn solve_bit(
         .collect();
     let w: Vec<f64> = faces.iter().map(|f| f.weight).collect();
     let iterations = solved.iter().map(|s| s.iterations).sum();
+    let buckled_start = solved.iter().any(|s| s.buckled_start);
     let mut solved = solved.into_iter();
     let first = solved.next().expect("at least one state");
     let others = solved
@@ -316,6 +349,7 @@ pub(crate) fn solve_bit(
         .collect();
     Ok(BitSolve {
         reactive_turn_rad: first.reactive_turn_rad,
+        buckled_start,
         model: first.model,
         state: first.state,
         others,

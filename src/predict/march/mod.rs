@@ -198,6 +198,12 @@ pub struct Prediction {
     /// (0 when the prediction is shorter than that). A warning is due from
     /// [`RIPPLE_WARN_DEG`].
     pub ripple_deg: f64,
+    /// MD intervals `(top, bottom)`, m, where the rotating whole string whirls at the start
+    /// ([`crate::models::whirl`]; empty for a cut model or a string without a rotating helix).
+    pub whirl_md_m: Vec<(f64, f64)>,
+    /// The first bit MD, m, whose whole-string solve found no equilibrium from its usual start
+    /// and was solved from the buckled shape ([`crate::models::buckled_start`]); None if none.
+    pub buckled_start_md_m: Option<f64>,
 }
 
 /// Why a prediction stopped.
@@ -385,6 +391,8 @@ pub fn predict_from(
     let start_case = steered_at(case, s);
     let faces = crate::predict::revolution::toolfaces(&start_case);
     let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, (warm, &None), ctl, &faces)?;
+    let whirl_md_m = first.model.whirl_md_m.clone();
+    let mut buckled_start_md_m = first.buckled_start.then_some(s);
     let mut iterations = first.iterations;
     let dofs = first.model.dofs();
     let mut records = vec![(
@@ -489,6 +497,9 @@ pub fn predict_from(
         check_on_earth(&p1, s1)?;
         path = p1;
         s = s1;
+        if sol1.buckled_start {
+            buckled_start_md_m = buckled_start_md_m.or(Some(s));
+        }
         records.push((s, sol1.bit, dir, step_iterations, steer, sol1.reactive_turn_rad));
         on_step(s);
         *warm = Some(sol1.into_warm());
@@ -506,6 +517,8 @@ pub fn predict_from(
         seconds: t0.elapsed().as_secs_f64(),
         start_warm,
         ripple_deg: ripple.now.0.to_degrees(),
+        whirl_md_m,
+        buckled_start_md_m,
     })
 }
 
