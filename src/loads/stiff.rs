@@ -44,7 +44,9 @@ use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, NodeResult, SolveResults};
 use crate::models::fem::solve::continuation::ClimbEnd;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls};
+use crate::models::fem::solve::{
+    continuation, solve, solve_interior_point_from, solve_unless, Solution, SolveControls,
+};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::helical_lock_up::{self, Climbed};
 use crate::models::levels::run as run_level;
@@ -204,7 +206,9 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
-    match solve_holding_toolface(&mut model, &ctl, |m| solve(m, &ctl)) {
+    // a string that cannot be put on bottom at any WOB is not followed along the paths
+    let cold = |m: &Model| solve_unless(m, &ctl, || locked_at_zero_wob(case)).map(|(sol, _)| sol);
+    match solve_holding_toolface(&mut model, &ctl, cold) {
         Ok(sol) if sol.converged => {
             let out = converged(
                 case,

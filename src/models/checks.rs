@@ -325,7 +325,11 @@ pub fn soft_lock_up(case: &Case) -> Option<LockUp> {
 /// bottom exists and no WOB path can reach one. Running in (`trip_in`): whether the soft
 /// string cannot be run in to the bit depth ([`running_in_lock_up`]), the same at zero WOB.
 pub fn locked_at_zero_wob(case: &Case) -> bool {
-    if case.operation.mode == Mode::TripIn {
+    let op = &case.operation;
+    if op.hook_load_n.is_some() || !(op.mode.on_bottom() || op.mode == Mode::TripIn) {
+        return false;
+    }
+    if op.mode == Mode::TripIn {
         let hook = softstring::from_case(case, softstring::segment_length_m(&case.solver)).hook_load_n;
         return running_in_lock_up(case, Some(hook)).is_some();
     }

@@ -20,13 +20,16 @@ use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
 use crate::models::buckled_start;
 use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
+use crate::models::checks::locked_at_zero_wob;
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
 use crate::models::fem::results::{extract, BitResult, SolveResults};
 use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
+use crate::models::fem::solve::{
+    solve_interior_point_from, solve_unless, Solution, SolveControls, SolveError, SolveStats,
+};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
@@ -196,9 +199,24 @@ fn nearest_node(model: &Model, s_m: f64) -> usize {
 }
 
 fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f64>) -> Result<FemPart, SolveError> {
-    // a whole string that finds no equilibrium is solved again from its buckled shape
-    let first = |m: &Model| solve(m, ctl).map(|s| buckled_start::solve_from_buckled_start(case, m, s, ctl));
+    // a whole string that finds no equilibrium is solved again from its buckled shape, unless
+    // it cannot be put on bottom at any WOB (its answer is the lock-up, models::string_solve)
+    let first = |m: &Model| {
+        let (sol, gave_up) = solve_unless(m, ctl, || whole_locked_at_zero_wob(case, m))?;
+        Ok(match gave_up {
+            true => sol,
+            false => buckled_start::solve_from_buckled_start(case, m, sol, ctl),
+        })
+    };
     fem_part_by(model, case, ctl, coupling_m, first)
+}
+
+/// Whether `model` is the whole string of `case` and the string cannot be put on bottom at any
+/// WOB ([`locked_at_zero_wob`]): no whole-string equilibrium on bottom exists, and the WOB and
+/// friction paths and the re-solves from the buckled shape could only end with the surface
+/// pushing.
+pub fn whole_locked_at_zero_wob(case: &Case, model: &Model) -> bool {
+    !matches!(model.top, TopCondition::Cut { .. }) && locked_at_zero_wob(case)
 }
 
 /// The stiff part of `case` on `model` with its first solve by `first`: a bent housing held at

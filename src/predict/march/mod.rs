@@ -391,10 +391,8 @@ pub fn predict_from(
     let start_case = steered_at(case, s);
     let faces = crate::predict::revolution::toolfaces(&start_case);
     let first = solve_bit(&start_case, bit_rock, start, &hole, s, cut, (warm, &None), ctl, &faces)?;
-    let whirl_md_m = first.model.whirl_md_m.clone();
-    let mut buckled_start_md_m = first.buckled_start.then_some(s);
-    let mut iterations = first.iterations;
-    let dofs = first.model.dofs();
+    let (whirl_md_m, mut buckled_start_md_m) = (first.model.whirl_md_m.clone(), first.buckled_start.then_some(s));
+    let (mut iterations, dofs) = (first.iterations, first.model.dofs());
     let mut records = vec![(
         s,
         first.bit,
@@ -478,9 +476,7 @@ pub fn predict_from(
         let (turn, p1, sol1) = (outcome.turn, outcome.path, outcome.solve);
         let (dir, step_iterations) = (outcome.direction, outcome.iterations);
         iterations += step_iterations;
-        cur_step = (cur_step * 2.0).min(step);
-        last_turn = turn;
-        last_ds = ds;
+        (cur_step, last_turn, last_ds) = ((cur_step * 2.0).min(step), turn, ds);
         last_chord = chord_of([
             turn[0] + tendency.build_rad_per_m * ds,
             turn[1] + tendency.right_rad_per_m * ds,
@@ -495,11 +491,8 @@ pub fn predict_from(
         restart_on_steering_change(&mut ripple, &mut last_steer, steer, s, step);
         ripple.after_step(s1, &hole_pred.chords)?;
         check_on_earth(&p1, s1)?;
-        path = p1;
-        s = s1;
-        if sol1.buckled_start {
-            buckled_start_md_m = buckled_start_md_m.or(Some(s));
-        }
+        buckled_start_md_m = buckled_start_md_m.or(sol1.buckled_start.then_some(s1));
+        (path, s) = (p1, s1);
         records.push((s, sol1.bit, dir, step_iterations, steer, sol1.reactive_turn_rad));
         on_step(s);
         *warm = Some(sol1.into_warm());

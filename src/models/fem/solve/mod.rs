@@ -60,9 +60,34 @@ pub const DIRECT_BEFORE_CONTINUATION: usize = 60;
 /// time left); if that does not reach the model's WOB, the direct solve resumes for the rest
 /// of its iterations. [`SolveStats::wob_continuation_n`] says how far the path got.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
+    solve_unless(model, ctl, || false).map(|(sol, _)| sol)
+}
+
+/// [`solve`], stopped after the direct solve's first [`DIRECT_BEFORE_CONTINUATION`] iterations
+/// when they did not converge and `give_up` (asked only then) says no path can help (a string
+/// that cannot be put on bottom at any WOB: every path would end with the surface pushing). A
+/// model without a WOB path (running in, off bottom) asks `give_up` first and is then limited to
+/// those iterations. Returns the solution and whether it gave up.
+pub fn solve_unless(
+    model: &Model,
+    ctl: &SolveControls,
+    give_up: impl FnOnce() -> bool,
+) -> Result<(Solution, bool), SolveError> {
     match ctl.method {
-        Method::Paper => solve_modified_newton(model, ctl),
-        Method::Newton if !continuation::applies(model) => solve_interior_point(model, ctl),
+        Method::Paper => Ok((solve_modified_newton(model, ctl)?, false)),
+        Method::Newton if !continuation::applies(model) => {
+            let gave_up = give_up();
+            let own = SolveControls {
+                max_iterations: match gave_up {
+                    true => ctl.max_iterations.min(DIRECT_BEFORE_CONTINUATION),
+                    false => ctl.max_iterations,
+                },
+                ..*ctl
+            };
+            let sol = solve_interior_point(model, &own)?;
+            let gave_up = gave_up && !sol.converged;
+            Ok((sol, gave_up))
+        }
         Method::Newton => {
             let first = SolveControls {
                 max_iterations: ctl.max_iterations.min(DIRECT_BEFORE_CONTINUATION),
@@ -70,9 +95,12 @@ pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError>
             };
             let direct = solve_interior_point(model, &first)?;
             if direct.converged || direct.stats.timed_out {
-                return Ok(direct);
+                return Ok((direct, false));
             }
-            continued(model, ctl, direct)
+            if give_up() {
+                return Ok((direct, true));
+            }
+            Ok((continued(model, ctl, direct)?, false))
         }
     }
 }
