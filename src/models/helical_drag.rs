@@ -64,14 +64,23 @@ const BISECTIONS: usize = 20;
 /// is below `case`'s WOB (None when the helical soft string delivers the case's WOB, or the
 /// string is locked up even at zero WOB): bisected on the WOB to 1e-6 of the case's.
 pub fn lock_up_wob_n(case: &Case) -> Option<f64> {
-    let hook_at = |wob: f64| {
-        let mut c = case.clone();
-        c.operation.wob_n = wob;
-        c.operation.hook_load_n = None;
-        helical_soft_string(&c).hook_load_n
-    };
+    lock_up_wob_from(case, helical_hook_load_at(case, case.operation.wob_n))
+}
+
+/// The hook load (N) of [`helical_soft_string`] of `case` at the WOB `wob_n` (N), the hook-load
+/// input dropped.
+fn helical_hook_load_at(case: &Case, wob_n: f64) -> f64 {
+    let mut c = case.clone();
+    c.operation.wob_n = wob_n;
+    c.operation.hook_load_n = None;
+    helical_soft_string(&c).hook_load_n
+}
+
+/// [`lock_up_wob_n`] with the hook load at the case's WOB, `hook_at_wob_n` (N), already known.
+fn lock_up_wob_from(case: &Case, hook_at_wob_n: f64) -> Option<f64> {
+    let hook_at = |wob: f64| helical_hook_load_at(case, wob);
     let target = case.operation.wob_n;
-    if target.is_nan() || target <= 0.0 || hook_at(target) >= 0.0 || hook_at(0.0) < 0.0 {
+    if target.is_nan() || target <= 0.0 || hook_at_wob_n >= 0.0 || hook_at(0.0) < 0.0 {
         return None;
     }
     let (mut lo, mut hi) = (0.0, target);
@@ -118,11 +127,11 @@ pub fn helical_lock_up(case: &Case) -> Option<HelicalLockUp> {
     if !op.mode.on_bottom() || op.hook_load_n.is_some() || plain_hook_load_n(case) < 0.0 {
         return None;
     }
-    let hook = helical_soft_string(case).hook_load_n;
+    let hook = helical_hook_load_at(case, op.wob_n);
     if hook >= 0.0 {
         return None;
     }
-    let max_wob_n = lock_up_wob_n(case).unwrap_or(0.0);
+    let max_wob_n = lock_up_wob_from(case, hook).unwrap_or(0.0);
     Some(HelicalLockUp {
         hook_load_n: hook,
         wob_n: op.wob_n,
