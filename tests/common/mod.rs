@@ -86,3 +86,11 @@ bha_element_length = "{element_m} m"
     );
     load_temp_case(&survey, &case)
 }
+
+/// `case` solved as `drillpath solve --fidelity whole` solves it (the case's own controls).
+pub fn solve_whole(case: &Case) -> drillpath::models::string_solve::StringSolve {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    let ctl = drillpath::models::fem::solve::SolveControls::from_settings(&case.solver);
+    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
+    drillpath::models::string_solve::solve_string(case, choice, &ctl, &mut |_, _, _| {}).unwrap()
+}

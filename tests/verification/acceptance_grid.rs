@@ -469,13 +469,7 @@ fn rotating_helix_above_the_kick_off_whirls() {
             "whirl {top}-{bottom} outside the runs or in the assembly"
         );
     }
-    let s = solve_string(
-        &case,
-        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
-        &ctl,
-        &mut |_, _, _| {},
-    )
-    .unwrap();
+    let s = crate::common::solve_whole(&case);
     let fem = s.level.fem.as_ref().unwrap();
     assert!(s.level.converged, "the whirling solve did not converge");
     assert_eq!(fem.model.whirl_md_m, whirl);
@@ -680,14 +674,7 @@ fn predict_whole_string_whirls_as_solve_does() {
     for (a, b) in p.whirl_md_m.iter().zip(&whirl) {
         assert!((a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9, "{a:?} vs {b:?}");
     }
-    let ctl = SolveControls::from_settings(&case.solver);
-    let s = solve_string(
-        &case,
-        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
-        &ctl,
-        &mut |_, _, _| {},
-    )
-    .unwrap();
+    let s = crate::common::solve_whole(&case);
     let solved = s.level.fem.as_ref().unwrap().results.bit;
     let start = p.steps[0].bit;
     let lateral = solved.build_force_n.hypot(solved.walk_force_n);

@@ -79,17 +79,9 @@ fn beyond_lock_up_the_path_stops_short_and_says_where() {
 /// bending in the build (measured 53.2 kN; asserted between 80% and 100% of the soft string's).
 #[test]
 fn beyond_lock_up_solve_answers_at_the_largest_wob_the_string_delivers() {
-    use drillpath::models::string_solve::solve_string;
     let mut case = case(114.0);
     case.solver.max_iterations = 100;
-    let ctl = SolveControls::from_settings(&case.solver);
-    let s = solve_string(
-        &case,
-        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
-        &ctl,
-        &mut |_, _, _| {},
-    )
-    .unwrap();
+    let s = crate::common::solve_whole(&case);
     let l = s.lock_up.expect("lock-up flagged");
     let at = l.results_at_wob_n.expect("results at the delivered WOB");
     let hook = s.level.hook_load_n.unwrap();
