@@ -207,10 +207,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
         }
     }
     // a string that cannot be put on bottom at any WOB is not followed along the paths
-    let cold = |m: &Model| {
-        let early = |direct: &Solution| buckled_start::early_damped(case, m, direct, &ctl);
-        solve_unless(m, &ctl, || locked_at_zero_wob(case), early).map(|(sol, _)| sol)
-    };
+    let cold = |m: &Model| solve_unless(m, &ctl, || locked_at_zero_wob(case)).map(|(sol, _)| sol);
     match solve_holding_toolface(&mut model, &ctl, cold) {
         Ok(sol) if sol.converged => {
             let out = converged(

@@ -152,7 +152,17 @@ pub fn solve_from_buckled_start_by(
         return sol;
     }
     let t0 = Instant::now();
-    let accept = |h: &Solution| acceptable(case, model, ctl, h);
+    let accept = |h: &Solution| {
+        // a negative hook load (the surface pushing) is a lock-up, not an answer
+        let pushed = model.loads.hook_load_n.is_none() && h.state.hook_load_n < 0.0;
+        if !h.converged || h.stats.max_penetration > ctl.gap_tolerance || pushed {
+            return false;
+        }
+        let r = extract(model, h, case.mud.density_kg_m3);
+        let eq = r.equilibrium_error();
+        tracing::info!(equilibrium = eq, "re-solve from a buckled start converged");
+        eq <= EQUILIBRIUM
+    };
     let mut work = SolveStats::default();
     for &strategy in strategies {
         let left = SolveControls {
@@ -164,10 +174,7 @@ pub fn solve_from_buckled_start_by(
         }
         let start = cold_start(model);
         let (kept, w) = match strategy {
-            Strategy::Damped => {
-                let limit = DAMPED_ITERATION_FACTOR * left.max_iterations;
-                damped(model, start, &axial, &runs, &left, limit, accept)
-            }
+            Strategy::Damped => damped(model, start, &axial, &runs, &left, accept),
             Strategy::Helix => helix::solve_from_helix(model, &start, &axial, &runs, &left, accept),
         };
         work.add_work(&w);
@@ -196,81 +203,6 @@ pub fn solve_from_buckled_start_by(
     sol
 }
 
-/// Whether the re-solve `h` of `model` (of `case`) is an answer: converged, penetration within
-/// the gap tolerance, global equilibrium within [`EQUILIBRIUM`] of the largest force, and a hook
-/// load not below zero (the surface pushing is a lock-up, not an answer).
-fn acceptable(case: &Case, model: &Model, ctl: &SolveControls, h: &Solution) -> bool {
-    let pushed = model.loads.hook_load_n.is_none() && h.state.hook_load_n < 0.0;
-    if !h.converged || h.stats.max_penetration > ctl.gap_tolerance || pushed {
-        return false;
-    }
-    let r = extract(model, h, case.mud.density_kg_m3);
-    let eq = r.equilibrium_error();
-    tracing::info!(equilibrium = eq, "re-solve from a buckled start converged");
-    eq <= EQUILIBRIUM
-}
-
-/// Iteration limit of the early damped re-solve ([`early_damped`]): the damped solves that
-/// answer the acceptance grid's buckled 2,000 m slides take 32-341 iterations.
-pub const EARLY_DAMPED_ITERATIONS: usize = 400;
-
-/// Newton steps in a row whose contact subproblem ends at its iteration limit after which the
-/// early damped re-solve gives up ([`early_damped`]; the damped solves that answer the grid's
-/// buckled 2,000 m slides have no two in a row, the one that fails on 2,000 m, 92 deg, 20 kN
-/// has 140 from its 260th iteration on).
-pub const EARLY_DAMPED_CAPPED_SUBPROBLEMS: usize = 3;
-
-/// The damped re-solve from the buckled start ([`Strategy::Damped`], at most
-/// [`EARLY_DAMPED_ITERATIONS`]) of a whole string of `case` that slides (no rotation) with its
-/// soft string helically buckled and not locked up by the helix's drag, run as soon as the
-/// direct solve `direct` of `model` has failed, before the WOB and friction paths: where it
-/// answers, it is the answer the full re-solve after those paths would give (the same cold start
-/// and iterations), without their time. Returns the kept solution (its statistics counting
-/// `direct`'s work and its own) or None, and the work of a solve not kept.
-pub fn early_damped(
-    case: &Case,
-    model: &Model,
-    direct: &Solution,
-    ctl: &SolveControls,
-) -> (Option<Solution>, SolveStats) {
-    let rotating = model.loads.omega_rad_s > 0.0;
-    if direct.converged || direct.stats.timed_out || rotating || matches!(model.top, TopCondition::Cut { .. }) {
-        return (None, SolveStats::default());
-    }
-    let (axial, runs) = soft_helical_runs(case, model);
-    if runs.is_empty() || helically_locked(case) {
-        return (None, SolveStats::default());
-    }
-    let left = SolveControls {
-        time_limit_s: ctl.time_limit_s - direct.stats.seconds,
-        stop_after_capped_subproblems: EARLY_DAMPED_CAPPED_SUBPROBLEMS,
-        ..*ctl
-    };
-    let accept = |h: &Solution| acceptable(case, model, ctl, h);
-    let (kept, work) = damped(
-        model,
-        cold_start(model),
-        &axial,
-        &runs,
-        &left,
-        EARLY_DAMPED_ITERATIONS,
-        accept,
-    );
-    tracing::info!(
-        kept = kept.is_some(),
-        iterations = work.iterations,
-        "early damped re-solve from a buckled start"
-    );
-    match kept {
-        Some(mut h) => {
-            h.stats.add_work(&direct.stats);
-            h.stats.buckled_start = Some(true);
-            (Some(h), SolveStats::default())
-        }
-        None => (None, work),
-    }
-}
-
 /// Whether `case` (on bottom, WOB given) is locked up by the helix's drag: the soft string with
 /// Mitchell's helical contact force ([`helical_drag`]) has a negative hook load. The whole
 /// string then has no equilibrium at the case's WOB with the surface holding the string (it
@@ -282,23 +214,21 @@ fn helically_locked(case: &Case) -> bool {
     op.mode.on_bottom() && op.hook_load_n.is_none() && helical_drag::helical_soft_string(case).hook_load_n < 0.0
 }
 
-/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` with at
-/// most `max_iterations` and the lateral damping of [`helix::instability_stiffness`] in `runs`
-/// (`axial` the soft string's axial forces at the nodes, N); the solution if `accept` takes it,
-/// and the work.
+/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` (its
+/// iteration limit times [`DAMPED_ITERATION_FACTOR`]) with the lateral damping of [`helix::instability_stiffness`] in `runs` (`axial` the soft string's
+/// axial forces at the nodes, N); the solution if `accept` takes it, and the work.
 fn damped(
     model: &Model,
     start: State,
     axial: &[f64],
     runs: &[(usize, usize)],
     ctl: &SolveControls,
-    max_iterations: usize,
     accept: impl Fn(&Solution) -> bool,
 ) -> (Option<Solution>, SolveStats) {
     let mut m = model.clone();
     m.consistent_tangent = true;
     let c = SolveControls {
-        max_iterations,
+        max_iterations: DAMPED_ITERATION_FACTOR * ctl.max_iterations,
         lateral_damping_n_per_m: helix::instability_stiffness(model, axial, runs),
         damping_reference_residual: DAMPING_REFERENCE_RESIDUAL,
         ..*ctl
