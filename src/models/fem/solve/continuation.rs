@@ -22,6 +22,12 @@ pub const START_FRACTION: f64 = 0.1;
 /// Newton iterations allowed to one step of the path.
 pub const STEP_ITERATIONS: usize = 20;
 
+/// Newton iterations in a row whose contact subproblem ends at its iteration limit after which
+/// a step of a path is given up as not converging (and halved): on the buckled 2,000 m slides of
+/// the acceptance grid the steps that converge have none, and the steps that reach it go on to
+/// fail after [`STEP_ITERATIONS`] with every subproblem at the limit (docs/performance.md).
+pub const STEP_CAPPED_SUBPROBLEMS: usize = 3;
+
 /// Factor on the WOB step after a converged step.
 pub const STEP_GROWTH: f64 = 1.5;
 
@@ -161,6 +167,7 @@ pub(crate) fn follow_path(
         let step_ctl = SolveControls {
             max_iterations: steps.step_iterations.min(ctl.max_iterations - iterations),
             time_limit_s: ctl.time_limit_s - elapsed,
+            stop_after_capped_subproblems: STEP_CAPPED_SUBPROBLEMS,
             ..*ctl
         };
         match solve_interior_point_from(&at(next), sol.state.clone(), &step_ctl) {
@@ -294,6 +301,7 @@ pub fn climb_wob(
         let step_ctl = SolveControls {
             max_iterations: STEP_ITERATIONS,
             time_limit_s: ctl.time_limit_s - elapsed,
+            stop_after_capped_subproblems: STEP_CAPPED_SUBPROBLEMS,
             ..*ctl
         };
         let at = at_wob(model, next);

@@ -35,6 +35,11 @@ pub struct SolveControls {
     /// makes no active-set step (the refined contact runs have pairs with force and gap both
     /// near zero, which switch sides at every try).
     pub carried_start: bool,
+    /// Stop (not converged) after this many Newton steps in a row whose contact subproblem
+    /// ended at its iteration limit ([`super::interior_point::MAX_IP_ITERATIONS`]): a solve
+    /// stalled near an equilibrium it cannot reach (the IP cycling), for a tentative solve
+    /// that something else follows; 0 (the default) never.
+    pub stop_after_capped_subproblems: usize,
 }
 
 impl SolveControls {
@@ -71,6 +76,7 @@ impl Default for SolveControls {
             lateral_damping_n_per_m: 0.0,
             damping_reference_residual: 0.0,
             carried_start: false,
+            stop_after_capped_subproblems: 0,
         }
     }
 }

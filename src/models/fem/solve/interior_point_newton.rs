@@ -23,7 +23,7 @@ use super::convergence::{largest_entry, likely_converged, load_scale, rounding_f
 use super::hook_load_system::{bit_row, free_residual};
 use super::interior_point::{
     constraint_scale, contact_clearances, contact_dofs, ip_tolerance, previous_multipliers, ContactSubproblem,
-    ACTIVE_SET_RESIDUAL,
+    ACTIVE_SET_RESIDUAL, MAX_IP_ITERATIONS,
 };
 use super::matrix_and_factor::MatrixAndFactor;
 use super::pins::{add_pin_coupling, constrained_with_pins, hold_pins_on_axis, pin_moves, PIN_EXACT_RESIDUAL};
@@ -93,6 +93,9 @@ pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveCon
             stats.timed_out = true;
             break;
         }
+        if ctl.stop_after_capped_subproblems > 0 && newton.capped_in_a_row >= ctl.stop_after_capped_subproblems {
+            break;
+        }
         if equilibrium && !newton.gaps.exact_pins {
             // in equilibrium about penalty pins (a step went straight from above
             // `PIN_EXACT_RESIDUAL` to the tolerance): the next evaluation holds them exactly
@@ -159,6 +162,8 @@ struct InteriorPointNewton<'a> {
     /// The model with its kink turned to hold the toolface (None until it is first turned):
     /// the model of the evaluations.
     held: Option<Model>,
+    /// Newton steps in a row whose contact subproblem ended at [`MAX_IP_ITERATIONS`].
+    capped_in_a_row: usize,
 }
 
 impl<'a> InteriorPointNewton<'a> {
@@ -206,6 +211,7 @@ impl<'a> InteriorPointNewton<'a> {
             first_residual: None,
             hold_rad: model.toolface_hold_rad.filter(|_| model.kink.is_some()),
             held: None,
+            capped_in_a_row: 0,
         }
     }
 
@@ -358,6 +364,10 @@ impl<'a> InteriorPointNewton<'a> {
         let try_active_set =
             stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL && !self.ctl.carried_start;
         let ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
+        self.capped_in_a_row = match ip.iterations >= MAX_IP_ITERATIONS {
+            true => self.capped_in_a_row + 1,
+            false => 0,
+        };
         let cap = step_cap(model, ev, &ip.iterate.du, qidx);
         tracing::debug!(
             ip_iters = ip.iterations,
