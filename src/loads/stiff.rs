@@ -206,8 +206,11 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
-    // a string that cannot be put on bottom at any WOB is not followed along the paths
-    let cold = |m: &Model| solve_unless(m, &ctl, || locked_at_zero_wob(case)).map(|(sol, _)| sol);
+    // a string that cannot be put on bottom at any WOB is not followed along the paths (decided
+    // once, where the solve first asks)
+    let locked = std::cell::OnceCell::new();
+    let locked_up = || *locked.get_or_init(|| locked_at_zero_wob(case));
+    let cold = |m: &Model| solve_unless(m, &ctl, locked_up).map(|(sol, _)| sol);
     match solve_holding_toolface(&mut model, &ctl, cold) {
         Ok(sol) if sol.converged => {
             let out = converged(
@@ -224,7 +227,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
         Ok(sol) => {
             let before = iterations;
             let iterations = before + sol.stats.iterations;
-            if locked_at_zero_wob(case) {
+            if locked_up() {
                 // no equilibrium on bottom exists: no WOB path or climb can reach one
                 return (StiffOutcome::LockedAtZeroWob { iterations }, None);
             }

@@ -6,7 +6,7 @@ use crate::case::{Case, Mode};
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
 use crate::models::helical_drag::HelicalLockUp;
-use crate::models::lock_up_depth::{lock_up_depths, metres, Drag, LockUpDepths};
+use crate::models::lock_up_depth::{hook_load_at_wob_n, lock_up_depths, metres, Drag, LockUpDepths};
 use crate::models::softstring;
 use crate::string::material::grade_yield_strength_pa;
 
@@ -320,20 +320,22 @@ pub fn soft_lock_up(case: &Case) -> Option<LockUp> {
         .or_else(|| crate::models::helical_drag::helical_lock_up(case).map(|h| LockUp::by_helix(&h)))
 }
 
-/// Whether the soft string of `case`'s lock-up ([`soft_lock_up`]) delivers no WOB at all at its
-/// bit depth: the string cannot be put on bottom there, so no whole-string equilibrium on
-/// bottom exists and no WOB path can reach one. Running in (`trip_in`): whether the soft
-/// string cannot be run in to the bit depth ([`running_in_lock_up`]), the same at zero WOB.
+/// Whether the soft string of `case`'s lock-up delivers no WOB at all at its bit depth (the
+/// largest WOB of [`soft_lock_up`] zero: that soft string, [`Drag::of`] the case's WOB, has a
+/// hook load below zero at zero WOB): the string cannot be put on bottom there, so no
+/// whole-string equilibrium on bottom exists and no WOB path can reach one. Running in
+/// (`trip_in`): whether the plain soft string cannot be run in to the bit depth
+/// ([`running_in_lock_up`]), the same at zero WOB.
 pub fn locked_at_zero_wob(case: &Case) -> bool {
     let op = &case.operation;
     if op.hook_load_n.is_some() || !(op.mode.on_bottom() || op.mode == Mode::TripIn) {
         return false;
     }
-    if op.mode == Mode::TripIn {
-        let hook = softstring::from_case(case, softstring::segment_length_m(&case.solver)).hook_load_n;
-        return running_in_lock_up(case, Some(hook)).is_some();
-    }
-    soft_lock_up(case).is_some_and(|l| l.max_wob_n <= 0.0)
+    let drag = match op.mode {
+        Mode::TripIn => Drag::Plain,
+        _ => Drag::of(case, op.wob_n),
+    };
+    hook_load_at_wob_n(case, 0.0, drag) < 0.0
 }
 
 /// The lock-up of `case` running in (`trip_in`) when `hook_load_n` is below zero: the surface

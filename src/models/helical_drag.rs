@@ -69,7 +69,7 @@ pub fn lock_up_wob_n(case: &Case) -> Option<f64> {
 
 /// The hook load (N) of [`helical_soft_string`] of `case` at the WOB `wob_n` (N), the hook-load
 /// input dropped.
-fn helical_hook_load_at(case: &Case, wob_n: f64) -> f64 {
+pub fn helical_hook_load_at(case: &Case, wob_n: f64) -> f64 {
     let mut c = case.clone();
     c.operation.wob_n = wob_n;
     c.operation.hook_load_n = None;

@@ -13,7 +13,7 @@
 //! locked window higher up the hole (possible in an S-shaped well) is not reported.
 
 use crate::case::{Case, Mode};
-use crate::models::helical_drag::helical_soft_string;
+use crate::models::helical_drag::helical_hook_load_at;
 use crate::models::softstring;
 
 /// The soft string whose hook load decides the lock-up depth.
@@ -30,10 +30,7 @@ impl Drag {
     /// locked up itself (its largest WOB is the lock-up's, `models::checks::lock_up`), else the
     /// one with the helix's drag.
     pub fn of(case: &Case, wob_n: f64) -> Drag {
-        let mut c = case.clone();
-        c.operation.wob_n = wob_n;
-        c.operation.hook_load_n = None;
-        if Drag::Plain.hook_load_n(&c) < 0.0 {
+        if hook_load_at_wob_n(case, wob_n, Drag::Plain) < 0.0 {
             Drag::Plain
         } else {
             Drag::WithHelix
@@ -47,13 +44,19 @@ impl Drag {
             Drag::WithHelix => "soft string with the helix's drag",
         }
     }
+}
 
-    /// The hook load of `case` by this model, N.
-    fn hook_load_n(self, case: &Case) -> f64 {
-        match self {
-            Drag::Plain => softstring::from_case(case, softstring::segment_length_m(&case.solver)).hook_load_n,
-            Drag::WithHelix => helical_soft_string(case).hook_load_n,
+/// The hook load (N) of `case` by the model `drag` at the WOB `wob_n` (N), the case's hook-load
+/// input dropped.
+pub fn hook_load_at_wob_n(case: &Case, wob_n: f64, drag: Drag) -> f64 {
+    match drag {
+        Drag::Plain => {
+            let mut c = case.clone();
+            c.operation.wob_n = wob_n;
+            c.operation.hook_load_n = None;
+            softstring::from_case(&c, softstring::segment_length_m(&c.solver)).hook_load_n
         }
+        Drag::WithHelix => helical_hook_load_at(case, wob_n),
     }
 }
 
@@ -80,10 +83,7 @@ pub const DEPTH_TOLERANCE_M: f64 = 0.1;
 /// The hook load (N) by the model `drag` with `case`'s string refitted to the bit depth
 /// `bit_md_m` (m) and the WOB `wob_n` (N); the case's hook-load input dropped.
 pub fn hook_load_at_depth_n(case: &Case, bit_md_m: f64, wob_n: f64, drag: Drag) -> f64 {
-    let mut c = case.at_bit_depth(bit_md_m);
-    c.operation.wob_n = wob_n;
-    c.operation.hook_load_n = None;
-    drag.hook_load_n(&c)
+    hook_load_at_wob_n(&case.at_bit_depth(bit_md_m), wob_n, drag)
 }
 
 /// The bit depth (MD, m) from which the string of `case`, in its operation at the WOB `wob_n`

@@ -124,12 +124,13 @@ pub fn solve_string(
     let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
     let mut delivered = None;
     let mut from_soft_string = false;
-    if !level.converged && choice.level == Level::Whole && locked_at_zero_wob(case) {
+    let no_equilibrium = !level.converged && choice.level == Level::Whole;
+    if no_equilibrium && locked_at_zero_wob(case) {
         if let Some(r) = soft_answer(case, &choice, ctl, &level, on_stage) {
             from_soft_string = true;
             level = r;
         }
-    } else if !level.converged && choice.level == Level::Whole {
+    } else if no_equilibrium {
         let (answer, lock_up) = answer_without_equilibrium(case, choice, ctl, &mut level, on_stage);
         if let Some(mut r) = answer {
             // the statistics count the solve that found no equilibrium too

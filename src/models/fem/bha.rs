@@ -54,10 +54,16 @@ pub fn default_cut_m(string: &DrillString, hole_diameter_m: f64, inc_rad: f64, m
         .min(string.length_m())
 }
 
+/// Whether a cut `cut_m` (m) above the bit keeps the whole of `string` ([`bha_model`] then
+/// builds the whole string, held at the surface).
+pub fn cut_is_whole(string: &DrillString, cut_m: f64) -> bool {
+    cut_m >= string.length_m() - 1e-6
+}
+
 /// The cut model of `case`'s string with the bit at `bit_md_m` in the hole `path`/`hole`, cut
 /// `cut_m` above the bit (the whole string, held at the surface, if it is not longer).
 pub fn bha_model(case: &Case, path: &WellPath, hole: &HoleSize, bit_md_m: f64, cut_m: f64) -> Model {
-    let whole = cut_m >= case.string.length_m() - 1e-6;
+    let whole = cut_is_whole(&case.string, cut_m);
     let string = if whole {
         case.string.clone()
     } else {

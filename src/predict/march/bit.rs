@@ -7,7 +7,7 @@ use super::PredictError;
 use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
 use crate::models::buckled_start::solve_from_buckled_start;
-use crate::models::fem::bha::bha_model;
+use crate::models::fem::bha::{bha_model, cut_is_whole};
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{bit_with_sensor, BitResult};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
@@ -289,7 +289,7 @@ pub(crate) fn solve_bit(
     // the cut model of the case, and of the case with its rotary steerable system neutral for
     // the share of the time it does not steer, each built once for its states; a whole string
     // whirls where its rotating pipe is helically buckled, as in `solve`
-    let whole_case = (cut_m >= case.string.length_m() - 1e-6).then(|| {
+    let whole_case = cut_is_whole(&case.string, cut_m).then(|| {
         let mut c = case.at_bit_depth(md_m);
         c.well.path = path.clone();
         c
