@@ -21,7 +21,7 @@ use crate::models::softstring;
 pub enum Drag {
     /// The plain soft string ([`softstring::from_case`]).
     Plain,
-    /// The soft string with the helix's drag ([`helical_soft_string`]).
+    /// The soft string with the helix's drag ([`crate::models::helical_drag::helical_soft_string`]).
     WithHelix,
 }
 
