@@ -172,7 +172,8 @@ impl LockUp {
         }
     }
 
-    /// The warning of a lock-up running in ([`running_in_lock_up`]).
+    /// The warning of a lock-up running in ([`running_in_lock_up`], or by the helix's drag
+    /// [`crate::models::helical_drag::helical_running_in_lock_up`]).
     fn running_in_warning(&self) -> String {
         let depth = self
             .depths
@@ -185,14 +186,32 @@ impl LockUp {
                 ))
             })
             .unwrap_or_default();
-        let soft = if self.results_from_soft_string {
-            "; the whole string finds no equilibrium running in to this depth: no stiff-string results exist there, and the results are the soft string's (`fidelity.used` soft)"
-        } else {
-            ""
+        let soft = match self.results_from_soft_string {
+            true => "; the whole string finds no equilibrium running in to this depth: no stiff-string results exist there, and the results are the soft string's (`fidelity.used` soft)",
+            false => "",
+        };
+        let without_helix = match self.results_without_helical_drag {
+            true => "; the results are from a soft string without the helix's drag: their hook load, not below zero, is one the string cannot give",
+            false => "",
+        };
+        let (what, cause) = match self.by_helix {
+            true => (
+                format!(
+                    "helical lock-up running in: the pipe buckles into a helix whose wall force and drag grow faster than its weight; by the soft string with the helix's drag (Mitchell's r F^2/(4 EI)) its hook load is {:.0} kN{}",
+                    self.hook_load_n / 1e3,
+                    self.helical_md_m
+                        .map(|(top, bottom)| format!(" (helically buckled at {top:.0}-{bottom:.0} m MD)"))
+                        .unwrap_or_default()
+                ),
+                "the helix",
+            ),
+            false => (
+                format!("lock-up running in: hook load {:.0} kN below zero", self.hook_load_n / 1e3),
+                "the compressed part",
+            ),
         };
         format!(
-            "lock-up running in: hook load {:.0} kN below zero, the surface would have to push the string down to run it in to this depth: less friction, rotation while running in, or heavier pipe above the compressed part{depth}{soft}",
-            self.hook_load_n / 1e3
+            "{what}, the surface would have to push the string down to run it in to this depth: less friction, rotation while running in, or heavier pipe above {cause}{depth}{soft}{without_helix}"
         )
     }
 
@@ -206,11 +225,11 @@ impl LockUp {
 
     /// The warning to print.
     pub fn warning(&self, mode: &str) -> String {
-        if self.by_helix {
-            return self.helical_warning(mode);
-        }
         if self.running_in {
             return self.running_in_warning();
+        }
+        if self.by_helix {
+            return self.helical_warning(mode);
         }
         let at = match self.results_at_wob_n {
             Some(w) => format!(
@@ -324,15 +343,17 @@ pub fn soft_lock_up(case: &Case) -> Option<LockUp> {
 /// largest WOB of [`soft_lock_up`] zero: that soft string, [`Drag::of`] the case's WOB, has a
 /// hook load below zero at zero WOB): the string cannot be put on bottom there, so no
 /// whole-string equilibrium on bottom exists and no WOB path can reach one. Running in
-/// (`trip_in`): whether the plain soft string cannot be run in to the bit depth
-/// ([`running_in_lock_up`]), the same at zero WOB.
+/// (`trip_in`, no WOB): whether the soft string of its lock-up, the plain one
+/// ([`running_in_lock_up`]) or else the one with the helix's drag
+/// ([`crate::models::helical_drag::helical_running_in_lock_up`]), cannot be run in to the bit
+/// depth: the whole string then finds no equilibrium with the surface holding it.
 pub fn locked_at_zero_wob(case: &Case) -> bool {
     let op = &case.operation;
     if op.hook_load_n.is_some() || !(op.mode.on_bottom() || op.mode == Mode::TripIn) {
         return false;
     }
     let drag = match op.mode {
-        Mode::TripIn => Drag::Plain,
+        Mode::TripIn => Drag::of(case, 0.0),
         _ => Drag::of(case, op.wob_n),
     };
     hook_load_at_wob_n(case, 0.0, drag) < 0.0

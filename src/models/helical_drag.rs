@@ -17,7 +17,7 @@
 //! [`lock_up_wob_n`]), and to skip the re-solve from the buckled shape where the helix locks the
 //! string up (`models::buckled_start`).
 
-use crate::case::Case;
+use crate::case::{Case, Mode};
 use crate::models::buckling::{mitchell_wall_force, onset_at, soft_marks, support_span_m, BuckleState};
 use crate::models::softstring::{from_case_with_extra_contact, segment_length_m, SoftStringResult};
 
@@ -137,6 +137,24 @@ pub fn helical_lock_up(case: &Case) -> Option<HelicalLockUp> {
         wob_n: op.wob_n,
         max_wob_n,
         helical_md_m: helical_interval_md_m(case, max_wob_n),
+    })
+}
+
+/// The helical lock-up of `case` running in (`trip_in`, no WOB): the plain soft string can be
+/// run in to the bit depth (hook load not below zero) and the soft string with the helix's drag
+/// cannot. `wob_n` and `max_wob_n` are 0, `helical_md_m` where that soft string is helically
+/// buckled. None otherwise, or with a hook-load input.
+pub fn helical_running_in_lock_up(case: &Case) -> Option<HelicalLockUp> {
+    let op = &case.operation;
+    if op.mode != Mode::TripIn || op.hook_load_n.is_some() || plain_hook_load_n(case) < 0.0 {
+        return None;
+    }
+    let hook = helical_hook_load_at(case, 0.0);
+    (hook < 0.0).then(|| HelicalLockUp {
+        hook_load_n: hook,
+        wob_n: 0.0,
+        max_wob_n: 0.0,
+        helical_md_m: helical_interval_md_m(case, 0.0),
     })
 }
 

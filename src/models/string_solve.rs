@@ -204,16 +204,23 @@ fn by_helix_if_so(case: &Case, l: LockUp) -> LockUp {
     })
 }
 
-/// The lock-up by the helix's drag of `case` where `level`'s results come from a soft string
-/// without it (`soft`, `hybrid`) and their hook load is not below zero: the helix's drag makes
-/// that hook load one the string cannot give. None otherwise (a `whole` string forms its helix).
+/// The lock-up by the helix's drag of `case` (on bottom, or running in) where `level`'s results
+/// come from a soft string without it (`soft`, `hybrid`) and their hook load is not below zero:
+/// the helix's drag makes that hook load one the string cannot give. None otherwise (a `whole`
+/// string forms its helix).
 fn helix_missed(case: &Case, level: &LevelResult) -> Option<LockUp> {
     let soft_above = matches!(level.choice.level, Level::Soft | Level::Hybrid);
     if !soft_above || level.hook_load_n? < 0.0 {
         return None;
     }
-    helical_drag::helical_lock_up(case).map(|h| LockUp {
+    let running_in = case.operation.mode == Mode::TripIn;
+    let h = match running_in {
+        true => helical_drag::helical_running_in_lock_up(case),
+        false => helical_drag::helical_lock_up(case),
+    };
+    h.map(|h| LockUp {
         results_without_helical_drag: true,
+        running_in,
         ..LockUp::by_helix(&h)
     })
 }

@@ -369,3 +369,80 @@ fn the_climb_from_the_buckled_shape() {
         helical / 1e3
     );
 }
+
+/// The grid's 95 deg, 1,000 m lateral (wall friction 0.35) run in (`trip_in`, no WOB) with the
+/// bit at `bit_md_m`.
+fn running_in_case(bit_md_m: f64) -> Case {
+    let g = GridCase {
+        inc_deg: 95.0,
+        lateral_m: 1000.0,
+        mode: "sliding",
+        wob_kn: 20.0,
+        friction: 0.35,
+    };
+    let (csv, toml) = well_case(&g, 1000.0);
+    let toml = toml
+        .replace("mode = \"sliding\"", "mode = \"trip_in\"")
+        .replace("wob = \"20 kN\"\n", "")
+        .replace("bit_md = \"2475 m\"", &format!("bit_md = \"{bit_md_m} m\""));
+    load_temp_case(&csv, &toml)
+}
+
+/// Running in locked up by the helix's drag only (`helical_running_in_lock_up`): run in to
+/// 2,475 m, the plain soft string's hook load is above zero (60.5 kN) and that of the soft string
+/// with the helix's drag below it (-86.8 kN). `solve --fidelity whole` answers with that lock-up
+/// after the direct solve's first iterations (`DIRECT_BEFORE_CONTINUATION`): the soft level's
+/// results, flagged running in, by the helix, without its drag and from the soft string, with
+/// the depth it cannot be run in beyond; `hybrid` flags it too. Reference for the answer: run in
+/// to 2,300 m, where both soft strings are above zero, the whole string converges with a hook
+/// load below that of the soft string with the helix's drag (39.1 against 45.6 kN measured;
+/// checked strictly) and far below the plain one's (93.4 kN), so the helix's drag bounds it.
+#[test]
+fn running_in_helical_lock_up_is_an_answer() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::{SolveControls, DIRECT_BEFORE_CONTINUATION};
+    use drillpath::models::helical_drag::helical_running_in_lock_up;
+    use drillpath::models::string_solve::solve_string;
+    let case = running_in_case(2475.0);
+    let plain = softstring::from_case(&case, softstring::segment_length_m(&case.solver)).hook_load_n;
+    let h = helical_running_in_lock_up(&case).expect("not locked up by the helix running in");
+    assert!(plain > 0.0 && h.hook_load_n < 0.0, "{plain} {h:?}");
+    let ctl = SolveControls::from_settings(&case.solver);
+    let solve = |c: &Case, level: Level| {
+        let choice = choose(Fidelity::Level(level), Purpose::Solve);
+        solve_string(c, choice, &ctl, &mut |_, _, _| {}).unwrap()
+    };
+    let s = solve(&case, Level::Whole);
+    assert_eq!(s.level.choice.level, Level::Soft);
+    assert_eq!(s.level.hook_load_n, Some(plain));
+    let l = s.lock_up.expect("no lock-up");
+    assert!(
+        l.running_in && l.by_helix && l.results_from_soft_string && l.results_without_helical_drag,
+        "{l:?}"
+    );
+    assert_eq!(l.hook_load_n, h.hook_load_n);
+    let d = l.depths.and_then(|d| d.at_wob_md_m).expect("no lock-up depth");
+    assert!(d > 1000.0 && d < 2475.0, "{d}");
+    let warning = s.warnings(&case).join("\n");
+    assert!(warning.contains("helical lock-up running in") && warning.contains("cannot be run in deeper than"));
+    assert!(s
+        .level
+        .choice
+        .reason
+        .contains(&format!("({DIRECT_BEFORE_CONTINUATION} Newton iterations)")));
+    let hybrid = solve(&case, Level::Hybrid).lock_up.expect("hybrid: no lock-up");
+    assert!(hybrid.running_in && hybrid.by_helix && !hybrid.results_from_soft_string);
+
+    let free = running_in_case(2300.0);
+    assert!(helical_running_in_lock_up(&free).is_none());
+    let s = solve(&free, Level::Whole);
+    assert!(s.level.converged && s.lock_up.is_none());
+    let whole = s.level.hook_load_n.unwrap();
+    let helical = helical_soft_string(&free).hook_load_n;
+    assert!(whole > 0.0 && whole < helical, "{whole} {helical}");
+    println!(
+        "2,300 m: whole {:.1} kN, with the helix's drag {:.1} kN; 2,475 m: lock-up depth {d:.0} m",
+        whole / 1e3,
+        helical / 1e3
+    );
+}

@@ -170,7 +170,18 @@ pub(crate) fn follow_path(
             stop_after_capped_subproblems: STEP_CAPPED_SUBPROBLEMS,
             ..*ctl
         };
-        match solve_interior_point_from(&at(next), sol.state.clone(), &step_ctl) {
+        let result = solve_interior_point_from(&at(next), sol.state.clone(), &step_ctl);
+        if let Ok(s) = &result {
+            tracing::debug!(
+                from = t,
+                to = next,
+                converged = s.converged,
+                iterations = s.stats.iterations,
+                hook_load_n = s.state.hook_load_n,
+                "path step"
+            );
+        }
+        match result {
             Ok(s) if s.converged => {
                 iterations += s.stats.iterations;
                 factorizations += s.stats.factorizations;
