@@ -45,7 +45,7 @@ use crate::models::fem::results::{extract, NodeResult, SolveResults};
 use crate::models::fem::solve::continuation::ClimbEnd;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{
-    continuation, solve, solve_interior_point_from, solve_unless, Solution, SolveControls,
+    continuation, solve, solve_interior_point_from, solve_unless, Solution, SolveControls, SolveStats,
 };
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::helical_lock_up::{self, Climbed};
@@ -231,25 +231,33 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
                 // no equilibrium on bottom exists: no WOB path or climb can reach one
                 return (StiffOutcome::LockedAtZeroWob { iterations }, None);
             }
-            if let Some(out) = at_lock_up(case, &model, &ctl, iterations, t0) {
+            // the work of the stages below that ran and did not answer
+            let mut spent = SolveStats::default();
+            if let Some(out) = at_lock_up(case, &model, &ctl, iterations, t0, &mut spent) {
                 return (out, None);
             }
             // its statistics count the cold solve's work and its own
             let sol = buckled_start::solve_from_buckled_start(case, &model, sol, &ctl);
-            let iterations = before + sol.stats.iterations;
+            let iterations = before + sol.stats.iterations + spent.iterations;
             if sol.converged {
                 let seconds = t0.elapsed().as_secs_f64();
                 let out = converged(case, &model, &sol, iterations, seconds, Start::BuckledShape, None);
                 return (out, Some((model, sol.state)));
             }
-            if let Some(out) = at_helical_lock_up(case, &ctl, iterations, t0) {
+            if let Some(out) = at_helical_lock_up(case, &ctl, iterations, t0, &mut spent) {
                 return (out, None);
             }
-            let climbed = helical_lock_up::climbed_to_wob(case, &ctl.with_time_left(t0));
-            if let Some(c) = climbed.filter(|c| c.climb_end == ClimbEnd::Target) {
-                let out = climbed_row(case, &c, iterations, t0, false);
-                return (out, Some((c.model, c.solution.state)));
+            let climbed = helical_lock_up::climbed_to_wob(case, &ctl.with_time_left(t0), &mut spent);
+            let iterations = before + sol.stats.iterations + spent.iterations;
+            match climbed {
+                Some(c) if c.climb_end == ClimbEnd::Target => {
+                    let out = climbed_row(case, &c, iterations, t0, false);
+                    return (out, Some((c.model, c.solution.state)));
+                }
+                Some(c) => spent.add_work(&c.solution.stats),
+                None => {}
             }
+            let iterations = before + sol.stats.iterations + spent.iterations;
             let residual = sol.stats.residual_history.last().copied().unwrap_or(f64::NAN);
             (StiffOutcome::NotConverged { iterations, residual }, None)
         }
@@ -269,18 +277,26 @@ fn at_lock_up(
     ctl: &SolveControls,
     iterations: usize,
     t0: std::time::Instant,
+    spent: &mut SolveStats,
 ) -> Option<StiffOutcome> {
     if !continuation::applies(model) {
         return None;
     }
     let tolerance = continuation::lock_up_hook_tolerance_n(model.loads.wob_n);
-    let (wob, _) = continuation::wob_at_zero_hook_load(model, ctl, tolerance)?;
+    let mut search = SolveStats::default();
+    let found = continuation::wob_at_zero_hook_load(model, ctl, tolerance, &mut search);
+    let Some((wob, _)) = found else {
+        spent.add_work(&search);
+        return None;
+    };
     let mut c = case.clone();
     c.operation.wob_n = wob;
     let mut m = Model::from_case(&c);
     m.whirl_md_m = whirl_intervals(&c, &m);
     let sol = solve_holding_toolface(&mut m, ctl, |m| solve(m, ctl)).ok()?;
     if !sol.converged {
+        spent.add_work(&search);
+        spent.add_work(&sol.stats);
         return None;
     }
     tracing::info!(
@@ -288,7 +304,7 @@ fn at_lock_up(
         "lock-up: the row's loads at the largest WOB the string delivers"
     );
     let seconds = t0.elapsed().as_secs_f64();
-    let its = iterations + sol.stats.iterations;
+    let its = iterations + search.iterations + sol.stats.iterations;
     Some(converged(&c, &m, &sol, its, seconds, Start::Cold, Some(wob)))
 }
 
@@ -302,8 +318,12 @@ fn at_helical_lock_up(
     ctl: &SolveControls,
     iterations: usize,
     t0: std::time::Instant,
+    spent: &mut SolveStats,
 ) -> Option<StiffOutcome> {
-    let below = helical_lock_up::below_helical_lock_up(case, &ctl.with_time_left(t0))?.climbed;
+    let before = spent.iterations;
+    let below = helical_lock_up::below_helical_lock_up(case, &ctl.with_time_left(t0), spent)?.climbed;
+    // the starts that did not converge before the one climbed from
+    let iterations = iterations + spent.iterations - before;
     Some(climbed_row(case, &below, iterations, t0, true))
 }
 

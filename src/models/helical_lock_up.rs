@@ -12,7 +12,7 @@ use crate::models::fem::model::Model;
 use crate::models::fem::results::extract;
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{Solution, SolveControls};
+use crate::models::fem::solve::{Solution, SolveControls, SolveStats};
 use crate::models::helical_drag;
 use crate::models::whirl::whirl_intervals;
 use std::time::Instant;
@@ -46,25 +46,27 @@ pub struct BelowLockUp {
 /// WOB and the soft string with the helix's drag does not ([`helical_drag::helical_lock_up`]),
 /// the whole string climbed from its buckled shape ([`climb_from_buckled_shape`]) toward that
 /// soft string's largest WOB until the hook load falls within
-/// [`continuation::lock_up_hook_tolerance_n`] of zero or the path meets a limit. None when the case is not so locked up, that largest WOB is
-/// zero, or no start converged.
-pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls) -> Option<BelowLockUp> {
+/// [`continuation::lock_up_hook_tolerance_n`] of zero or the path meets a limit. None when the
+/// case is not so locked up, that largest WOB is zero, or no start converged. `work` gets the
+/// work of the starts that did not converge.
+pub fn below_helical_lock_up(case: &Case, ctl: &SolveControls, work: &mut SolveStats) -> Option<BelowLockUp> {
     let h = helical_drag::helical_lock_up(case)?;
     let tolerance = continuation::lock_up_hook_tolerance_n(h.max_wob_n);
-    let climbed = climb_from_buckled_shape(case, h.max_wob_n, tolerance, ctl)?;
+    let climbed = climb_from_buckled_shape(case, h.max_wob_n, tolerance, ctl, work)?;
     Some(BelowLockUp { lock_up: h, climbed })
 }
 
 /// The whole string of `case` climbed toward its own WOB by [`climb_from_buckled_shape`]: for a
 /// solve that found no equilibrium at that WOB from its usual start, where no lock-up applies.
 /// The climb (an answer at the case's WOB where it ended at [`ClimbEnd::Target`]); None off
-/// bottom, with a hook-load input, or when no start converged.
-pub fn climbed_to_wob(case: &Case, ctl: &SolveControls) -> Option<Climbed> {
+/// bottom, with a hook-load input, or when no start converged. `work` gets the work of the
+/// starts that did not converge.
+pub fn climbed_to_wob(case: &Case, ctl: &SolveControls, work: &mut SolveStats) -> Option<Climbed> {
     let op = &case.operation;
     if !op.mode.on_bottom() || op.hook_load_n.is_some() || op.wob_n <= 0.0 {
         return None;
     }
-    climb_from_buckled_shape(case, op.wob_n, 0.0, ctl)
+    climb_from_buckled_shape(case, op.wob_n, 0.0, ctl, work)
 }
 
 /// The whole string of `case` climbed from its buckled shape toward the WOB `target_n` (N): solved
@@ -75,12 +77,14 @@ pub fn climbed_to_wob(case: &Case, ctl: &SolveControls) -> Option<Climbed> {
 /// force) until the hook load falls below `hook_tolerance_n` (N), turns negative, the target is
 /// reached or the path meets a limit; all within `ctl`'s time limit. The string whirls where it
 /// would at `target_n` ([`whirl_intervals`]). The WOB reached with its model and converged
-/// solution, and how the climb ended; None when no start converged.
+/// solution (its statistics the start's and the climb's work), and how the climb ended; None
+/// when no start converged. `work` gets the work of the starts that did not converge.
 pub fn climb_from_buckled_shape(
     case: &Case,
     target_n: f64,
     hook_tolerance_n: f64,
     ctl: &SolveControls,
+    work: &mut SolveStats,
 ) -> Option<Climbed> {
     let t0 = Instant::now();
     let mut at_target = case.clone();
@@ -96,7 +100,14 @@ pub fn climb_from_buckled_shape(
         let mut model = Model::from_case(&c);
         model.whirl_md_m = whirl_intervals(&at_target, &model);
         let start = solve_holding_toolface(&mut model, &left, |m| solve_buckled(&c, m, &left));
-        let converged = start.ok().filter(|s| s.converged && s.state.hook_load_n >= 0.0);
+        let converged = match start {
+            Ok(s) if s.converged && s.state.hook_load_n >= 0.0 => Some(s),
+            Ok(s) => {
+                work.add_work(&s.stats);
+                None
+            }
+            Err(_) => None,
+        };
         tracing::info!(
             wob_n = wob,
             converged = converged.is_some(),

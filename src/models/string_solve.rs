@@ -288,12 +288,14 @@ fn beside_soft(case: &Case, level: &LevelResult) -> Option<SoftComparison> {
 /// ([`crate::models::fem::solve::continuation::wob_at_zero_hook_load`], the hook load within 1%
 /// of the soft string's lock-up WOB or 0.5 kN), then solved there as any case. Returns the
 /// lock-up (the results' WOB in it) and the result; None when the case is not locked up, the
-/// path finds no such WOB or the solve there does not converge.
+/// path finds no such WOB or the solve there does not converge; `spent` then gets the work that
+/// ran.
 fn whole_at_lock_up(
     case: &Case,
     choice: Choice,
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
+    spent: &mut SolveStats,
 ) -> Option<(LockUp, LevelResult)> {
     let soft = soft_lock_up_at(case, case.operation.wob_n)?;
     let mut model = Model::from_case(case);
@@ -302,7 +304,12 @@ fn whole_at_lock_up(
     delivered.operation.wob_n = soft.max_wob_n;
     model.whirl_md_m = whirl_intervals(&delivered, &model);
     let tolerance = continuation::lock_up_hook_tolerance_n(soft.max_wob_n);
-    let (wob, hook) = continuation::wob_at_zero_hook_load(&model, ctl, tolerance)?;
+    let mut search = SolveStats::default();
+    let found = continuation::wob_at_zero_hook_load(&model, ctl, tolerance, &mut search);
+    let Some((wob, hook)) = found else {
+        spent.add_work(&search);
+        return None;
+    };
     tracing::info!(
         wob_n = wob,
         hook_n = hook,
@@ -310,7 +317,16 @@ fn whole_at_lock_up(
     );
     let mut c = case.clone();
     c.operation.wob_n = wob;
-    let r = run_with_progress(&c, choice, ctl, on_stage).ok()?;
+    let mut r = run_with_progress(&c, choice, ctl, on_stage).ok()?;
+    if let Some(part) = r.fem.as_mut() {
+        match r.converged {
+            true => part.stats.add_work(&search),
+            false => {
+                spent.add_work(&search);
+                spent.add_work(&part.stats);
+            }
+        }
+    }
     let l = LockUp {
         results_at_wob_n: Some(wob),
         results_at_largest_wob: true,
@@ -336,53 +352,59 @@ fn answer_without_equilibrium(
         time_limit_s: ctl.time_limit_s - level.seconds,
         ..*ctl
     };
-    let locked = whole_at_lock_up(case, choice.clone(), &left, on_stage)
-        .or_else(|| whole_at_helical_lock_up(case, choice.clone(), &left, on_stage));
-    if let Some((l, r)) = locked {
-        return (Some(r), Some(l));
+    // the work of the stages that ran and did not answer, counted in the failed level's
+    // statistics (which the answer's count too, `solve_string`)
+    let mut spent = SolveStats::default();
+    let locked = whole_at_lock_up(case, choice.clone(), &left, on_stage, &mut spent)
+        .or_else(|| whole_at_helical_lock_up(case, choice.clone(), &left, on_stage, &mut spent));
+    let (answer, lock_up) = match locked {
+        Some((l, r)) => (Some(r), Some(l)),
+        None => (whole_climbed_to_wob(case, choice, &left, on_stage, &mut spent), None),
+    };
+    if let Some(part) = level.fem.as_mut() {
+        if answer.is_none() {
+            part.stats.buckled_climb_n = spent.buckled_climb_n;
+        }
+        part.stats.add_work(&spent);
     }
-    let mut stopped = SolveStats::default();
-    let climbed = whole_climbed_to_wob(case, choice, &left, on_stage, &mut stopped);
-    if let (None, Some(part)) = (&climbed, level.fem.as_mut()) {
-        part.stats.buckled_climb_n = stopped.buckled_climb_n;
-        part.stats.add_work(&stopped);
-    }
-    (climbed, None)
+    (answer, lock_up)
 }
 
 /// The whole string of `case` at its WOB climbed from its buckled shape
 /// ([`helical_lock_up::climbed_to_wob`]) when the solve found no equilibrium there from its
 /// usual start and no lock-up applies ([`whole_from_climb`]). None where no climb ran, its
-/// answer did not converge, or it stopped below the WOB: then `stopped` gets the climb's work and
-/// the WOB it reached with the case's ([`SolveStats::buckled_climb_n`]).
+/// answer did not converge, or it stopped below the WOB: then `spent` gets the work that ran, and
+/// for a climb that stopped the WOB it reached with the case's ([`SolveStats::buckled_climb_n`]).
 fn whole_climbed_to_wob(
     case: &Case,
     choice: Choice,
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
-    stopped: &mut SolveStats,
+    spent: &mut SolveStats,
 ) -> Option<LevelResult> {
     let t0 = Instant::now();
     on_stage(0, 1, "stiff whole string climbed from its buckled shape");
-    let climbed = helical_lock_up::climbed_to_wob(case, ctl)?;
+    let climbed = helical_lock_up::climbed_to_wob(case, ctl, spent)?;
     if climbed.climb_end != ClimbEnd::Target {
-        stopped.add_work(&climbed.solution.stats);
-        stopped.buckled_climb_n = Some((climbed.wob_n, case.operation.wob_n));
+        spent.add_work(&climbed.solution.stats);
+        spent.buckled_climb_n = Some((climbed.wob_n, case.operation.wob_n));
         return None;
     }
-    whole_from_climb(case, choice, climbed, ctl, t0)
+    whole_from_climb(case, choice, climbed, ctl, t0, spent)
 }
 
 /// The level result of the whole string of `case` climbed from its buckled shape (`climbed`, its
 /// WOB the results'): refined and taken off the straight branch as any solve ([`fem_part_by`],
 /// the residual tolerance times [`LOCK_UP_RESIDUAL_FACTOR`], in the time left of `ctl`'s limit
-/// since `t0`). None when that does not converge or the hook load is below zero.
+/// since `t0`). None when that does not converge or the hook load is below zero; `spent` then
+/// gets the climb's work and the re-solve's.
 fn whole_from_climb(
     case: &Case,
     choice: Choice,
     climbed: helical_lock_up::Climbed,
     ctl: &SolveControls,
     t0: Instant,
+    spent: &mut SolveStats,
 ) -> Option<LevelResult> {
     let mut c = case.clone();
     c.operation.wob_n = climbed.wob_n;
@@ -393,8 +415,13 @@ fn whole_from_climb(
         ..ctl.with_time_left(t0)
     };
     let solution = climbed.solution;
-    let part = fem_part_by(climbed.model, &c, &left, None, |_| Ok(solution)).ok()?;
+    let climb_work = solution.stats.clone();
+    let Ok(part) = fem_part_by(climbed.model, &c, &left, None, |_| Ok(solution)) else {
+        spent.add_work(&climb_work);
+        return None;
+    };
     if !part.converged || part.results.hook_load_n < 0.0 {
+        spent.add_work(&part.stats);
         return None;
     }
     let mut out = LevelResult::empty(choice, climbed.wob_n);
@@ -416,16 +443,17 @@ fn whole_at_helical_lock_up(
     choice: Choice,
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
+    spent: &mut SolveStats,
 ) -> Option<(LockUp, LevelResult)> {
     let t0 = Instant::now();
     on_stage(0, 1, "stiff whole string below its helical lock-up");
-    let below = helical_lock_up::below_helical_lock_up(case, ctl)?;
+    let below = helical_lock_up::below_helical_lock_up(case, ctl, spent)?;
     let (h, climbed) = (below.lock_up, below.climbed);
     let l = LockUp {
         results_at_wob_n: Some(climbed.wob_n),
         results_at_largest_wob: matches!(climbed.climb_end, ClimbEnd::HookLoad | ClimbEnd::Bracketed),
         ..LockUp::by_helix(&h)
     };
-    let out = whole_from_climb(case, choice, climbed, ctl, t0)?;
+    let out = whole_from_climb(case, choice, climbed, ctl, t0, spent)?;
     Some((l, out))
 }

@@ -348,7 +348,7 @@ fn the_climb_from_the_buckled_shape() {
         "{reached} {target}"
     );
     assert!(stop_phrase(stats, &ctl).contains("a WOB climb from the buckled shape that reached"));
-    let c = climb_from_buckled_shape(&case, 45e3, 0.0, &ctl).expect("no start converged");
+    let c = climb_from_buckled_shape(&case, 45e3, 0.0, &ctl, &mut Default::default()).expect("no start converged");
     assert_eq!(c.climb_end, ClimbEnd::Stalled);
     assert!((c.wob_n - reached).abs() < 1e-9 * reached, "{} {reached}", c.wob_n);
     assert_eq!(c.model.loads.wob_n, c.wob_n);

@@ -12,7 +12,7 @@
 //! [`STEP_ITERATIONS`] is halved, one that does lets the next grow by [`STEP_GROWTH`].
 
 use super::interior_point_newton::{solve_interior_point, solve_interior_point_from};
-use super::{Solution, SolveControls, SolveError};
+use super::{Solution, SolveControls, SolveError, SolveStats};
 use crate::models::fem::model::Model;
 use std::time::Instant;
 
@@ -215,14 +215,23 @@ pub const SEARCH_BUDGET_FACTOR: usize = 3;
 /// (at most [`SEARCH_BUDGET_FACTOR`] x `max_iterations` iterations in all):
 /// from [`START_FRACTION`] of the model's WOB upward by [`climb_wob`]. Returns that WOB
 /// (N) and the hook load there (N); None when the path's first step fails or the hook load
-/// never turns negative below the model's WOB.
-pub fn wob_at_zero_hook_load(model: &Model, ctl: &SolveControls, hook_tolerance_n: f64) -> Option<(f64, f64)> {
+/// never turns negative below the model's WOB. `work` gets the search's work either way.
+pub fn wob_at_zero_hook_load(
+    model: &Model,
+    ctl: &SolveControls,
+    hook_tolerance_n: f64,
+    work: &mut SolveStats,
+) -> Option<(f64, f64)> {
     let t0 = Instant::now();
     let target = model.loads.wob_n;
     let lo = START_FRACTION * target;
     let (first, consistent) = first_step(&at_wob(model, lo), model, ctl).ok()?;
-    let first = Some(first).filter(|s| s.converged && s.state.hook_load_n >= 0.0)?;
+    if !(first.converged && first.state.hook_load_n >= 0.0) {
+        work.add_work(&first.stats);
+        return None;
+    }
     let climb = climb_wob(&consistent, first, lo, ctl, hook_tolerance_n, t0, |_, _| true);
+    work.add_work(&climb.solution.stats);
     match climb.end {
         ClimbEnd::Bracketed | ClimbEnd::HookLoad => Some((climb.wob_n, climb.solution.state.hook_load_n)),
         ClimbEnd::Target | ClimbEnd::Stalled => None,
@@ -320,6 +329,16 @@ pub fn climb_wob(
             s.converged = s.converged && accept(&at, &s);
             s
         });
+        if let Ok(s) = &solved {
+            tracing::debug!(
+                from_n = lo,
+                to_n = next,
+                converged = s.converged,
+                iterations = s.stats.iterations,
+                hook_load_n = s.state.hook_load_n,
+                "climb step"
+            );
+        }
         match solved {
             Ok(s) if s.converged && s.state.hook_load_n >= 0.0 => {
                 iterations += s.stats.iterations;
