@@ -117,10 +117,12 @@ pub fn stop_phrase(
             target / 1e3
         )
     });
+    let others = stats.unanswered_stages.iter().map(|s| s.to_string());
     let paths: Vec<String> = wob_path
         .into_iter()
         .chain(friction_path)
         .chain(buckled)
+        .chain(others)
         .chain(climb)
         .collect();
     let path = if paths.is_empty() {

@@ -308,6 +308,7 @@ fn whole_at_lock_up(
     let found = continuation::wob_at_zero_hook_load(&model, ctl, tolerance, &mut search);
     let Some((wob, hook)) = found else {
         spent.add_work(&search);
+        spent.unanswered_stages.push(LOCK_UP_SEARCH_STAGE);
         return None;
     };
     tracing::info!(
@@ -324,6 +325,7 @@ fn whole_at_lock_up(
             false => {
                 spent.add_work(&search);
                 spent.add_work(&part.stats);
+                spent.unanswered_stages.push(LOCK_UP_SEARCH_STAGE);
             }
         }
     }
@@ -334,6 +336,20 @@ fn whole_at_lock_up(
     };
     r.converged.then_some((l, r))
 }
+
+/// How a failure message names a search for the largest WOB with a non-negative hook load
+/// ([`whole_at_lock_up`]) that did not answer.
+pub const LOCK_UP_SEARCH_STAGE: &str =
+    "a search along the WOB path for the largest WOB with a non-negative hook load (lock-up)";
+
+/// How a failure message names a solve below the lock-up by the helix's drag
+/// ([`whole_at_helical_lock_up`]) whose starts from the buckled shape did not converge.
+pub const HELICAL_LOCK_UP_STAGE: &str =
+    "a solve from the buckled shape below the lock-up by the helix's drag that did not converge";
+
+/// How a failure message names a climb from the buckled shape ([`whole_climbed_to_wob`]) whose
+/// starts did not converge.
+pub const CLIMB_STARTS_STAGE: &str = "a start from the buckled shape below the WOB for a climb that did not converge";
 
 /// The answer of a whole-string solve `level` of `case` that found no equilibrium at its WOB, in
 /// the time left of `ctl`'s limit: the whole string at the largest WOB it delivers
@@ -364,6 +380,9 @@ fn answer_without_equilibrium(
     if let Some(part) = level.fem.as_mut() {
         if answer.is_none() {
             part.stats.buckled_climb_n = spent.buckled_climb_n;
+            part.stats
+                .unanswered_stages
+                .extend(spent.unanswered_stages.iter().copied());
         }
         part.stats.add_work(&spent);
     }
@@ -384,7 +403,13 @@ fn whole_climbed_to_wob(
 ) -> Option<LevelResult> {
     let t0 = Instant::now();
     on_stage(0, 1, "stiff whole string climbed from its buckled shape");
-    let climbed = helical_lock_up::climbed_to_wob(case, ctl, spent)?;
+    let before = spent.iterations;
+    let Some(climbed) = helical_lock_up::climbed_to_wob(case, ctl, spent) else {
+        if spent.iterations > before {
+            spent.unanswered_stages.push(CLIMB_STARTS_STAGE);
+        }
+        return None;
+    };
     if climbed.climb_end != ClimbEnd::Target {
         spent.add_work(&climbed.solution.stats);
         spent.buckled_climb_n = Some((climbed.wob_n, case.operation.wob_n));
@@ -447,7 +472,13 @@ fn whole_at_helical_lock_up(
 ) -> Option<(LockUp, LevelResult)> {
     let t0 = Instant::now();
     on_stage(0, 1, "stiff whole string below its helical lock-up");
-    let below = helical_lock_up::below_helical_lock_up(case, ctl, spent)?;
+    let before = spent.iterations;
+    let Some(below) = helical_lock_up::below_helical_lock_up(case, ctl, spent) else {
+        if spent.iterations > before {
+            spent.unanswered_stages.push(HELICAL_LOCK_UP_STAGE);
+        }
+        return None;
+    };
     let (h, climbed) = (below.lock_up, below.climbed);
     let l = LockUp {
         results_at_wob_n: Some(climbed.wob_n),

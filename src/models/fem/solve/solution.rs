@@ -48,6 +48,10 @@ pub struct SolveStats {
     /// that followed a whole-string solve that found no equilibrium and did not reach it: the
     /// WOB it reached and the WOB aimed at, N; None when none ran or it reached the WOB.
     pub buckled_climb_n: Option<(f64, f64)>,
+    /// Stages that ran after a whole-string solve found no equilibrium and did not answer,
+    /// besides those above, as the failure message names them (`models::string_solve`); their
+    /// work is in the counts.
+    pub unanswered_stages: Vec<&'static str>,
 }
 
 impl SolveStats {
