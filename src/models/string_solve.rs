@@ -339,17 +339,17 @@ fn whole_at_lock_up(
 
 /// How a failure message names a search for the largest WOB with a non-negative hook load
 /// ([`whole_at_lock_up`]) that did not answer.
-pub const LOCK_UP_SEARCH_STAGE: &str =
+const LOCK_UP_SEARCH_STAGE: &str =
     "a search along the WOB path for the largest WOB with a non-negative hook load (lock-up)";
 
 /// How a failure message names a solve below the lock-up by the helix's drag
 /// ([`whole_at_helical_lock_up`]) whose starts from the buckled shape did not converge.
-pub const HELICAL_LOCK_UP_STAGE: &str =
+const HELICAL_LOCK_UP_STAGE: &str =
     "a solve from the buckled shape below the lock-up by the helix's drag that did not converge";
 
 /// How a failure message names a climb from the buckled shape ([`whole_climbed_to_wob`]) whose
 /// starts did not converge.
-pub const CLIMB_STARTS_STAGE: &str = "a start from the buckled shape below the WOB for a climb that did not converge";
+const CLIMB_STARTS_STAGE: &str = "a start from the buckled shape below the WOB for a climb that did not converge";
 
 /// The answer of a whole-string solve `level` of `case` that found no equilibrium at its WOB, in
 /// the time left of `ctl`'s limit: the whole string at the largest WOB it delivers
