@@ -9,8 +9,7 @@
 //! The continuation does the same: it solves the string at a tenth of the WOB (bit torque in
 //! proportion), then raises the WOB in steps, each solved from the previous equilibrium with
 //! the operation's friction against the motion; a step that does not converge within
-//! [`STEP_ITERATIONS`] is halved, one that does within [`EASY_STEP_ITERATIONS`] lets the next
-//! grow by [`STEP_GROWTH`].
+//! [`STEP_ITERATIONS`] is halved, one that does lets the next grow by [`STEP_GROWTH`].
 
 use super::interior_point_newton::{solve_interior_point, solve_interior_point_from};
 use super::{Solution, SolveControls, SolveError, SolveStats};
@@ -29,22 +28,16 @@ pub const STEP_ITERATIONS: usize = 20;
 /// fail after [`STEP_ITERATIONS`] with every subproblem at the limit (docs/performance.md).
 pub const STEP_CAPPED_SUBPROBLEMS: usize = 3;
 
-/// Factor on the WOB step after a converged step that took at most [`EASY_STEP_ITERATIONS`].
+/// Factor on the WOB step after a converged step.
 pub const STEP_GROWTH: f64 = 1.5;
-
-/// Newton iterations within which a converged step of a path lets the next grow; a step that
-/// took more is kept. On the acceptance grid's buckled slides the converged steps mostly take
-/// 3-5 iterations, and a step grown after one that took 6-16 mostly failed after
-/// [`STEP_ITERATIONS`] (docs/performance.md, "Path steps grown only after easy steps").
-pub const EASY_STEP_ITERATIONS: usize = 5;
 
 /// Smallest WOB step, as a fraction of the target: below it the path has met a limit (a
 /// string that cannot take more WOB, or a jump to another buckled shape) and stops.
 pub const MIN_STEP_FRACTION: f64 = 1e-3;
 
 /// How a path steps: its first step and smallest step (in the path parameter, which runs to
-/// 1), the iteration limit of one step, and the growth of the step after a converged one that
-/// took at most `easy_iterations` (a step that does not converge is halved).
+/// 1), the iteration limit of one step, and the growth of the step after a converged one (a
+/// step that does not converge is halved).
 #[derive(Debug, Clone, Copy)]
 pub struct PathSteps {
     /// First step.
@@ -53,20 +46,17 @@ pub struct PathSteps {
     pub smallest: f64,
     /// Newton iterations allowed to one step.
     pub step_iterations: usize,
-    /// Factor on the step after a converged one that took at most `easy_iterations`.
+    /// Factor on the step after a converged one.
     pub growth: f64,
-    /// Newton iterations within which a converged step lets the next grow (else it is kept).
-    pub easy_iterations: usize,
 }
 
 /// The WOB and friction paths' steps: [`START_FRACTION`], [`MIN_STEP_FRACTION`],
-/// [`STEP_ITERATIONS`], [`STEP_GROWTH`], [`EASY_STEP_ITERATIONS`].
+/// [`STEP_ITERATIONS`], [`STEP_GROWTH`].
 pub const CONTINUATION_STEPS: PathSteps = PathSteps {
     first: START_FRACTION,
     smallest: MIN_STEP_FRACTION,
     step_iterations: STEP_ITERATIONS,
     growth: STEP_GROWTH,
-    easy_iterations: EASY_STEP_ITERATIONS,
 };
 
 /// Whether the continuation applies to `model`: a WOB-driven model with a positive WOB.
@@ -195,11 +185,9 @@ pub(crate) fn follow_path(
             Ok(s) if s.converged => {
                 iterations += s.stats.iterations;
                 factorizations += s.stats.factorizations;
-                if s.stats.iterations <= steps.easy_iterations {
-                    step *= steps.growth;
-                }
                 sol = s;
                 t = next;
+                step *= steps.growth;
             }
             Ok(s) => {
                 iterations += s.stats.iterations;
@@ -361,9 +349,7 @@ pub fn climb_wob(
                 if hook < hook_tolerance_n {
                     break ClimbEnd::HookLoad;
                 }
-                if best.stats.iterations <= EASY_STEP_ITERATIONS {
-                    step *= STEP_GROWTH;
-                }
+                step *= STEP_GROWTH;
             }
             Ok(s) if s.converged => {
                 iterations += s.stats.iterations;

@@ -78,7 +78,6 @@ pub const FRICTION_STEPS: PathSteps = PathSteps {
     smallest: 1.0 / 16.0,
     step_iterations: 40,
     growth: 2.0,
-    easy_iterations: super::continuation::EASY_STEP_ITERATIONS,
 };
 
 /// Iteration limit of the attempt that puts the friction on at once.
