@@ -25,7 +25,7 @@ use std::time::Instant;
 
 /// The warning of an answer that came from the re-solve from the buckled shape
 /// ([`crate::models::buckled_start`]).
-pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium, and the hook load of another buckled shape can differ by about 10% (a known limit, docs/guide.md)";
+pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium: this one starts from a formed helix, and a string slacked off to the same WOB can keep less of its helix, its hook load measured up to 38% higher (a known limit, docs/guide.md)";
 
 /// MD intervals `(top, bottom)` (m) as a warning lists them: "a-b m MD", joined by commas.
 fn md_intervals(intervals: &[(f64, f64)]) -> String {
