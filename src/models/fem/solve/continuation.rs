@@ -171,16 +171,7 @@ pub(crate) fn follow_path(
             ..*ctl
         };
         let result = solve_interior_point_from(&at(next), sol.state.clone(), &step_ctl);
-        if let Ok(s) = &result {
-            tracing::debug!(
-                from = t,
-                to = next,
-                converged = s.converged,
-                iterations = s.stats.iterations,
-                hook_load_n = s.state.hook_load_n,
-                "path step"
-            );
-        }
+        log_step("path step", t, next, &result);
         match result {
             Ok(s) if s.converged => {
                 iterations += s.stats.iterations;
@@ -206,6 +197,20 @@ pub(crate) fn follow_path(
     sol.stats.seconds = t0.elapsed().as_secs_f64();
     sol.stats.timed_out = t0.elapsed().as_secs_f64() > ctl.time_limit_s;
     (sol, t)
+}
+
+/// Log (debug) a step of a path or climb from `from` to `to` (its parameter), as `what`.
+fn log_step(what: &str, from: f64, to: f64, result: &Result<Solution, SolveError>) {
+    if let Ok(s) = result {
+        tracing::debug!(
+            from,
+            to,
+            converged = s.converged,
+            iterations = s.stats.iterations,
+            hook_load_n = s.state.hook_load_n,
+            "{what}"
+        );
+    }
 }
 
 /// Iteration budget of [`wob_at_zero_hook_load`], in `max_iterations`.
@@ -329,16 +334,7 @@ pub fn climb_wob(
             s.converged = s.converged && accept(&at, &s);
             s
         });
-        if let Ok(s) = &solved {
-            tracing::debug!(
-                from_n = lo,
-                to_n = next,
-                converged = s.converged,
-                iterations = s.stats.iterations,
-                hook_load_n = s.state.hook_load_n,
-                "climb step"
-            );
-        }
+        log_step("climb step (WOB, N)", lo, next, &solved);
         match solved {
             Ok(s) if s.converged && s.state.hook_load_n >= 0.0 => {
                 iterations += s.stats.iterations;
