@@ -12,7 +12,7 @@
 
 use crate::case::Case;
 use crate::models::buckling::{soft_marks, zones, BuckleState};
-use crate::models::helical_drag::helical_lock_up;
+use crate::models::helical_drag::{helical_hook_load_at, helical_lock_up};
 use crate::models::levels::FemPart;
 use crate::models::lock_up_depth::{lock_up_depths, Drag};
 use crate::models::softstring;
@@ -44,6 +44,9 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
             l.max_wob_n / 1e3
         ));
     }
+    if helical.is_none() && soft.hook_load_n >= 0.0 {
+        hints.extend(near_helical_lock_up_hint(case));
+    }
     let locked = soft.hook_load_n < 0.0 || helical.is_some();
     if locked && case.operation.hook_load_n.is_none() {
         hints.extend(lock_up_depth_hint(case, wob));
@@ -68,6 +71,45 @@ pub fn nonconvergence_hints(case: &Case) -> Vec<String> {
         ));
     }
     hints
+}
+
+/// Hook load of the soft string with the helix's drag (N) below which a string that it does not
+/// lock up is named near its helical lock-up: where both were solved, the whole string's hook
+/// load lay 1.4-7.0 kN below that soft string's sliding on bottom (15 of 16 grid cases) and
+/// 4.8-7.8 kN below it running in (docs/theory.md 7.7).
+pub const NEAR_HELICAL_LOCK_UP_N: f64 = 10e3;
+
+/// The hint on `case` (on bottom with a WOB, or running in) whose soft string with the helix's
+/// drag keeps a hook load not below zero but below [`NEAR_HELICAL_LOCK_UP_N`], and below the
+/// plain soft string's (a helix there): the whole string is most likely locked up.
+fn near_helical_lock_up_hint(case: &Case) -> Option<String> {
+    let op = &case.operation;
+    let wob_n = match op.mode {
+        crate::case::Mode::TripIn => 0.0,
+        _ if op.mode.on_bottom() => op.wob_n,
+        _ => return None,
+    };
+    if op.hook_load_n.is_some() {
+        return None;
+    }
+    let helical = helical_hook_load_at(case, wob_n);
+    let plain = lock_up_hook_load(case, wob_n);
+    if !(0.0..NEAR_HELICAL_LOCK_UP_N).contains(&helical) || helical >= plain {
+        return None;
+    }
+    Some(format!(
+        "near a helical lock-up: the soft string with the helix's drag (Mitchell's r F^2/(4 EI)) keeps a hook load of only {:.1} kN while {} (the plain soft string {:.0} kN); where both were solved the whole string's hook load lay 1.4-8 kN below that soft string's (docs/theory.md 7.7), so the whole string most likely cannot be {} with the surface holding it",
+        helical / 1e3,
+        op.mode.name(),
+        plain / 1e3,
+        if op.mode == crate::case::Mode::TripIn { "run in to this depth" } else { "put on bottom at this WOB" }
+    ))
+}
+
+/// The plain soft string's hook load of `case` at the WOB `wob_n` (N), the hook-load input
+/// dropped, N.
+fn lock_up_hook_load(case: &Case, wob_n: f64) -> f64 {
+    crate::models::lock_up_depth::hook_load_at_wob_n(case, wob_n, Drag::Plain)
 }
 
 /// The hint naming the lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB

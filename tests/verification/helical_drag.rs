@@ -446,3 +446,27 @@ fn running_in_helical_lock_up_is_an_answer() {
         helical / 1e3
     );
 }
+
+/// A failed solve near its helical lock-up says so (`diagnose::NEAR_HELICAL_LOCK_UP_N`): run in
+/// to 2,375 m (7 m above the 2,382 m lock-up depth), the soft string with the helix's drag keeps
+/// a hook load between zero and that margin (4.9 kN measured), and the hints name the near
+/// lock-up; at 2,300 m (45.6 kN) they do not.
+#[test]
+fn a_string_near_its_helical_lock_up_is_named_so() {
+    use drillpath::models::diagnose::NEAR_HELICAL_LOCK_UP_N;
+    let near = running_in_case(2375.0);
+    let h = helical_soft_string(&near).hook_load_n;
+    assert!((0.0..NEAR_HELICAL_LOCK_UP_N).contains(&h), "{h}");
+    let hints = nonconvergence_hints(&near);
+    assert!(
+        hints
+            .iter()
+            .any(|s| s.starts_with("near a helical lock-up") && s.contains("run in to this depth")),
+        "{hints:?}"
+    );
+    let free = nonconvergence_hints(&running_in_case(2300.0));
+    assert!(
+        !free.iter().any(|s| s.starts_with("near a helical lock-up")),
+        "{free:?}"
+    );
+}
