@@ -238,27 +238,26 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             }
             // its statistics count the cold solve's work and its own
             let sol = buckled_start::solve_from_buckled_start(case, &model, sol, &ctl);
-            let iterations = before + sol.stats.iterations + spent.iterations;
+            // the row's iterations: the warm tries', the solves' so far and `spent`
+            let total = |spent: &SolveStats| before + sol.stats.iterations + spent.iterations;
             if sol.converged {
                 let seconds = t0.elapsed().as_secs_f64();
-                let out = converged(case, &model, &sol, iterations, seconds, Start::BuckledShape, None);
+                let out = converged(case, &model, &sol, total(&spent), seconds, Start::BuckledShape, None);
                 return (out, Some((model, sol.state)));
             }
-            if let Some(out) = at_helical_lock_up(case, &ctl, iterations, t0, &mut spent) {
+            if let Some(out) = at_helical_lock_up(case, &ctl, total(&spent), t0, &mut spent) {
                 return (out, None);
             }
-            let climbed = helical_lock_up::climbed_to_wob(case, &ctl.with_time_left(t0), &mut spent);
-            let iterations = before + sol.stats.iterations + spent.iterations;
-            match climbed {
+            match helical_lock_up::climbed_to_wob(case, &ctl.with_time_left(t0), &mut spent) {
                 Some(c) if c.climb_end == ClimbEnd::Target => {
-                    let out = climbed_row(case, &c, iterations, t0, false);
+                    let out = climbed_row(case, &c, total(&spent), t0, false);
                     return (out, Some((c.model, c.solution.state)));
                 }
                 Some(c) => spent.add_work(&c.solution.stats),
                 None => {}
             }
-            let iterations = before + sol.stats.iterations + spent.iterations;
             let residual = sol.stats.residual_history.last().copied().unwrap_or(f64::NAN);
+            let iterations = total(&spent);
             (StiffOutcome::NotConverged { iterations, residual }, None)
         }
         Err(e) => (StiffOutcome::Failed(e.to_string()), None),

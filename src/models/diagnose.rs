@@ -10,11 +10,11 @@
 //! Neither proves the stiff solve impossible, but both tell the user the case is at the edge
 //! of what the string can do, not only of what the solver can do.
 
-use crate::case::Case;
+use crate::case::{Case, Mode};
 use crate::models::buckling::{soft_marks, zones, BuckleState};
-use crate::models::helical_drag::{helical_hook_load_at, helical_lock_up};
+use crate::models::helical_drag::helical_lock_up;
 use crate::models::levels::FemPart;
-use crate::models::lock_up_depth::{lock_up_depths, Drag};
+use crate::models::lock_up_depth::{hook_load_at_wob_n, lock_up_depths, Drag};
 use crate::models::softstring;
 
 /// One-sentence hints on `case` for a non-converged stiff solve (empty when the soft string
@@ -85,15 +85,15 @@ pub const NEAR_HELICAL_LOCK_UP_N: f64 = 10e3;
 fn near_helical_lock_up_hint(case: &Case) -> Option<String> {
     let op = &case.operation;
     let wob_n = match op.mode {
-        crate::case::Mode::TripIn => 0.0,
+        Mode::TripIn => 0.0,
         _ if op.mode.on_bottom() => op.wob_n,
         _ => return None,
     };
     if op.hook_load_n.is_some() {
         return None;
     }
-    let helical = helical_hook_load_at(case, wob_n);
-    let plain = lock_up_hook_load(case, wob_n);
+    let helical = hook_load_at_wob_n(case, wob_n, Drag::WithHelix);
+    let plain = hook_load_at_wob_n(case, wob_n, Drag::Plain);
     if !(0.0..NEAR_HELICAL_LOCK_UP_N).contains(&helical) || helical >= plain {
         return None;
     }
@@ -102,14 +102,8 @@ fn near_helical_lock_up_hint(case: &Case) -> Option<String> {
         helical / 1e3,
         op.mode.name(),
         plain / 1e3,
-        if op.mode == crate::case::Mode::TripIn { "run in to this depth" } else { "put on bottom at this WOB" }
+        if op.mode == Mode::TripIn { "run in to this depth" } else { "put on bottom at this WOB" }
     ))
-}
-
-/// The plain soft string's hook load of `case` at the WOB `wob_n` (N), the hook-load input
-/// dropped, N.
-fn lock_up_hook_load(case: &Case, wob_n: f64) -> f64 {
-    crate::models::lock_up_depth::hook_load_at_wob_n(case, wob_n, Drag::Plain)
 }
 
 /// The hint naming the lock-up depths of `case` at the WOB `wob_n` (N) and at zero WOB
