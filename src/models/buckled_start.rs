@@ -112,6 +112,15 @@ pub const DAMPING_REFERENCE_RESIDUAL: f64 = 1e-3;
 /// moves slowly while its damping is full (the rescued grid cases take 190-440 iterations).
 pub const DAMPED_ITERATION_FACTOR: usize = 3;
 
+/// Factor on the residual tolerance of the continued solve of a damped re-solve that converged
+/// with its global equilibrium beyond [`EQUILIBRIUM`] ([`Strategy::Damped`]; thousands of
+/// residual entries below the tolerance can add up to a few 1e-6 of the largest force on a
+/// 2,000 m lateral).
+pub const POLISH_RESIDUAL_FACTOR: f64 = 0.1;
+
+/// Iteration limit of that continued solve (it starts from a converged state).
+pub const POLISH_ITERATIONS: usize = 30;
+
 /// The strategies [`solve_from_buckled_start`] tries, in order (the cheaper first).
 pub const STRATEGIES: [Strategy; 2] = [Strategy::Damped, Strategy::Helix];
 
@@ -234,10 +243,25 @@ fn damped(
         ..*ctl
     };
     let mut work = SolveStats::default();
-    let Ok(sol) = solve_interior_point_from(&m, start, &c) else {
+    let Ok(mut sol) = solve_interior_point_from(&m, start, &c) else {
         return (None, work);
     };
     work.add_work(&sol.stats);
+    if sol.converged && !accept(&sol) {
+        // converged, but its residual entries may add up beyond the global equilibrium asked
+        // for: continued at a tighter residual tolerance
+        let tighter = SolveControls {
+            residual_tolerance: POLISH_RESIDUAL_FACTOR * c.residual_tolerance,
+            max_iterations: POLISH_ITERATIONS,
+            ..c
+        };
+        if let Ok(polished) = solve_interior_point_from(&m, sol.state.clone(), &tighter) {
+            work.add_work(&polished.stats);
+            if polished.converged {
+                sol = polished;
+            }
+        }
+    }
     tracing::info!(
         converged = sol.converged,
         hook_load_n = sol.state.hook_load_n,

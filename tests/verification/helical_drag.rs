@@ -317,10 +317,37 @@ fn a_converged_lock_up_is_named_by_the_helix() {
     assert!(l.max_wob_n < 50e3 && l.hook_load_n < 0.0, "{l:?}");
 }
 
+/// The small grid well slid at 45 kN (not helically locked) answers from the buckled shape:
+/// the damped re-solve's contact subproblems stalled on pairs with force and gap both near zero
+/// (every stage failed, 1,900 iterations) until those pairs are recentred
+/// (`interior_point::IP_RECENTRES`). References: global equilibrium within 1e-6 of the largest
+/// force, and the hook load between zero and that of the soft string with the helix's drag at
+/// 45 kN (3.5 against 7.1 kN measured; the whole string lies below it wherever both answer,
+/// docs/performance.md).
+#[test]
+fn recentred_pairs_let_the_damped_buckled_start_answer() {
+    use drillpath::case::{choose, Fidelity, Level, Purpose};
+    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::models::string_solve::solve_string;
+    let case = small_grid_case(45.0);
+    assert!(helical_lock_up(&case).is_none());
+    let ctl = SolveControls::from_settings(&case.solver);
+    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
+    let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    assert!(s.level.converged);
+    let fem = s.level.fem.as_ref().unwrap();
+    assert_eq!(fem.stats.buckled_start, Some(true));
+    let r = &fem.results;
+    assert!(r.force_imbalance_n.norm() < 1e-6 * r.largest_force_n);
+    let hook = s.level.hook_load_n.unwrap();
+    let helical = helical_soft_string(&case).hook_load_n;
+    assert!(hook >= 0.0 && hook < helical, "{hook} {helical}");
+}
+
 /// The WOB climb from the buckled shape (`models::helical_lock_up::climb_from_buckled_shape`):
-/// on the small grid well slid at 45 kN (not helically locked: the largest WOB of the soft string
-/// with the helix's drag is about 48 kN) every stage fails; the climb toward 45 kN from its
-/// buckled start at half of it stops at a limit of the path between 22.5 and 45 kN, and the
+/// on the small grid well slid at 47 kN (not helically locked: the largest WOB of the soft string
+/// with the helix's drag is about 48 kN) every stage fails; the climb toward 47 kN from its
+/// buckled start at half of it stops at a limit of the path between 23.5 and 47 kN, and the
 /// failure's statistics and message say where. The climb run alone ends at the same WOB (to
 /// 1e-9) with an equilibrium there: global equilibrium within 1e-6 of the largest force, the hook
 /// load not below zero and below that of the soft string with the helix's drag at that WOB plus
@@ -335,7 +362,7 @@ fn the_climb_from_the_buckled_shape() {
     use drillpath::models::fem::solve::SolveControls;
     use drillpath::models::helical_lock_up::climb_from_buckled_shape;
     use drillpath::models::string_solve::solve_string;
-    let case = small_grid_case(45.0);
+    let case = small_grid_case(47.0);
     assert!(helical_lock_up(&case).is_none());
     let ctl = SolveControls::from_settings(&case.solver);
     let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
@@ -344,11 +371,11 @@ fn the_climb_from_the_buckled_shape() {
     let stats = &s.level.fem.as_ref().unwrap().stats;
     let (reached, target) = stats.buckled_climb_n.expect("no climb recorded");
     assert!(
-        target == 45e3 && (22.5e3..45e3).contains(&reached),
+        target == 47e3 && (23.5e3..47e3).contains(&reached),
         "{reached} {target}"
     );
     assert!(stop_phrase(stats, &ctl).contains("a WOB climb from the buckled shape that reached"));
-    let c = climb_from_buckled_shape(&case, 45e3, 0.0, &ctl, &mut Default::default()).expect("no start converged");
+    let c = climb_from_buckled_shape(&case, 47e3, 0.0, &ctl, &mut Default::default()).expect("no start converged");
     assert_eq!(c.climb_end, ClimbEnd::Stalled);
     assert!((c.wob_n - reached).abs() < 1e-9 * reached, "{} {reached}", c.wob_n);
     assert_eq!(c.model.loads.wob_n, c.wob_n);
@@ -363,7 +390,7 @@ fn the_climb_from_the_buckled_shape() {
         r.hook_load_n
     );
     println!(
-        "climb to 45 kN stopped at {:.1} kN, hook load {:.1} kN (soft string with the helix's drag {:.1} kN)",
+        "climb to 47 kN stopped at {:.1} kN, hook load {:.1} kN (soft string with the helix's drag {:.1} kN)",
         reached / 1e3,
         r.hook_load_n / 1e3,
         helical / 1e3

@@ -48,6 +48,20 @@ pub const IP_CYCLE_MU_RATIO: f64 = 0.9;
 /// converge.
 pub const IP_CYCLE_STEPS: usize = 10;
 
+/// Recentrings of an interior-point solve stalled far from the solution (inner tolerance
+/// above 1e-8) before it takes the step found so far: the pairs that limited the stalled
+/// steps ([`IP_STALL_STEPS`] steps shorter than 1e-2) are moved off the boundary onto the
+/// central path (`R s` the mean complementarity, `R / s` the pair's own ratio `|dR / ds|` in
+/// the step that it limited), the rest of the warm start kept. A pair with force and gap
+/// both near zero whose direction asks kilonewtons and metres (a contact on a nearly
+/// singular mode of a post-buckled string, held only by the pseudo-transient damping)
+/// otherwise limits every step to 1e-5, and the outer Newton crawls (docs/performance.md,
+/// "Interior-point pairs recentred").
+pub const IP_RECENTRES: usize = 3;
+
+/// An interior-point step shorter than this is stalled ([`IP_STALL_STEPS`]).
+const STALLED_STEP: f64 = 1e-2;
+
 /// Restarts of an interior-point solve stalled near the solution (inner tolerance at most 1e-8),
 /// each from its warm start shifted [`IP_RESTART_SHIFT_FACTOR`] times farther off the
 /// boundary. Far from the solution it does not restart: a restart there discards the warm
@@ -85,6 +99,35 @@ pub const ACTIVE_SET_MIN_FORCE: f64 = 1e-3;
 /// tolerance used at convergence).
 pub(crate) fn ip_tolerance(rn: f64) -> f64 {
     (1e-2 * rn).min(rn * rn).max(1e-10)
+}
+
+/// The pair that limits the step to the boundary of `r + a dr`, `s + a ds` (contact index) and
+/// its ratio `|dr / ds|` (N/m); None if no pair limits it or its ratio is not finite and
+/// positive.
+fn blocking_pair(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64]) -> Option<(usize, f64)> {
+    let mut worst = (f64::INFINITY, None);
+    for j in 0..r.len() {
+        for (x, dx) in [(r[j], dr[j]), (s[j], ds[j])] {
+            if dx < 0.0 && -x / dx < worst.0 {
+                worst = (-x / dx, Some(j));
+            }
+        }
+    }
+    let j = worst.1?;
+    let k = (dr[j] / ds[j]).abs();
+    (k.is_finite() && k > 0.0).then_some((j, k))
+}
+
+/// Move the pairs `blockers` (contact index, ratio `|dR / ds|` N/m) of `it` onto the central
+/// path at its mean complementarity `mu`: `R = sqrt(mu k)`, `s = sqrt(mu / k)`, neither
+/// lowered ([`IP_RECENTRES`]).
+fn recentre(it: &mut IpIterate, blockers: &[(usize, f64)]) {
+    let mt = it.r.len();
+    let mu = (0..mt).map(|j| it.r[j] * it.s[j]).sum::<f64>() / mt.max(1) as f64;
+    for &(j, k) in blockers {
+        it.r[j] = it.r[j].max((mu * k).sqrt());
+        it.s[j] = it.s[j].max((mu / k).sqrt());
+    }
 }
 
 /// Largest step in (0, 1] keeping `r + a dr` and `s + a ds` positive, times `tau`
@@ -181,6 +224,9 @@ pub(crate) struct ContactSubproblem<'a> {
     pub(crate) dofs6: Vec<[usize; 6]>,
     /// The start was carried onto a refined mesh ([`CARRIED_START_SHIFT_FACTOR`]).
     pub(crate) carried_start: bool,
+    /// Recentre the pairs that block a stalled solve far from the solution ([`IP_RECENTRES`]):
+    /// for a pseudo-transient damped solve ([`super::SolveControls::lateral_damping_n_per_m`]).
+    pub(crate) recentre_blockers: bool,
 }
 
 /// An iterate of the interior point.
@@ -227,6 +273,9 @@ struct Work {
     kbb: f64,
     /// Scratch of the matrix product.
     mul: Vec<f64>,
+    /// The pairs that limited the stalled steps since the last step that was not: contact
+    /// index and the pair's ratio `|dR / ds|` in that step, N/m.
+    blockers: Vec<(usize, f64)>,
 }
 
 /// Sizes of an iterate's residuals.
@@ -508,6 +557,11 @@ impl ContactSubproblem<'_> {
         lin.solve(&mut w.rhs);
         let ddh = self.finish(it, w, false);
         let alpha = step_to_boundary(&it.r, &w.dr, &it.s, &w.ds, 0.995);
+        if alpha < STALLED_STEP {
+            w.blockers.extend(blocking_pair(&it.r, &w.dr, &it.s, &w.ds));
+        } else {
+            w.blockers.clear();
+        }
         let (rd_n, rp_n) = (res.rd_n, res.rp_n);
         tracing::trace!(rd_n, rp_n, mu_rel = mu / (self.scale * 1e-3), a_aff, sigma, alpha, "ip");
         for (x, d) in it.du.iter_mut().zip(&w.rhs) {
@@ -560,8 +614,9 @@ impl ContactSubproblem<'_> {
             cb: 0.0,
             kbb: 0.0,
             mul: Vec::new(),
+            blockers: Vec::new(),
         };
-        let (mut iterations, mut stalled, mut restarts) = (0usize, 0usize, 0usize);
+        let (mut iterations, mut stalled, mut restarts, mut recentres) = (0usize, 0usize, 0usize, 0usize);
         let (mut mu_min, mut cycles) = (f64::INFINITY, 0usize);
         for ip in 0..MAX_IP_ITERATIONS {
             let res = self.residuals(lin, ip, &it, &mut w);
@@ -596,15 +651,25 @@ impl ContactSubproblem<'_> {
             let cycling = feasible && res.mu > IP_CYCLE_MU_RATIO * mu_min;
             mu_min = mu_min.min(res.mu);
             cycles = if cycling { cycles + 1 } else { 0 };
-            stalled = if alpha < 1e-2 || cycles >= IP_CYCLE_STEPS {
+            stalled = if alpha < STALLED_STEP || cycles >= IP_CYCLE_STEPS {
                 stalled + 1
             } else {
                 0
             };
             // a stalled interior point (friction makes the contact problem non-monotone: its
             // steps short, or its iterates cycling at a constant complementarity) far from the
-            // solution: take the step found so far
+            // solution: the pairs that blocked its short steps recentred, else the step found
+            // so far taken
             if stalled >= IP_STALL_STEPS && self.eta > 1e-8 {
+                if self.recentre_blockers && recentres < IP_RECENTRES && !w.blockers.is_empty() {
+                    recentres += 1;
+                    recentre(&mut it, &w.blockers);
+                    w.blockers.clear();
+                    stalled = 0;
+                    (mu_min, cycles) = (f64::INFINITY, 0);
+                    tracing::debug!(recentres, "interior point: blocking pairs recentred");
+                    continue;
+                }
                 break;
             }
             // stalled near the solution (where the exact tolerance is asked): the warm start sat
@@ -624,5 +689,43 @@ impl ContactSubproblem<'_> {
             iterate: it,
             iterations,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The pair that limits the step is found by its own ratio to the boundary (here the second
+    /// pair's force, 0.1 / 10 = 0.01, before the first pair's 1 / 0.5 = 2), with its `|dR/ds|`.
+    #[test]
+    fn blocking_pair_is_the_one_at_the_boundary_first() {
+        let (r, dr) = ([1.0, 0.1], [-0.5, -10.0]);
+        let (s, ds) = ([1.0, 1e-6], [0.0, 1e-3]);
+        assert_eq!(blocking_pair(&r, &dr, &s, &ds), Some((1, 1e4)));
+        // nothing moves toward the boundary: no pair limits the step
+        assert_eq!(blocking_pair(&r, &[1.0, 1.0], &s, &[0.0, 0.0]), None);
+    }
+
+    /// A recentred pair lies on the central path at the iterate's mean complementarity with its
+    /// own ratio (`R s = mu`, `R / s = k`, to rounding), its values never lowered, and the other
+    /// pairs untouched.
+    #[test]
+    fn recentred_pair_lies_on_the_central_path() {
+        let mut it = IpIterate {
+            du: Vec::new(),
+            dh: 0.0,
+            r: vec![2.0, 1e-3, 4.0],
+            s: vec![0.5, 1e-9, 0.25],
+        };
+        let mu = (1.0 + 1e-12 + 1.0) / 3.0;
+        recentre(&mut it, &[(1, 4.0)]);
+        assert!((it.r[1] * it.s[1] - mu).abs() < 1e-12 * mu);
+        assert!((it.r[1] / it.s[1] - 4.0).abs() < 1e-12);
+        assert_eq!((it.r[0], it.s[0], it.r[2], it.s[2]), (2.0, 0.5, 4.0, 0.25));
+        // a force already above its central value is kept
+        it.r[1] = 10.0;
+        recentre(&mut it, &[(1, 4.0)]);
+        assert_eq!(it.r[1], 10.0);
     }
 }

@@ -358,6 +358,7 @@ impl<'a> InteriorPointNewton<'a> {
             clr: contact_clearances(&lz.cols, ev),
             dofs6: contact_dofs(model, &lz.cols),
             carried_start: self.ctl.carried_start,
+            recentre_blockers: self.ctl.lateral_damping_n_per_m > 0.0,
         };
         // the active-set step near convergence, not at the pins' switch (their prescribed
         // move changes the contact set), nor on a refined mesh (its degenerate pairs switch)
