@@ -247,7 +247,8 @@ fn damped(
         return (None, work);
     };
     work.add_work(&sol.stats);
-    if sol.converged && !accept(&sol) {
+    let mut kept = sol.converged && accept(&sol);
+    if sol.converged && !kept {
         // converged, but its residual entries may add up beyond the global equilibrium asked
         // for: continued at a tighter residual tolerance
         let tighter = SolveControls {
@@ -258,6 +259,7 @@ fn damped(
         if let Ok(polished) = solve_interior_point_from(&m, sol.state.clone(), &tighter) {
             work.add_work(&polished.stats);
             if polished.converged {
+                kept = accept(&polished);
                 sol = polished;
             }
         }
@@ -267,5 +269,5 @@ fn damped(
         hook_load_n = sol.state.hook_load_n,
         "damped re-solve from a buckled start"
     );
-    (Some(sol).filter(|s| s.converged && accept(s)), work)
+    (Some(sol).filter(|_| kept), work)
 }
