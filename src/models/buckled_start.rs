@@ -112,11 +112,12 @@ pub const DAMPING_REFERENCE_RESIDUAL: f64 = 1e-3;
 /// moves slowly while its damping is full (the rescued grid cases take 190-440 iterations).
 pub const DAMPED_ITERATION_FACTOR: usize = 3;
 
-/// Factor on the residual tolerance of the continued solve of a damped re-solve that converged
-/// with its global equilibrium beyond [`EQUILIBRIUM`] ([`Strategy::Damped`]; thousands of
-/// residual entries below the tolerance can add up to a few 1e-6 of the largest force on a
-/// 2,000 m lateral).
-pub const POLISH_RESIDUAL_FACTOR: f64 = 0.1;
+/// Factor on the residual tolerance of a buckled string's solve that has to meet
+/// [`EQUILIBRIUM`]: the continued solve of a damped re-solve that converged with its global
+/// equilibrium beyond it ([`Strategy::Damped`]), and the refined re-solve of an answer climbed
+/// from the buckled shape (`models::string_solve`). Thousands of residual entries below the
+/// tolerance can add up to a few 1e-6 of the largest force on a 1,000-2,000 m lateral.
+pub const EQUILIBRIUM_RESIDUAL_FACTOR: f64 = 0.1;
 
 /// Iteration limit of that continued solve (it starts from a converged state).
 pub const POLISH_ITERATIONS: usize = 30;
@@ -252,7 +253,7 @@ fn damped(
         // converged, but its residual entries may add up beyond the global equilibrium asked
         // for: continued at a tighter residual tolerance
         let tighter = SolveControls {
-            residual_tolerance: POLISH_RESIDUAL_FACTOR * c.residual_tolerance,
+            residual_tolerance: EQUILIBRIUM_RESIDUAL_FACTOR * c.residual_tolerance,
             max_iterations: POLISH_ITERATIONS,
             ..c
         };

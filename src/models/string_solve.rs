@@ -7,6 +7,7 @@
 
 use crate::case::fidelity::{Choice, Level};
 use crate::case::{Case, Mode};
+use crate::models::buckled_start::EQUILIBRIUM_RESIDUAL_FACTOR;
 use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::{
     dogleg_warning, lock_up, locked_at_zero_wob, running_in_lock_up, soft_lock_up, soft_lock_up_at, yield_check,
@@ -420,7 +421,7 @@ fn whole_climbed_to_wob(
 
 /// The level result of the whole string of `case` climbed from its buckled shape (`climbed`, its
 /// WOB the results'): refined and taken off the straight branch as any solve ([`fem_part_by`],
-/// the residual tolerance times [`LOCK_UP_RESIDUAL_FACTOR`], in the time left of `ctl`'s limit
+/// the residual tolerance times [`EQUILIBRIUM_RESIDUAL_FACTOR`], in the time left of `ctl`'s limit
 /// since `t0`). None when that does not converge or the hook load is below zero; `spent` then
 /// gets the climb's work and the re-solve's.
 fn whole_from_climb(
@@ -436,7 +437,7 @@ fn whole_from_climb(
     // the refined re-solve of a buckled string at the usual residual tolerance can leave the
     // global equilibrium at a few 1e-6 of the largest force (the grid's 110 deg, 1,000 m slide)
     let left = SolveControls {
-        residual_tolerance: LOCK_UP_RESIDUAL_FACTOR * ctl.residual_tolerance,
+        residual_tolerance: EQUILIBRIUM_RESIDUAL_FACTOR * ctl.residual_tolerance,
         ..ctl.with_time_left(t0)
     };
     let solution = climbed.solution;
@@ -454,10 +455,6 @@ fn whole_from_climb(
     out.seconds = t0.elapsed().as_secs_f64();
     Some(out)
 }
-
-/// Factor on the residual tolerance of the refined re-solve of an answer climbed from the buckled
-/// shape (a lock-up by the helix's drag, or the climb to the WOB).
-pub const LOCK_UP_RESIDUAL_FACTOR: f64 = 0.1;
 
 /// Lock-up by the helix's drag as an answer ([`helical_lock_up::below_helical_lock_up`]): when
 /// the whole string found no equilibrium at `case`'s WOB, the whole string below that lock-up
