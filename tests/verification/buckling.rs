@@ -11,7 +11,7 @@ use drillpath::models::fem::results::{extract, SolveResults};
 use drillpath::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use std::f64::consts::FRAC_PI_2;
 
-use crate::common::{load_temp_case, pipe_properties, slid_bit_on_pipe, DRILL_PIPE_BODY};
+use crate::common::{load_temp_case, pipe_properties, slid_bit_on_pipe, solve_whole, DRILL_PIPE_BODY};
 
 /// The 5 in pipe body ([`DRILL_PIPE_BODY`]: no tool joints, 29 kg/m, 1.2 sg) in a horizontal
 /// 8.5 in hole from the surface, 245 m long, with a seeded imperfection (azimuth alternating
@@ -215,19 +215,6 @@ hole = [{{ to_md = "{length_m} m", diameter = "8.5 in" }}]
     load_temp_case(&survey, &text)
 }
 
-/// The whole-string `solve` of `case` (with its outputs' warnings).
-fn whole_solve(case: &Case) -> drillpath::models::string_solve::StringSolve {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
-    let ctl = SolveControls::from_settings(&case.solver);
-    drillpath::models::string_solve::solve_string(
-        case,
-        choose(Fidelity::Level(Level::Whole), Purpose::Solve),
-        &ctl,
-        &mut |_, _, _| {},
-    )
-    .unwrap()
-}
-
 /// Mean wall force per length (N/m) and mean compression (N) of the reported nodes of `s`
 /// strictly between `top_md` and `bottom_md` (m): the nodes' wall forces over the window's
 /// length.
@@ -255,7 +242,7 @@ fn window(s: &drillpath::models::string_solve::StringSolve, top_md: f64, bottom_
 #[test]
 fn vertical_helix_wall_force_within_15_percent_of_mitchell() {
     let case = straight_hole_case(0.5, 1000.0, 100.0, 0.0, Some("1 m"));
-    let s = whole_solve(&case);
+    let s = solve_whole(&case);
     assert!(s.level.converged);
     let fem = s.level.fem.as_ref().unwrap();
     assert_eq!(fem.stats.helix_restart, Some(true));
@@ -327,7 +314,7 @@ fn inclined_helix_wall_force_within_15_percent_of_mitchell() {
     for (inc, wob) in [(90.0, 280.0), (90.0, 460.0), (60.0, 300.0)] {
         let case = straight_hole_case(inc, 600.0, wob, 0.0, None);
         let t0 = std::time::Instant::now();
-        let s = whole_solve(&case);
+        let s = solve_whole(&case);
         let fem = s.level.fem.as_ref().unwrap();
         assert!(s.level.converged, "{inc} deg, {wob} kN");
         assert_eq!(fem.stats.helix_restart, Some(true), "{inc} deg, {wob} kN");
@@ -362,7 +349,7 @@ fn inclined_helix_wall_force_within_15_percent_of_mitchell() {
 #[test]
 fn an_unbuckled_solve_beyond_the_helical_onset_is_flagged() {
     let case = straight_hole_case(0.5, 1000.0, 100.0, 0.3, Some("1 m"));
-    let s = whole_solve(&case);
+    let s = solve_whole(&case);
     assert!(s.level.converged);
     assert_eq!(s.level.fem.as_ref().unwrap().stats.helix_restart, Some(false));
     let (ei, _, r) = pipe_properties();

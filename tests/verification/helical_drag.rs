@@ -17,7 +17,7 @@ use drillpath::models::softstring;
 
 use crate::acceptance_grid::{well_case, GridCase};
 use crate::buckling::straight_hole_case;
-use crate::common::load_temp_case;
+use crate::common::{load_temp_case, solve_whole};
 
 /// A vertical hole of `length_m` with 5 in pipe (no tool joints) below a short bit, 8.5 in
 /// hole, 1.2 sg, sliding with `wob_kn` and wall friction `friction`
@@ -190,15 +190,10 @@ fn loads_rows_carry_the_helix_drag() {
 /// (docs/performance.md), checked here to 1 kN.
 #[test]
 fn helical_lock_up_is_an_answer() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
     use drillpath::models::fem::solve::continuation::lock_up_hook_tolerance_n;
-    use drillpath::models::fem::solve::SolveControls;
     use drillpath::models::helical_lock_up::HELICAL_LOCK_UP_FRACTIONS;
-    use drillpath::models::string_solve::solve_string;
     let case = small_grid_case(55.0);
-    let ctl = SolveControls::from_settings(&case.solver);
-    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
-    let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    let s = solve_whole(&case);
     let l = s.lock_up.expect("no lock-up reported");
     assert!(l.by_helix && l.wob_n == 55e3 && l.hook_load_n < 0.0, "{l:?}");
     let at = l.results_at_wob_n.expect("no results below the lock-up");
@@ -303,13 +298,8 @@ fn loads_rows_answer_from_the_buckled_shape() {
 /// asked for.
 #[test]
 fn a_converged_lock_up_is_named_by_the_helix() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
-    use drillpath::models::fem::solve::SolveControls;
-    use drillpath::models::string_solve::solve_string;
     let case = small_grid_case(50.0);
-    let ctl = SolveControls::from_settings(&case.solver);
-    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
-    let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    let s = solve_whole(&case);
     assert!(s.level.converged && s.level.hook_load_n.unwrap() < 0.0);
     let l = s.lock_up.expect("no lock-up reported");
     assert!(l.by_helix && l.results_at_wob_n.is_none(), "{l:?}");
@@ -326,14 +316,9 @@ fn a_converged_lock_up_is_named_by_the_helix() {
 /// docs/performance.md).
 #[test]
 fn recentred_pairs_let_the_damped_buckled_start_answer() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
-    use drillpath::models::fem::solve::SolveControls;
-    use drillpath::models::string_solve::solve_string;
     let case = small_grid_case(45.0);
     assert!(helical_lock_up(&case).is_none());
-    let ctl = SolveControls::from_settings(&case.solver);
-    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
-    let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    let s = solve_whole(&case);
     assert!(s.level.converged);
     let fem = s.level.fem.as_ref().unwrap();
     assert_eq!(fem.stats.buckled_start, Some(true));
@@ -355,18 +340,15 @@ fn recentred_pairs_let_the_damped_buckled_start_answer() {
 /// The climbs that reach their WOB are measured on the acceptance grid (docs/performance.md).
 #[test]
 fn the_climb_from_the_buckled_shape() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
     use drillpath::models::diagnose::stop_phrase;
     use drillpath::models::fem::results::extract;
     use drillpath::models::fem::solve::continuation::ClimbEnd;
     use drillpath::models::fem::solve::SolveControls;
     use drillpath::models::helical_lock_up::climb_from_buckled_shape;
-    use drillpath::models::string_solve::solve_string;
     let case = small_grid_case(47.0);
     assert!(helical_lock_up(&case).is_none());
     let ctl = SolveControls::from_settings(&case.solver);
-    let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
-    let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+    let s = solve_whole(&case);
     assert!(!s.level.converged, "converged: the case no longer needs the climb");
     let stats = &s.level.fem.as_ref().unwrap().stats;
     let (reached, target) = stats.buckled_climb_n.expect("no climb recorded");

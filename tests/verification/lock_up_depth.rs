@@ -14,7 +14,7 @@ use drillpath::models::lock_up_depth::{
     hook_load_at_depth_n, lock_up_depth_m, lock_up_depths, Drag, DEPTH_TOLERANCE_M,
 };
 
-use crate::common::{load_temp_case, slid_bit_on_pipe};
+use crate::common::{load_temp_case, slid_bit_on_pipe, solve_whole};
 
 /// Vertical to 300 m, a 90 deg build of radius 100 m (a circular arc by minimum curvature, to
 /// 457.08 m), a horizontal lateral to 1,500 m (bit there); 8.5 in hole without friction down to
@@ -316,17 +316,13 @@ fn bha_flags_a_wob_the_string_cannot_deliver() {
 /// same failure gives no answer.
 #[test]
 fn whole_locked_at_zero_wob_answers_with_the_soft_string() {
-    use drillpath::case::{choose, Fidelity, Level, Purpose};
-    use drillpath::models::fem::solve::SolveControls;
+    use drillpath::case::{Fidelity, Level};
     use drillpath::models::softstring;
-    use drillpath::models::string_solve::solve_string;
     for (friction, zero_locked) in [(0.5, true), (0.3, false)] {
         let mut case = lateral_case(30.0, friction);
         assert_eq!(closed_form_depth_m(&case, 0.0, friction) < 1500.0, zero_locked);
         case.solver.max_iterations = 2;
-        let ctl = SolveControls::from_settings(&case.solver);
-        let choice = choose(Fidelity::Level(Level::Whole), Purpose::Solve);
-        let s = solve_string(&case, choice, &ctl, &mut |_, _, _| {}).unwrap();
+        let s = solve_whole(&case);
         assert_eq!(s.level.converged, zero_locked, "friction {friction}");
         if !zero_locked {
             assert_eq!(s.level.choice.level, Level::Whole);

@@ -103,7 +103,8 @@ pub(crate) fn ip_tolerance(rn: f64) -> f64 {
 
 /// The pair that limits the step to the boundary of `r + a dr`, `s + a ds` (contact index) and
 /// its ratio `|dr / ds|` (N/m); None if no pair limits it or its ratio is not finite and
-/// positive.
+/// positive. The same ratios as [`step_to_boundary`], whose loop stays free of the index
+/// bookkeeping: it runs twice per interior-point iteration, this one only after a stalled step.
 fn blocking_pair(r: &[f64], dr: &[f64], s: &[f64], ds: &[f64]) -> Option<(usize, f64)> {
     let mut worst = (f64::INFINITY, None);
     for j in 0..r.len() {
