@@ -34,6 +34,21 @@ pub fn normalize_azimuth(azi_rad: f64) -> f64 {
     }
 }
 
+/// An angle (deg) wrapped into [0, 360) as it is written with `decimals` decimals: an angle
+/// that would be written as 360 (just short of a full turn, e.g. an azimuth of -1e-13 deg) is
+/// 0, so that north reads 0 and never 360.
+pub fn degrees_in_turn(deg: f64, decimals: i32) -> f64 {
+    let d = deg.rem_euclid(360.0);
+    if 360.0 - d < 0.5 * 10f64.powi(-decimals) {
+        0.0
+    } else {
+        d
+    }
+}
+
+/// Decimals to which [`degrees_in_turn`] wraps an angle written with every digit (JSON).
+pub const FULL_PRECISION_DECIMALS: i32 = 9;
+
 /// Wrap an angle difference (rad) into (-pi, pi].
 pub fn wrap_pi(d: f64) -> f64 {
     let mut a = d.rem_euclid(TAU);
@@ -136,5 +151,31 @@ impl Survey {
             .filter(|s| s.md_m <= md_m + 1e-9)
             .collect();
         Survey::new(st).ok()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An angle just short of a full turn is written as 0 at the decimals it would round to 360
+    /// at, and kept where it does not (reference: the rounding of `format!("{:.4}")`).
+    #[test]
+    fn an_angle_that_would_be_written_as_360_is_0() {
+        for (deg, decimals) in [(-1e-13_f64, 4), (359.99996, 4), (359.96, 1), (720.0 - 1e-10, 9)] {
+            assert_eq!(
+                format!("{:.*}", decimals as usize, deg.rem_euclid(360.0)),
+                format!("{:.*}", decimals as usize, 360.0)
+            );
+            assert_eq!(degrees_in_turn(deg, decimals), 0.0, "{deg} at {decimals} decimals");
+        }
+        for (deg, decimals, want) in [
+            (359.9999, 4, 359.9999),
+            (-0.5, 1, 359.5),
+            (360.0, 3, 0.0),
+            (45.0, 0, 45.0),
+        ] {
+            assert_eq!(degrees_in_turn(deg, decimals), want, "{deg} at {decimals} decimals");
+        }
     }
 }

@@ -37,12 +37,15 @@ fn row_line(
         "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
         num(md, 3)?,
         num(inc.to_degrees(), 4)?,
-        num(azi.to_degrees().rem_euclid(360.0), 4)?,
+        num(crate::geometry::survey::degrees_in_turn(azi.to_degrees(), 4), 4)?,
         num(pos.z, 3)?,
         num(pos.x, 3)?,
         num(pos.y, 3)?,
         opt(meas.map(|m| m.0.to_degrees()), 4)?,
-        opt(meas.map(|m| m.1.to_degrees().rem_euclid(360.0)), 4)?,
+        opt(
+            meas.map(|m| crate::geometry::survey::degrees_in_turn(m.1.to_degrees(), 4)),
+            4
+        )?,
         opt(err.map(|e| e.0.to_degrees()), 4)?,
         opt(err.map(|e| e.1.to_degrees()), 4)?,
         num(bit.build_force_n / 1e3, 4)?,
@@ -158,7 +161,7 @@ fn forecast_columns(f: &Forecast) -> Result<String, String> {
             num(q.lateral_sd_m, 3)?,
             num(q.vertical_sd_m, 3)?,
             num(r.0.to_degrees(), 4)?,
-            num(r.1.to_degrees().rem_euclid(360.0), 4)?,
+            num(crate::geometry::survey::degrees_in_turn(r.1.to_degrees(), 4), 4)?,
         ];
         out.push_str(line);
         out.push(',');
@@ -520,7 +523,10 @@ impl PredictSummary {
             end: EndJson {
                 md_m: Finite(end.md_m),
                 inc_deg: Finite(end.inc_rad.to_degrees()),
-                azi_deg: Finite(end.azi_rad.to_degrees().rem_euclid(360.0)),
+                azi_deg: Finite(crate::geometry::survey::degrees_in_turn(
+                    end.azi_rad.to_degrees(),
+                    crate::geometry::survey::FULL_PRECISION_DECIMALS,
+                )),
                 tvd_m: Finite(end.position.z),
                 north_m: Finite(end.position.x),
                 east_m: Finite(end.position.y),
@@ -581,7 +587,7 @@ pub fn comparison_csv(runs: &[(&Case, &Forecast)]) -> Result<String, String> {
             num(rt.mean_tilt_inc_rad.to_degrees(), 5)?,
             num(rt.mean_tilt_azi_rad.to_degrees(), 5)?,
             num(end.inc_rad.to_degrees(), 4)?,
-            num(end.azi_rad.to_degrees().rem_euclid(360.0), 4)?,
+            num(crate::geometry::survey::degrees_in_turn(end.azi_rad.to_degrees(), 4), 4)?,
         ));
     }
     Ok(out)

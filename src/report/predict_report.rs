@@ -123,7 +123,7 @@ impl Trajectories<'_> {
         let mut sec = Chart::new(
             &format!(
                 "Vertical section along azimuth {:.1} deg",
-                self.section_azi.to_degrees().rem_euclid(360.0)
+                crate::geometry::survey::degrees_in_turn(self.section_azi.to_degrees(), 1)
             ),
             &format!("vertical section [{}]", depth_unit.label),
             &format!("TVD [{}]", depth_unit.label),
@@ -183,7 +183,7 @@ fn predict_key_results(page: &mut Page, runs: &[(&Case, &Forecast)], units: Unit
             format!(
                 "{:.3} / {:.3} deg",
                 end.inc_rad.to_degrees(),
-                end.azi_rad.to_degrees().rem_euclid(360.0)
+                crate::geometry::survey::degrees_in_turn(end.azi_rad.to_degrees(), 3)
             ),
             force_unit.fmt(rt.mean_build_force_n, 3),
             force_unit.fmt(rt.mean_walk_force_n, 3),
@@ -751,7 +751,7 @@ fn interval_table(page: &mut Page, results: &[IntervalResult], units: UnitSystem
                 format!(
                     "{:.3} / {:.3}",
                     r.inc_rad.to_degrees(),
-                    r.azi_rad.to_degrees().rem_euclid(360.0)
+                    crate::geometry::survey::degrees_in_turn(r.azi_rad.to_degrees(), 3)
                 ),
                 format!(
                     "{:+.3} / {:+.3}",

@@ -34,10 +34,13 @@ pub fn write_forecast(
         "  from {} (I {} deg, A {} deg) to {}: I {} deg, A {} deg, TVD {}, N {}, E {}",
         depth_unit.fmt(p.from_md_m, 2),
         fixed(first.inc_rad.to_degrees(), 3),
-        fixed(first.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        fixed(
+            crate::geometry::survey::degrees_in_turn(first.azi_rad.to_degrees(), 3),
+            3
+        ),
         depth_unit.fmt(p.to_md_m, 2),
         fixed(end.inc_rad.to_degrees(), 3),
-        fixed(end.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        fixed(crate::geometry::survey::degrees_in_turn(end.azi_rad.to_degrees(), 3), 3),
         depth_unit.fmt(end.position.z, 2),
         depth_unit.fmt(end.position.x, 2),
         depth_unit.fmt(end.position.y, 2)
@@ -132,7 +135,7 @@ pub fn comparison_table(runs: &[(&Case, &Forecast)], units: UnitSystem) -> Strin
             signed(force_unit.show(rt.mean_build_force_n), force_unit.decimals(3)),
             signed(force_unit.show(rt.mean_walk_force_n), force_unit.decimals(3)),
             fixed(end.inc_rad.to_degrees(), 3),
-            fixed(end.azi_rad.to_degrees().rem_euclid(360.0), 3),
+            fixed(crate::geometry::survey::degrees_in_turn(end.azi_rad.to_degrees(), 3), 3),
         ));
     }
     out
@@ -311,7 +314,7 @@ fn write_projection(out: &mut impl Write, p: &Projection, units: UnitSystem) -> 
         depth_unit.fmt(end.md_m, 2),
         fixed(end.direction.inc_rad.to_degrees(), 3),
         fixed(end.inc_sd_rad.to_degrees(), 3),
-        fixed(end.direction.azi_rad.to_degrees().rem_euclid(360.0), 3),
+        fixed(crate::geometry::survey::degrees_in_turn(end.direction.azi_rad.to_degrees(), 3), 3),
         fixed(end.azi_sd_rad.to_degrees(), 3),
         depth_unit.fmt(end.lateral_sd_m, 2),
         depth_unit.fmt(end.vertical_sd_m, 2),

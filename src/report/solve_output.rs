@@ -508,9 +508,12 @@ impl SolveSummary {
             not_computed: st.tendencies.as_ref().err().cloned(),
             reactive_torque_kNm: st.reactive_turn.map(|t| Finite(t.torque_nm / 1e3)),
             reactive_toolface_turn_deg: st.reactive_turn.map(|t| Finite(t.turn_rad.to_degrees())),
-            effective_toolface_deg: st
-                .reactive_turn
-                .map(|t| Finite((st.toolface_rad - t.turn_rad).to_degrees().rem_euclid(360.0))),
+            effective_toolface_deg: st.reactive_turn.map(|t| {
+                Finite(crate::geometry::survey::degrees_in_turn(
+                    (st.toolface_rad - t.turn_rad).to_degrees(),
+                    crate::geometry::survey::FULL_PRECISION_DECIMALS,
+                ))
+            }),
             reactive_torque_held_m: st.reactive_turn.and_then(|t| t.held_m.map(Finite)),
         });
         self
@@ -570,7 +573,7 @@ fn node_row(n: &NodeResult) -> Result<String, String> {
         num(n.disp_right_m * 1e3, 3)?,
         n.clearance_m.map(|c| num(c * 1e3, 3)).transpose()?.unwrap_or_default(),
         num(n.contact_force_n / 1e3, 4)?,
-        num(n.contact_angle_deg, 2)?,
+        num(crate::geometry::survey::degrees_in_turn(n.contact_angle_deg, 2), 2)?,
         num(n.axial_force_n / 1e3, 3)?,
         num(n.torque_nm / 1e3, 4)?,
         num(n.bending_moment_nm / 1e3, 4)?,

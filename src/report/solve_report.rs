@@ -347,7 +347,10 @@ fn contact_zones(page: &mut Page, case: &Case, bit_md_m: f64, contacts: &[&NodeR
                 z.len().to_string(),
                 force_unit.fmt(total, 2),
                 force_unit.fmt(peak.contact_force_n, 2),
-                format!("{:.0} deg", peak.contact_angle_deg),
+                format!(
+                    "{:.0} deg",
+                    crate::geometry::survey::degrees_in_turn(peak.contact_angle_deg, 0)
+                ),
             ]
         })
         .collect();

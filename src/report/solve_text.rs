@@ -129,7 +129,10 @@ pub fn steering_line(st: &Steering, units: UnitSystem) -> String {
             "{head}, turned {} deg left by the motor's reactive torque {} kN.m (drilling at {} deg{})",
             fixed(t.turn_rad.to_degrees(), 1),
             fixed(t.torque_nm / 1e3, 2),
-            fixed((st.toolface_rad - t.turn_rad).to_degrees().rem_euclid(360.0), 1),
+            fixed(
+                crate::geometry::survey::degrees_in_turn((st.toolface_rad - t.turn_rad).to_degrees(), 1),
+                1
+            ),
             match t.held_m {
                 Some(h) => format!("; the wall holds it within {} of the bit", units.depth().fmt(h, 0)),
                 None => "; the wall does not hold it: the rotary table does".to_string(),
@@ -250,7 +253,7 @@ fn write_whole(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
                     "{}: {} at {} deg",
                     depth_unit.fmt(b.md_m - n.md_m, 1),
                     force_unit.fmt(n.contact_force_n, 2),
-                    fixed(n.contact_angle_deg, 0)
+                    fixed(crate::geometry::survey::degrees_in_turn(n.contact_angle_deg, 0), 0)
                 )
             })
             .collect();

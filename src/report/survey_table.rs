@@ -17,7 +17,7 @@ pub fn survey_csv(path: &WellPath) -> Result<String, String> {
             "{},{},{},{},{},{},{}\n",
             num(s.md_m, 3)?,
             num(s.inc_rad.to_degrees(), 4)?,
-            num(s.azi_rad.to_degrees(), 4)?,
+            num(crate::geometry::survey::degrees_in_turn(s.azi_rad.to_degrees(), 4), 4)?,
             num(p.z, 4)?,
             num(p.x, 4)?,
             num(p.y, 4)?,

@@ -282,7 +282,7 @@ pub fn reference_cells(e: &EndDirections) -> Result<Vec<String>, String> {
 pub fn assimilation_cells(a: &Assimilation, k: usize, e: &EndDirections) -> Result<Vec<String>, String> {
     let i = &a.intervals[k];
     let deg = |x: f64| num(x.to_degrees(), 4);
-    let azi = |x: f64| num(x.to_degrees().rem_euclid(360.0), 4);
+    let azi = |x: f64| num(crate::geometry::survey::degrees_in_turn(x.to_degrees(), 4), 4);
     Ok(vec![
         deg(i.plain.inc_rad)?,
         azi(i.plain.azi_rad)?,

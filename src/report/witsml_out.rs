@@ -100,7 +100,7 @@ fn trajectory(x: &mut String, k: usize, t: &OutTrajectory) -> Result<(), String>
             "<trajectoryStation uid=\"P-{md}\"><typeTrajStation>{kind}</typeTrajStation>{tool}<md uom=\"m\">{md}</md><tvd uom=\"m\">{}</tvd><incl uom=\"dega\">{}</incl><azi uom=\"dega\">{}</azi><dispNs uom=\"m\">{}</dispNs><dispEw uom=\"m\">{}</dispEw></trajectoryStation>",
             num(p.z, 3)?,
             num(st.inc_rad.to_degrees(), 4)?,
-            num(st.azi_rad.to_degrees().rem_euclid(360.0), 4)?,
+            num(crate::geometry::survey::degrees_in_turn(st.azi_rad.to_degrees(), 4), 4)?,
             num(p.x, 3)?,
             num(p.y, 3)?,
         );

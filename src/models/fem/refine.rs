@@ -359,6 +359,12 @@ pub fn solve_refined_by(
     if split.is_empty() {
         return Ok((model, sol));
     }
+    tracing::debug!(
+        nodes = model.nodes(),
+        highest_split = split.last().copied().unwrap_or(0),
+        split = split.len(),
+        "contact runs refined"
+    );
     let mut fine = refined_model(&model, &split, h_m);
     let state = carried_state(&model, &sol.state, &fine);
     // a warm start near the solution converges with the full tangent (as the predictor's steps

@@ -247,12 +247,8 @@ fn node_result(model: &Model, sol: &Solution, i: usize, mud_density_kg_m3: f64) 
     let (dh, dr) = (d.dot(&f.h), d.dot(&f.r));
     let (cf, ang) = match &ev.gaps[i] {
         Some(g) if g.normal_force > 0.0 => {
-            let a = g
-                .normal
-                .dot(&f.r)
-                .atan2(g.normal.dot(&f.h))
-                .to_degrees()
-                .rem_euclid(360.0);
+            let a = g.normal.dot(&f.r).atan2(g.normal.dot(&f.h)).to_degrees();
+            let a = crate::geometry::survey::degrees_in_turn(a, crate::geometry::survey::FULL_PRECISION_DECIMALS);
             (g.normal_force, a)
         }
         _ => (0.0, 0.0),
