@@ -14,6 +14,8 @@
 //! - [`refine`]: the assembly's mesh refined where a collar comes onto the wall.
 
 pub mod bha;
+pub mod condense;
+pub mod condensed_top;
 pub mod contact;
 pub mod element;
 pub mod kink;
@@ -25,4 +27,5 @@ pub mod reactive;
 pub mod refine;
 pub mod results;
 pub mod solve;
+pub mod stiffness_sink;
 pub mod warm;

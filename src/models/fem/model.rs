@@ -9,8 +9,6 @@
 use super::element::beam::BeamSection;
 use super::element::corotational::{element_forces, element_response_into, ElementForces, ElementState, Mat12};
 use super::kink::Kink;
-use super::linalg::band::BandMatrix;
-use super::linalg::band_lu::GeneralBand;
 use super::mesh::{build_mesh, Mesh};
 use crate::case::{Case, Motion};
 use crate::geometry::{HoleSize, Vec3, WellPath};
@@ -25,52 +23,7 @@ pub const HALF_BANDWIDTH: usize = 11;
 /// augmented-Lagrangian updates remove the penetration it leaves.
 pub const PENALTY_FACTOR: f64 = 10.0;
 
-/// Where assembled stiffness blocks go: the symmetric band (lower triangle read) or the
-/// general band (all entries read).
-pub trait StiffnessSink {
-    /// Zero all entries.
-    fn clear(&mut self);
-    /// `A[dofs[r], dofs[c]] += k[r * ld + c]`.
-    fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize);
-    /// Zero the stored entries of the storage lines of `dofs` (rows of the general band,
-    /// columns of the symmetric band's lower triangle). On the node chain these lines hold
-    /// exactly the entries that the blocks touching those DOFs' node write, so an assembly
-    /// that calls this for each node just before the first block touching it needs no
-    /// [`StiffnessSink::clear`] (and no separate pass over the whole matrix).
-    fn clear_dofs(&mut self, dofs: std::ops::Range<usize>);
-    /// `A[first + r, first + c] += k[(r, c)]` for an element's 12 consecutive DOFs.
-    fn add_element(&mut self, first: usize, k: &Mat12) {
-        let dofs: [usize; 12] = std::array::from_fn(|j| first + j);
-        self.add_block(&dofs, k.transpose().as_slice(), 12);
-    }
-}
-
-impl StiffnessSink for BandMatrix {
-    fn clear(&mut self) {
-        self.fill_zero();
-    }
-    fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
-        BandMatrix::add_block(self, dofs, k, ld);
-    }
-    fn clear_dofs(&mut self, dofs: std::ops::Range<usize>) {
-        BandMatrix::clear_columns(self, dofs);
-    }
-}
-
-impl StiffnessSink for GeneralBand {
-    fn clear(&mut self) {
-        self.fill_zero();
-    }
-    fn add_block(&mut self, dofs: &[usize], k: &[f64], ld: usize) {
-        GeneralBand::add_block(self, dofs, k, ld);
-    }
-    fn clear_dofs(&mut self, dofs: std::ops::Range<usize>) {
-        GeneralBand::clear_rows(self, dofs);
-    }
-    fn add_element(&mut self, first: usize, k: &Mat12) {
-        GeneralBand::add_block_12(self, first, k.as_slice());
-    }
-}
+pub use super::stiffness_sink::StiffnessSink;
 
 /// Loads and kinematics of the operation, SI.
 #[derive(Debug, Clone, Copy)]
@@ -93,7 +46,7 @@ pub struct Loads {
 }
 
 /// How the model's top node is held.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum TopCondition {
     /// The whole string: the top is the rotary table, held on the hole axis laterally and in
     /// twist, free to tilt; the hook load acts along the axis.
@@ -106,6 +59,10 @@ pub enum TopCondition {
         /// Lateral position of the cut node relative to the hole axis (global), m.
         offset_m: Vec3,
     },
+    /// A lower part of a model whose top node carries the part above condensed onto it
+    /// ([`super::condensed_top::CondensedTop`]): nothing held there; the hook load acts through
+    /// the condensed part.
+    Condensed(std::sync::Arc<super::condensed_top::CondensedTop>),
 }
 
 impl Loads {
@@ -306,18 +263,36 @@ impl Model {
         loads: Loads,
         friction_at: impl Fn(f64) -> f64,
     ) -> Model {
+        Model::with_known_frames(path, hole, mesh, bit_md_m, loads, friction_at, |_| None)
+    }
+
+    /// [`Model::new`] with the DOF basis and the axis position (model frame) of node `i` taken
+    /// from `known(i)` where it gives them (a refinement of a model keeps its old nodes'),
+    /// computed from the path elsewhere.
+    pub fn with_known_frames(
+        path: WellPath,
+        hole: HoleSize,
+        mesh: Mesh,
+        bit_md_m: f64,
+        loads: Loads,
+        friction_at: impl Fn(f64) -> f64,
+        known: impl Fn(usize) -> Option<(Matrix3<f64>, Vec3)>,
+    ) -> Model {
         let origin_m = path.axis_at(bit_md_m).position;
         let path = path.translated(-origin_m);
         let md_ref: Vec<f64> = mesh.nodes.iter().map(|n| bit_md_m - n.s_m).collect();
-        let basis: Vec<Matrix3<f64>> = md_ref
+        // the DOF bases and the axis positions of the nodes (each shared by the two elements
+        // that meet there)
+        let (basis, axis_ref): (Vec<Matrix3<f64>>, Vec<Vec3>) = md_ref
             .iter()
-            .map(|&md| {
-                let (t, b1, b2) = path.bishop_at(md);
-                Matrix3::from_columns(&[t, b1, b2])
+            .enumerate()
+            .map(|(i, &md)| {
+                known(i).unwrap_or_else(|| {
+                    let (t, b1, b2) = path.bishop_at(md);
+                    (Matrix3::from_columns(&[t, b1, b2]), path.axis_at(md).position)
+                })
             })
-            .collect();
-        // axis positions of the nodes (each shared by the two elements that meet there)
-        let axis_ref: Vec<Vec3> = md_ref.iter().map(|&md| path.axis_at(md).position).collect();
+            .unzip();
         let sections = mesh
             .elements
             .iter()
@@ -392,19 +367,15 @@ impl Model {
     }
 
     /// DOFs held fixed: the bit's three translations (the axial one through the hook-load
-    /// equation), the top's two lateral translations and its twist.
+    /// equation); at a surface top its two lateral translations and its twist, at a cut top
+    /// all but its axial translation, at a condensed top none.
     pub fn constrained_dofs(&self) -> Vec<usize> {
         let top = self.nodes() - 1;
-        let mut c = vec![
-            self.dof(0, 0),
-            self.dof(0, 1),
-            self.dof(0, 2),
-            self.dof(top, 1),
-            self.dof(top, 2),
-            self.dof(top, 3),
-        ];
-        if let TopCondition::Cut { .. } = self.top {
-            c.extend([self.dof(top, 4), self.dof(top, 5)]);
+        let mut c = vec![self.dof(0, 0), self.dof(0, 1), self.dof(0, 2)];
+        match self.top {
+            TopCondition::Surface => c.extend([self.dof(top, 1), self.dof(top, 2), self.dof(top, 3)]),
+            TopCondition::Cut { .. } => c.extend((1..6).map(|k| self.dof(top, k))),
+            TopCondition::Condensed(_) => {}
         }
         c
     }
@@ -516,9 +487,7 @@ impl Model {
                 r[self.dof(node, k)] -= f_loc[k];
             }
         }
-        // hook load: force -H t_top at the top node
-        let top = nn - 1;
-        r[self.dof(top, 0)] += state.hook_load_n;
+        self.add_top_force(state, &mut r, kmat.as_deref_mut());
         let mut ev = Evaluation {
             residual: r,
             elements,
@@ -545,62 +514,16 @@ impl Model {
         let nn = self.nodes();
         let mut reuse = reuse.map(|v| v.into_iter());
         let mut elements = Vec::with_capacity(nn - 1);
-        let ed = Vec3::new(0.0, 0.0, 1.0);
         let mut tangent = Mat12::zeros();
         for e in 0..nn - 1 {
-            // Node A is the upper node (e + 1), B the lower (e): the chord points down the hole
-            // like the triads' first axis.
             let (a, b) = (e + 1, e);
-            // the section below a bent housing is turned by the kink (the same spin: the
-            // offset is constant in the node's material frame)
-            let kinked;
-            let lam_a = match self.kink {
-                Some(k) if k.element == e => {
-                    kinked = state.triads[a] * k.offset;
-                    &kinked
-                }
-                _ => &state.triads[a],
-            };
-            let st = ElementState {
-                x_a: &state.x[a],
-                x_b: &state.x[b],
-                lam_a,
-                lam_b: &state.triads[b],
-                q_a: &self.basis[a],
-                q_b: &self.basis[b],
-            };
-            let resp = if let Some(prev) = reuse.as_mut() {
-                prev.next().expect("one response per element")
-            } else if k.is_some() {
-                element_response_into(
-                    &st,
-                    &self.sections[e],
-                    self.geometric_stiffness,
-                    self.consistent_tangent,
-                    &mut tangent,
-                )
-            } else {
-                element_forces(&st, &self.sections[e], self.geometric_stiffness)
-            };
-            // gravity: consistent nodal loads of q = w_b e_D on the current chord
-            let l = self.sections[e].l0;
-            let q = ed * self.mesh.elements[e].buoyed_weight_n_per_m;
-            let e1 = resp.frame.column(0).into_owned();
-            let fa = q * (l / 2.0);
-            let ma = e1.cross(&q) * (l * l / 12.0);
-            // mud drag torque about -t, lumped
-            let mt = -e1 * (self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0);
-            let dofs: [usize; 12] = std::array::from_fn(|j| if j < 6 { self.dof(a, j) } else { self.dof(b, j - 6) });
-            let qa = &self.basis[a];
-            let qb = &self.basis[b];
-            let ext = [
-                qa.transpose() * fa,
-                qa.transpose() * (ma + mt),
-                qb.transpose() * fa,
-                qb.transpose() * (-ma + mt),
-            ];
-            for (j, &d) in dofs.iter().enumerate() {
-                r[d] += resp.force[j] - ext[j / 3][j % 3];
+            let given = reuse.as_mut().map(|v| v.next().expect("one response per element"));
+            let want = k.is_some() && given.is_none();
+            let (resp, terms) =
+                self.element_terms(state, e, given, want.then_some(&mut tangent), self.consistent_tangent);
+            let first = self.dof(a, 0);
+            for (j, t) in terms.iter().enumerate() {
+                r[first + j] += t;
             }
             if let Some(km) = k.as_deref_mut() {
                 // each node's lines are zeroed just before the first element that touches
@@ -609,16 +532,76 @@ impl Model {
                 if e == 0 {
                     km.clear_dofs(self.dof(b, 0)..self.dof(b, 0) + 6);
                 }
-                km.clear_dofs(self.dof(a, 0)..self.dof(a, 0) + 6);
-                debug_assert!(dofs.windows(2).all(|p| p[1] == p[0] + 1));
-                if self.consistent_tangent && self.needs_unsymmetric() {
-                    self.add_end_moment_load_stiffness(state, e, &e1, &q, &mut tangent);
-                }
-                km.add_element(dofs[0], &tangent);
+                km.clear_dofs(first..first + 6);
+                km.add_element(first, &tangent);
             }
             elements.push(resp);
         }
         elements
+    }
+
+    /// Element `e` at `state`: its response (`given`, or computed) and its 12 residual terms
+    /// (internal force less its gravity and mud-drag loads, upper node's DOFs first, node
+    /// bases); with `tangent`, its tangent stiffness written there (`consistent`: the full
+    /// consistent tangent with the end moments' load stiffness where the tangent is
+    /// unsymmetric; `given` must then be None).
+    pub(crate) fn element_terms(
+        &self,
+        state: &State,
+        e: usize,
+        given: Option<ElementForces>,
+        tangent: Option<&mut Mat12>,
+        consistent: bool,
+    ) -> (ElementForces, [f64; 12]) {
+        // Node A is the upper node (e + 1), B the lower (e): the chord points down the hole
+        // like the triads' first axis.
+        let (a, b) = (e + 1, e);
+        // the section below a bent housing is turned by the kink (the same spin: the offset
+        // is constant in the node's material frame)
+        let kinked;
+        let lam_a = match self.kink {
+            Some(k) if k.element == e => {
+                kinked = state.triads[a] * k.offset;
+                &kinked
+            }
+            _ => &state.triads[a],
+        };
+        let st = ElementState {
+            x_a: &state.x[a],
+            x_b: &state.x[b],
+            lam_a,
+            lam_b: &state.triads[b],
+            q_a: &self.basis[a],
+            q_b: &self.basis[b],
+        };
+        let mut tangent = tangent;
+        let resp = match (given, tangent.as_deref_mut()) {
+            (Some(r), _) => r,
+            (None, Some(t)) => element_response_into(&st, &self.sections[e], self.geometric_stiffness, consistent, t),
+            (None, None) => element_forces(&st, &self.sections[e], self.geometric_stiffness),
+        };
+        // gravity: consistent nodal loads of q = w_b e_D on the current chord
+        let l = self.sections[e].l0;
+        let q = Vec3::new(0.0, 0.0, 1.0) * self.mesh.elements[e].buoyed_weight_n_per_m;
+        let e1 = resp.frame.column(0).into_owned();
+        let fa = q * (l / 2.0);
+        let ma = e1.cross(&q) * (l * l / 12.0);
+        // mud drag torque about -t, lumped
+        let mt = -e1 * (self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0);
+        let (qa, qb) = (&self.basis[a], &self.basis[b]);
+        let ext = [
+            qa.transpose() * fa,
+            qa.transpose() * (ma + mt),
+            qb.transpose() * fa,
+            qb.transpose() * (-ma + mt),
+        ];
+        let terms = std::array::from_fn(|j| resp.force[j] - ext[j / 3][j % 3]);
+        if let Some(t) = tangent {
+            if consistent && self.needs_unsymmetric() {
+                self.add_end_moment_load_stiffness(state, e, &e1, &q, t);
+            }
+        }
+        (resp, terms)
     }
 
     /// Add to the element tangent `tangent` of element `e` (chord direction `e1`, weight per

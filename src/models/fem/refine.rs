@@ -202,15 +202,30 @@ pub fn refined_model(model: &Model, split: &[usize], h_m: f64) -> Model {
         };
         model.friction[k]
     };
-    let mut out = Model::new(
+    // the old nodes keep their bases and axis positions (the new ones are computed)
+    let old_of: Vec<Option<usize>> = {
+        let old = &model.mesh.nodes;
+        let mut j = 0;
+        mesh.nodes
+            .iter()
+            .map(|n| {
+                while j < old.len() && old[j].s_m < n.s_m {
+                    j += 1;
+                }
+                (j < old.len() && old[j].s_m == n.s_m).then_some(j)
+            })
+            .collect()
+    };
+    let mut out = Model::with_known_frames(
         model.path.translated(model.origin_m),
         model.hole.clone(),
         mesh,
         model.bit_md_m,
         model.loads,
         friction_of,
+        |i| old_of[i].map(|j| (model.basis[j], model.axis_ref[j])),
     );
-    out.top = model.top;
+    out.top = model.top.clone();
     out.reactive = model.reactive.clone();
     out.whirl_md_m = model.whirl_md_m.clone();
     if let Some(k) = model.kink {
@@ -375,6 +390,14 @@ pub fn solve_refined_by(
         carried_start: true,
         ..*ctl
     };
+    let highest = split.last().copied().unwrap_or(0);
+    if let Some(mut again) = super::condense::solve_refined_lower(&model, &sol, &fine, highest, &state, &rest) {
+        again.stats.add_work(&sol.stats);
+        again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
+        again.stats.friction_continuation = sol.stats.friction_continuation;
+        again.stats.buckled_start = sol.stats.buckled_start;
+        return Ok((fine, again));
+    }
     match solve_holding_toolface(&mut fine, &rest, |m| solve_interior_point_from(m, state, &rest)) {
         Ok(mut again) if again.converged => {
             again.stats.add_work(&sol.stats);

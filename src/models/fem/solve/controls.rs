@@ -40,6 +40,10 @@ pub struct SolveControls {
     /// stalled near an equilibrium it cannot reach (the IP cycling), for a tentative solve
     /// that something else follows; 0 (the default) never.
     pub stop_after_capped_subproblems: usize,
+    /// The start is likely an equilibrium already (a state assembled from converged parts,
+    /// [`crate::models::fem::refine`]): the first evaluation is made without the tangent, as
+    /// after a step that was likely the last.
+    pub likely_converged_start: bool,
 }
 
 impl SolveControls {
@@ -77,6 +81,7 @@ impl Default for SolveControls {
             damping_reference_residual: 0.0,
             carried_start: false,
             stop_after_capped_subproblems: 0,
+            likely_converged_start: false,
         }
     }
 }

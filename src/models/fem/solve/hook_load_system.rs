@@ -1,14 +1,15 @@
 //! The bordered hook-load system. The bit is held on the hole axis at the bit MD; when the WOB
 //! is given, the hook load `H` at the top is an extra unknown found with the equation "axial
-//! reaction at the bit = -WOB": the tangent bordered by the hook-load column at the top axial
-//! DOF and the bit's axial row, solved with two back-substitutions of the same factor.
+//! reaction at the bit = -WOB": the tangent bordered by the hook-load column (the top axial
+//! DOF, or a condensed top's column) and the bit's axial row, solved with two
+//! back-substitutions of the same factor.
 
 use super::matrix_and_factor::MatrixAndFactor;
 use crate::models::fem::model::{Evaluation, Model};
 
 /// Newton step of the bordered system with the factored tangent in `lin`: `K du = -r` (`du`
-/// the displacement increment, DOF order, node bases) with the hook-load column at the top
-/// axial DOF `top_ax` when `bordered` (the WOB equation `kb . du = -c` fixes the hook-load
+/// the displacement increment, DOF order, node bases) with the hook-load column `hook` (DOF,
+/// entry; [`Model::hook_column`]) when `bordered` (the WOB equation `kb . du = -c` fixes the hook-load
 /// change `dh`, N; two back-substitutions of the same factor), else `K du = -r` alone with
 /// `dh = 0`. Returns `(du, dh)`.
 pub(crate) fn bordered_step(
@@ -16,7 +17,7 @@ pub(crate) fn bordered_step(
     r: &[f64],
     kb: &[(usize, f64)],
     c: f64,
-    top_ax: usize,
+    hook: &[(usize, f64)],
     bordered: bool,
 ) -> (Vec<f64>, f64) {
     let mut a: Vec<f64> = r.iter().map(|v| -v).collect();
@@ -25,7 +26,9 @@ pub(crate) fn bordered_step(
         return (a, 0.0);
     }
     let mut b = vec![0.0; r.len()];
-    b[top_ax] = 1.0;
+    for &(d, v) in hook {
+        b[d] = v;
+    }
     lin.solve(&mut b);
     let kba: f64 = kb.iter().map(|&(d, v)| v * a[d]).sum();
     let kbb: f64 = kb.iter().map(|&(d, v)| v * b[d]).sum();

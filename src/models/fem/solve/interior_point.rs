@@ -201,8 +201,9 @@ pub(crate) struct ContactSubproblem<'a> {
     pub(crate) c: f64,
     /// The bit's axial row of `K` over the free columns.
     pub(crate) kb: &'a [(usize, f64)],
-    /// Top axial DOF (the hook-load column).
-    pub(crate) top_ax: usize,
+    /// The hook-load column: the residual's change per newton of hook load, by DOF
+    /// ([`Model::hook_column`]).
+    pub(crate) hook: &'a [(usize, f64)],
     /// Whether the hook load is unknown (the system is bordered).
     pub(crate) bordered: bool,
     /// Held DOFs.
@@ -248,6 +249,9 @@ pub(crate) struct IpSolution {
     pub(crate) iterate: IpIterate,
     /// Interior-point iterations (factorizations) made.
     pub(crate) iterations: usize,
+    /// `R / s` per contact of the iterate the last factorization was made at, N/m (empty
+    /// without one): the contact stiffness of the last matrix factored (`K + N diag(R/s) N^T`).
+    pub(crate) factored_ratio: Vec<f64>,
 }
 
 /// Residuals of an iterate and the work vectors of one interior-point iteration.
@@ -380,7 +384,9 @@ impl ContactSubproblem<'_> {
                 w.rd[self.dofs6[j][k]] += it.r[j] * e;
             }
         }
-        w.rd[self.top_ax] += it.dh;
+        for &(d, v) in self.hook {
+            w.rd[d] += v * it.dh;
+        }
         for &d in self.constrained {
             w.rd[d] = 0.0;
         }
@@ -457,12 +463,14 @@ impl ContactSubproblem<'_> {
         }
     }
 
-    /// Solve the predictor's right-hand side together with the hook-load column `K^-1 e_top`
+    /// Solve the predictor's right-hand side together with the hook-load column (`K^-1 e_top`)
     /// (one pass over the factor for both); sets `w.kbb`.
     fn solve_predictor(&self, lin: &MatrixAndFactor, w: &mut Work) {
         w.kbb = if self.bordered {
             w.b_top.fill(0.0);
-            w.b_top[self.top_ax] = 1.0;
+            for &(d, v) in self.hook {
+                w.b_top[d] = v;
+            }
             lin.solve2(&mut w.b_top, &mut w.rhs);
             self.kb.iter().map(|&(d, v)| v * w.b_top[d]).sum::<f64>()
         } else {
@@ -618,6 +626,7 @@ impl ContactSubproblem<'_> {
             blockers: Vec::new(),
         };
         let (mut iterations, mut stalled, mut restarts, mut recentres) = (0usize, 0usize, 0usize, 0usize);
+        let mut factored_ratio = Vec::new();
         let (mut mu_min, mut cycles) = (f64::INFINITY, 0usize);
         for ip in 0..MAX_IP_ITERATIONS {
             let res = self.residuals(lin, ip, &it, &mut w);
@@ -627,6 +636,8 @@ impl ContactSubproblem<'_> {
             iterations += 1;
             self.factor(lin, &it)?;
             stats.factorizations += 1;
+            factored_ratio.clear();
+            factored_ratio.extend(it.r.iter().zip(&it.s).map(|(r, s)| r / s));
             // Mehrotra predictor: the affine-scaling direction (no centering)
             for j in 0..mt {
                 w.rc[j] = -it.r[j] * it.s[j];
@@ -689,6 +700,7 @@ impl ContactSubproblem<'_> {
         Ok(IpSolution {
             iterate: it,
             iterations,
+            factored_ratio,
         })
     }
 }

@@ -27,7 +27,7 @@ use super::interior_point::{
 };
 use super::matrix_and_factor::MatrixAndFactor;
 use super::pins::{add_pin_coupling, constrained_with_pins, hold_pins_on_axis, pin_moves, PIN_EXACT_RESIDUAL};
-use super::solution::{Solution, SolveError, SolveStats};
+use super::solution::{LastLinearization, Solution, SolveError, SolveStats};
 use super::start::cold_start;
 use super::step_caps::step_cap;
 use super::toolface::{HOLD_TURN_MAX_RAD, HOLD_TURN_RAD};
@@ -55,24 +55,80 @@ pub fn solve_interior_point(model: &Model, ctl: &SolveControls) -> Result<Soluti
 pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveControls) -> Result<Solution, SolveError> {
     let t0 = Instant::now();
     let mut newton = InteriorPointNewton::new(model, ctl, &state);
+    let end = newton_loop(&mut newton, &mut state, ctl, false)?;
+    let mut stats = end.stats;
+    let ev = end
+        .ev
+        .expect("a loop that does not stop at a likely step ends evaluated");
+    let eval = newton.final_evaluation(&mut state, ev);
+    stats.kink_turned_to_rad = newton.held.as_ref().and_then(|m| m.kink).map(|k| k.orientation_rad);
+    stats.seconds = t0.elapsed().as_secs_f64();
+    let last_linearization = newton.into_last_linearization();
+    Ok(Solution {
+        state,
+        eval,
+        converged: end.converged,
+        stats,
+        last_linearization,
+    })
+}
+
+/// The interior-point Newton of `model` from `state` (as [`solve_interior_point_from`]) up to
+/// its first step that is likely the last ([`likely_converged`]), without the evaluation that
+/// would check it: for a part whose solution a solve of the whole model checks next
+/// ([`crate::models::fem::condense`]). Returns the state, the work, and whether it stopped at
+/// such a step or converged (false: it failed to).
+pub(crate) fn steps_until_likely(
+    model: &Model,
+    mut state: State,
+    ctl: &SolveControls,
+) -> Result<(State, SolveStats, bool), SolveError> {
+    let t0 = Instant::now();
+    let mut newton = InteriorPointNewton::new(model, ctl, &state);
+    let end = newton_loop(&mut newton, &mut state, ctl, true)?;
+    let mut stats = end.stats;
+    stats.seconds = t0.elapsed().as_secs_f64();
+    Ok((state, stats, end.converged || end.ev.is_none()))
+}
+
+/// How [`newton_loop`] ended.
+struct LoopEnd {
+    /// The last evaluation (None: stopped after a step likely the last, unevaluated).
+    ev: Option<Evaluation>,
+    /// Whether the last evaluation met every convergence criterion.
+    converged: bool,
+    /// The work.
+    stats: SolveStats,
+}
+
+/// The Newton iterations of `newton` on `state` under `ctl` until converged, out of
+/// iterations, time or capped contact subproblems, or, with `stop_at_likely`, right after a
+/// step that is likely the last.
+fn newton_loop(
+    newton: &mut InteriorPointNewton,
+    state: &mut State,
+    ctl: &SolveControls,
+    stop_at_likely: bool,
+) -> Result<LoopEnd, SolveError> {
+    let t0 = Instant::now();
     let mut stats = SolveStats::default();
     let mut converged = false;
     // the previous Newton step was full and its outer residual small: this evaluation is
     // likely the converged one, so it is first made without the tangent (then redone with it
     // if the solution is not converged after all)
-    let mut likely = false;
+    let mut likely = ctl.likely_converged_start;
     let mut redo = false;
     let mut ev;
     loop {
-        if newton.hold_toolface(&state) {
+        if newton.hold_toolface(state) {
             // the kink turned: the state is no longer near this model's equilibrium
             likely = false;
         }
         let skip_tangent = likely && !redo;
         redo = false;
-        let switching = newton.switch_or_hold_pins(&mut state, &stats.residual_history);
-        ev = newton.evaluate(&mut state, !skip_tangent);
-        let lz = newton.linearize(&mut state, &ev, switching);
+        let switching = newton.switch_or_hold_pins(state, &stats.residual_history);
+        ev = newton.evaluate(state, !skip_tangent);
+        let lz = newton.linearize(state, &ev, switching);
         let equilibrium = lz.measures.equilibrium(&newton.ctl);
         let done = equilibrium && lz.measures.pins_held(&newton.ctl) && newton.gaps.exact_pins;
         if skip_tangent && !done && stats.iterations < ctl.max_iterations {
@@ -103,15 +159,18 @@ pub fn solve_interior_point_from(model: &Model, mut state: State, ctl: &SolveCon
             likely = false;
             continue;
         }
-        likely = newton.step(&mut state, &ev, &lz, &mut stats)?;
+        likely = newton.step(state, &ev, &lz, &mut stats)?;
         stats.iterations += 1;
+        if likely && stop_at_likely {
+            return Ok(LoopEnd {
+                ev: None,
+                converged: false,
+                stats,
+            });
+        }
     }
-    let eval = newton.final_evaluation(&mut state, ev);
-    stats.kink_turned_to_rad = newton.held.as_ref().and_then(|m| m.kink).map(|k| k.orientation_rad);
-    stats.seconds = t0.elapsed().as_secs_f64();
-    Ok(Solution {
-        state,
-        eval,
+    Ok(LoopEnd {
+        ev: Some(ev),
         converged,
         stats,
     })
@@ -142,8 +201,8 @@ struct InteriorPointNewton<'a> {
     scale: f64,
     /// The hook load is unknown (the system is bordered by the WOB equation).
     bordered: bool,
-    /// The top axial DOF (the hook-load column).
-    top_ax: usize,
+    /// The hook-load column ([`Model::hook_column`]).
+    hook: Vec<(usize, f64)>,
     /// The managed gaps and the pins.
     contacts: ContactSet,
     /// The model's held DOFs plus the pins' lateral DOFs.
@@ -164,6 +223,22 @@ struct InteriorPointNewton<'a> {
     held: Option<Model>,
     /// Newton steps in a row whose contact subproblem ended at [`MAX_IP_ITERATIONS`].
     capped_in_a_row: usize,
+    /// The last step's contacts (`R / s` of its last factorization, normals and nodes) and the
+    /// state its tangent was assembled at; None before the first step and once the tangent is
+    /// assembled again.
+    last_contacts: Option<LastStep>,
+}
+
+/// The last Newton step's contacts and state ([`LastLinearization`] without the matrix).
+struct LastStep {
+    /// `R / s` per contact of the step's last factorization, N/m.
+    ratio: Vec<f64>,
+    /// Outward normal per contact (node basis).
+    normals: Vec<Vec3>,
+    /// Node per contact.
+    node: Vec<usize>,
+    /// The state the step's tangent was assembled at.
+    state: State,
 }
 
 impl<'a> InteriorPointNewton<'a> {
@@ -202,7 +277,7 @@ impl<'a> InteriorPointNewton<'a> {
             },
             scale,
             bordered: model.loads.hook_load_n.is_none(),
-            top_ax: model.dof(nn - 1, 0),
+            hook: model.hook_column(),
             contacts,
             pin_constrained,
             constrained,
@@ -212,6 +287,7 @@ impl<'a> InteriorPointNewton<'a> {
             hold_rad: model.toolface_hold_rad.filter(|_| model.kink.is_some()),
             held: None,
             capped_in_a_row: 0,
+            last_contacts: None,
         }
     }
 
@@ -264,6 +340,8 @@ impl<'a> InteriorPointNewton<'a> {
     fn evaluate(&mut self, state: &mut State, with_tangent: bool) -> Evaluation {
         let m = self.held.as_ref().unwrap_or(self.model);
         if with_tangent {
+            // the matrix no longer holds the last step's tangent
+            self.last_contacts = None;
             m.evaluate(state, &self.gaps, Some(self.lin.sink()))
         } else {
             m.evaluate(state, &self.gaps, None)
@@ -346,7 +424,7 @@ impl<'a> InteriorPointNewton<'a> {
             r0: &lz.r0,
             c: lz.outer.wob,
             kb: &kb,
-            top_ax: self.top_ax,
+            hook: &self.hook,
             bordered: self.bordered,
             constrained: &self.constrained,
             pin_move: &lz.pin_move,
@@ -365,6 +443,12 @@ impl<'a> InteriorPointNewton<'a> {
         let try_active_set =
             stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL && !self.ctl.carried_start;
         let ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
+        self.last_contacts = Some(LastStep {
+            ratio: ip.factored_ratio.clone(),
+            normals: lz.cols.normals.clone(),
+            node: lz.cols.node.clone(),
+            state: state.clone(),
+        });
         self.capped_in_a_row = match ip.iterations >= MAX_IP_ITERATIONS {
             true => self.capped_in_a_row + 1,
             false => 0,
@@ -410,6 +494,25 @@ impl<'a> InteriorPointNewton<'a> {
                 sink.add_block(&[self.model.dof(i, k)], &[d], 1);
             }
         }
+    }
+
+    /// The last step's linear system ([`LastLinearization`]): for an undamped solve with the LU
+    /// whose last evaluation, after a step, was made without the tangent (the matrix is the
+    /// step's); None otherwise.
+    fn into_last_linearization(self) -> Option<Box<LastLinearization>> {
+        let lu = matches!(self.lin, MatrixAndFactor::General(..));
+        if !(lu && self.ctl.lateral_damping_n_per_m == 0.0 && self.held.is_none()) {
+            return None;
+        }
+        let last = self.last_contacts?;
+        Some(Box::new(LastLinearization {
+            lin: self.lin,
+            ratio: last.ratio,
+            normals: last.normals,
+            node: last.node,
+            constrained: self.constrained,
+            state: last.state,
+        }))
     }
 
     /// The final evaluation of `state`, whose last evaluation is `ev`: contacts with force are

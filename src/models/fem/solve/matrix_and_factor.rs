@@ -66,6 +66,18 @@ impl MatrixAndFactor {
             MatrixAndFactor::General(_, f) => f.solve_in_place(x),
         }
     }
+    /// Solve in place with the leading `x.len()` rows and columns of the factored matrix (the
+    /// DOFs nearest the surface): true for the LU ([`BandLu::solve_leading_in_place`]); false,
+    /// `x` unchanged, for the LDL^T.
+    pub(crate) fn solve_leading(&self, x: &mut [f64]) -> bool {
+        match self {
+            MatrixAndFactor::Symmetric(..) => false,
+            MatrixAndFactor::General(_, f) => {
+                f.solve_leading_in_place(x);
+                true
+            }
+        }
+    }
     /// What the interior point keeps of the assembled matrix (before constraints) while it
     /// factors modified copies: LU factors straight from this object's matrix in one
     /// streaming pass and needs no copy (`None`); LDL^T factors in place and needs one.

@@ -169,6 +169,7 @@ pub fn solve_modified_newton(model: &Model, ctl: &SolveControls) -> Result<Solut
         eval,
         converged,
         stats,
+        last_linearization: None,
     })
 }
 
@@ -198,8 +199,8 @@ struct ModifiedNewton<'a> {
     constrained: Vec<usize>,
     /// The hook load is unknown (the system is bordered by the WOB equation).
     bordered: bool,
-    /// The top axial DOF (the hook-load column).
-    top_ax: usize,
+    /// The hook-load column ([`Model::hook_column`]).
+    hook: Vec<(usize, f64)>,
     /// Load scale, N.
     scale: f64,
     /// A closed gap opens when its reaction is below minus this, N.
@@ -299,7 +300,7 @@ impl<'a> ModifiedNewton<'a> {
             lin,
             constrained: model.constrained_dofs(),
             bordered: model.loads.hook_load_n.is_none(),
-            top_ax: model.dof(nn - 1, 0),
+            hook: model.hook_column(),
             scale,
             // a closed gap opens when its reaction is below -release (Table 1: R >= 0);
             // dropping a reaction smaller than that keeps the residual within its tolerance
@@ -647,7 +648,7 @@ impl<'a> ModifiedNewton<'a> {
         self.inner += 1;
         let model = self.model;
         let nn = model.nodes();
-        let (du, dh) = bordered_step(&self.lin, r, &self.kb, c, self.top_ax, self.bordered);
+        let (du, dh) = bordered_step(&self.lin, r, &self.kb, c, &self.hook, self.bordered);
         let (mut beta, worst) = self.step_cap(ev, &du);
         let worst_res = (0..model.dofs())
             .max_by(|&a, &b| r[a].abs().total_cmp(&r[b].abs()))

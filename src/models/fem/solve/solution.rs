@@ -44,6 +44,10 @@ pub struct SolveStats {
     /// shape (`models::buckled_start`): `Some(true)` kept (the answer came from it),
     /// `Some(false)` tried and not kept; None when none ran.
     pub buckled_start: Option<bool>,
+    /// The refined solve of the assembly's mesh solved its lower part with the string above
+    /// condensed ([`crate::models::fem::condense`]) and the whole refined model converged from
+    /// there.
+    pub lower_part_refined: bool,
     /// The climb from the buckled shape toward the WOB (`models::helical_lock_up::climbed_to_wob`)
     /// that followed a whole-string solve that found no equilibrium and did not reach it: the
     /// WOB it reached and the WOB aimed at, N; None when none ran or it reached the WOB.
@@ -74,6 +78,27 @@ pub struct Solution {
     pub converged: bool,
     /// Statistics.
     pub stats: SolveStats,
+    /// The matrix and factor of the last Newton step of an undamped interior-point solve with
+    /// the LU, and its contacts ([`LastLinearization`]); None otherwise.
+    pub(crate) last_linearization: Option<Box<LastLinearization>>,
+}
+
+/// The last Newton step's linear system of an interior-point solve: what a part of the model
+/// can be condensed with ([`crate::models::fem::condense`]).
+pub(crate) struct LastLinearization {
+    /// The last step's tangent `K` and the LU of its reduced matrix `K + N diag(R/s) N^T`,
+    /// held DOFs held.
+    pub(crate) lin: super::matrix_and_factor::MatrixAndFactor,
+    /// Per contact of that step: `R / s` of the factored matrix, N/m.
+    pub(crate) ratio: Vec<f64>,
+    /// Per contact: outward normal in the node basis.
+    pub(crate) normals: Vec<crate::geometry::Vec3>,
+    /// Per contact: its node.
+    pub(crate) node: Vec<usize>,
+    /// The DOFs held in that step (their rows and columns zeroed in the factor).
+    pub(crate) constrained: Vec<usize>,
+    /// The state the step's tangent was assembled at.
+    pub(crate) state: super::super::model::State,
 }
 
 /// Why a solve failed.
