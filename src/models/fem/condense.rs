@@ -13,9 +13,10 @@
 //! step's contact stiffness), and the whole refined model is checked from there with the
 //! solver's own convergence test.
 
-use super::condensed_top::{state_part, CondensedTop};
+use super::condensed_top::CondensedTop;
 use super::element::corotational::Mat12;
 use super::model::{Model, State, HALF_BANDWIDTH};
+use super::model_top::state_part;
 use super::solve::interior_point_newton::steps_until_likely;
 use super::solve::solution::{LastLinearization, Solution};
 use super::solve::{solve_interior_point_from, SolveControls};
@@ -29,7 +30,8 @@ use nalgebra::{Matrix6, Vector6};
 /// the last ([`steps_until_likely`]: the check below evaluates it), the part above moved by its
 /// linear response ([`Upper::follow`]) and the whole of `fine` solved from there (its first
 /// evaluation without the tangent: converged there, that is the whole cost). None where
-/// it does not apply (a kink, pads, no last linearization, no cut node) or does not converge:
+/// it does not apply (a kink, pads above the cut, no last linearization, no cut node) or does
+/// not converge:
 /// the caller solves `fine` whole.
 pub(crate) fn solve_refined_lower(
     plain: &Model,
@@ -39,10 +41,15 @@ pub(crate) fn solve_refined_lower(
     carried: &State,
     ctl: &SolveControls,
 ) -> Option<Solution> {
-    if plain.kink.is_some() || plain.mesh.pad.is_some() || plain.toolface_hold_rad.is_some() {
+    // a bent housing's toolface is held by turning its kink between solves
+    // (`solve_holding_toolface`), which the whole refined solve does
+    if plain.kink.is_some() || plain.toolface_hold_rad.is_some() {
         return None;
     }
     let cut = cut_node(plain, highest_split + 1 + CUT_MARGIN_NODES)?;
+    if plain.mesh.pad.is_some_and(|p| p.node >= cut) {
+        return None;
+    }
     let upper = Upper::condense(plain, sol, cut)?;
     let c = cut + fine.nodes() - plain.nodes();
     let lower = fine.lower_part(c, upper.top.clone());

@@ -22,6 +22,7 @@ pub mod kink;
 pub mod linalg;
 pub mod mesh;
 pub mod model;
+pub mod model_top;
 pub mod pin_reaction;
 pub mod reactive;
 pub mod refine;

@@ -12,8 +12,9 @@
 
 use super::contacts::ContactColumns;
 use super::convergence::MIN_REFERENCE_CLEARANCE_M;
+use super::errors::{singular, SolveError};
 use super::matrix_and_factor::MatrixAndFactor;
-use super::solution::{singular, SolveError, SolveStats};
+use super::solution::SolveStats;
 use crate::models::fem::model::{Evaluation, Model, StiffnessSink, HALF_BANDWIDTH};
 
 /// Shift of the interior-point warm start off the boundary, per unit of outer residual:

@@ -2,7 +2,7 @@
 //! LDL^T, or general band with LU when friction makes the consistent tangent unsymmetric; and
 //! the interior point's factorizations of the tangent with its contact terms added.
 
-use super::solution::{singular, SolveError};
+use super::errors::{singular, SolveError};
 use crate::models::fem::linalg::band::{BandLdlt, BandMatrix, FactorError};
 use crate::models::fem::linalg::band_lu::{BandLu, GeneralBand};
 use crate::models::fem::model::{Model, StiffnessSink, HALF_BANDWIDTH};

@@ -27,6 +27,7 @@ pub mod contacts;
 pub mod continuation;
 pub mod controls;
 pub mod convergence;
+pub mod errors;
 pub mod gap_springs;
 pub mod helix;
 pub mod hook_load_system;
