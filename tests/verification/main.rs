@@ -12,6 +12,7 @@ mod acceptance_grid;
 mod architecture;
 mod blade;
 mod buckling;
+mod condense;
 mod extremes;
 mod fidelity;
 mod fine_mesh;

@@ -29,10 +29,9 @@ use nalgebra::{Matrix6, Vector6};
 /// ([`Upper::condense`]), the lower part of `fine` solved with that top up to its step likely
 /// the last ([`steps_until_likely`]: the check below evaluates it), the part above moved by its
 /// linear response ([`Upper::follow`]) and the whole of `fine` solved from there (its first
-/// evaluation without the tangent: converged there, that is the whole cost). None where
-/// it does not apply (a kink, pads above the cut, no last linearization, no cut node) or does
-/// not converge:
-/// the caller solves `fine` whole.
+/// evaluation without the tangent: converged there, that is the whole cost). None, with the
+/// reason in the debug log, where it does not apply (a kink, pads above the cut, no last
+/// linearization, no cut node) or does not converge: the caller solves `fine` whole.
 pub(crate) fn solve_refined_lower(
     plain: &Model,
     sol: &Solution,
@@ -41,42 +40,45 @@ pub(crate) fn solve_refined_lower(
     carried: &State,
     ctl: &SolveControls,
 ) -> Option<Solution> {
+    let declined = |why: &str| {
+        tracing::debug!(why, "refined solve by the lower part declined");
+        None
+    };
     // a bent housing's toolface is held by turning its kink between solves
     // (`solve_holding_toolface`), which the whole refined solve does
     if plain.kink.is_some() || plain.toolface_hold_rad.is_some() {
-        return None;
+        return declined("a bent housing");
     }
-    let cut = cut_node(plain, highest_split + 1 + CUT_MARGIN_NODES)?;
+    let Some(cut) = cut_node(plain, highest_split + 1 + CUT_MARGIN_NODES) else {
+        return declined("no cut node above the split");
+    };
     if plain.mesh.pad.is_some_and(|p| p.node >= cut) {
-        return None;
+        return declined("pads above the cut");
     }
-    let upper = Upper::condense(plain, sol, cut)?;
+    let Some(upper) = Upper::condense(plain, sol, cut) else {
+        return declined("no last linearization of the plain solve");
+    };
     let c = cut + fine.nodes() - plain.nodes();
     let lower = fine.lower_part(c, upper.top.clone());
-    let (ls, low, ok) = steps_until_likely(&lower, state_part(carried, 0, c), ctl).ok()?;
+    let (low_state, low, ok) = steps_until_likely(&lower, state_part(carried, 0, c), ctl).ok()?;
     if !ok {
-        return None;
+        return declined("the lower part did not converge");
     }
     let mut state = carried.clone();
-    for i in 0..=c {
-        state.x[i] = ls.x[i];
-        state.triads[i] = ls.triads[i];
-        state.md[i] = ls.md[i];
-        state.multipliers[i] = ls.multipliers[i];
-        state.normal[i] = ls.normal[i];
-        state.pin_multipliers[i] = ls.pin_multipliers[i];
-    }
-    state.hook_load_n = ls.hook_load_n;
+    put_part(&mut state, &low_state);
     if !upper.follow(plain, fine, &mut state) {
-        return None;
+        return declined("the part above does not solve");
     }
     let check = SolveControls {
         likely_converged_start: true,
         ..*ctl
     };
-    let mut whole = solve_interior_point_from(fine, state, &check)
+    let Some(mut whole) = solve_interior_point_from(fine, state, &check)
         .ok()
-        .filter(|s| s.converged)?;
+        .filter(|s| s.converged)
+    else {
+        return declined("the whole refined model did not converge from the parts");
+    };
     tracing::debug!(
         cut_s_m = plain.mesh.nodes[cut].s_m,
         lower_iterations = low.iterations,
@@ -86,6 +88,18 @@ pub(crate) fn solve_refined_lower(
     whole.stats.add_work(&low);
     whole.stats.lower_part_refined = true;
     Some(whole)
+}
+
+/// `part` (the state of the first nodes of `state`'s model, and a hook load) put into `state`.
+fn put_part(state: &mut State, part: &State) {
+    let n = part.x.len();
+    state.x[..n].copy_from_slice(&part.x);
+    state.triads[..n].copy_from_slice(&part.triads);
+    state.md[..n].copy_from_slice(&part.md);
+    state.multipliers[..n].copy_from_slice(&part.multipliers);
+    state.normal[..n].copy_from_slice(&part.normal);
+    state.pin_multipliers[..n].copy_from_slice(&part.pin_multipliers);
+    state.hook_load_n = part.hook_load_n;
 }
 
 /// Nodes between the top of the highest split element and the cut node.

@@ -44,3 +44,42 @@ impl CondensedTop {
         self.force + self.stiffness * self.increment(q, x, triad) + self.hook_column * (hook_load_n - self.hook_load0_n)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::models::fem::element::rotation::exp_so3;
+
+    /// A node moved by `q dx` and turned by the spin `q dw` (as the solver's update applies
+    /// them) has the increment `(dx, dw)` (reference: the update's own definition; 1e-12), and
+    /// the residual is `force + stiffness (dx, dw) + hook_column dH`.
+    #[test]
+    fn increment_and_residual_follow_the_solver_update() {
+        let q = exp_so3(&Vec3::new(0.3, -0.2, 0.5));
+        let triad0 = exp_so3(&Vec3::new(-0.1, 0.7, 0.2));
+        let top = CondensedTop {
+            force: Vector6::new(1.0, -2.0, 3.0, 0.5, -0.25, 4.0),
+            stiffness: Matrix6::from_fn(|r, c| {
+                if r == c {
+                    10.0 + r as f64
+                } else {
+                    0.1 * (r + 2 * c) as f64
+                }
+            }),
+            hook_column: Vector6::new(1.0, 0.01, -0.02, 0.0, 0.003, 0.0),
+            x0: Vec3::new(10.0, -3.0, 2.0),
+            triad0,
+            hook_load0_n: 5e4,
+        };
+        let (dx, dw) = (Vec3::new(1e-3, -2e-4, 5e-5), Vec3::new(2e-4, -1e-3, 3e-4));
+        let x = top.x0 + q * dx;
+        let triad = exp_so3(&(q * dw)) * triad0;
+        let inc = top.increment(&q, &x, &triad);
+        let want = Vector6::new(dx[0], dx[1], dx[2], dw[0], dw[1], dw[2]);
+        assert!((inc - want).amax() < 1e-12, "{inc:?} vs {want:?}");
+        assert!((top.residual(&q, &top.x0, &triad0, 5e4) - top.force).amax() < 1e-12);
+        let r = top.residual(&q, &x, &triad, 5e4 + 100.0);
+        let expected = top.force + top.stiffness * want + top.hook_column * 100.0;
+        assert!((r - expected).amax() < 1e-9, "{r:?} vs {expected:?}");
+    }
+}

@@ -224,9 +224,12 @@ struct InteriorPointNewton<'a> {
     /// Newton steps in a row whose contact subproblem ended at [`MAX_IP_ITERATIONS`].
     capped_in_a_row: usize,
     /// The last step's contacts (`R / s` of its last factorization, normals and nodes) and the
-    /// state its tangent was assembled at; None before the first step and once the tangent is
-    /// assembled again.
+    /// state its tangent was assembled at, the step's matrix and factor being [`Self::lin`];
+    /// None before the first step and once the tangent is assembled again.
     last_contacts: Option<LastStep>,
+    /// The last step's matrix and factor and its [`LastStep`] once a tangent was assembled
+    /// after it (in [`Self::lin`], the other buffer).
+    kept: Option<(MatrixAndFactor, LastStep)>,
 }
 
 /// The last Newton step's contacts and state ([`LastLinearization`] without the matrix).
@@ -239,6 +242,8 @@ struct LastStep {
     node: Vec<usize>,
     /// The state the step's tangent was assembled at.
     state: State,
+    /// The DOFs the step held.
+    constrained: Vec<usize>,
 }
 
 impl<'a> InteriorPointNewton<'a> {
@@ -288,6 +293,7 @@ impl<'a> InteriorPointNewton<'a> {
             held: None,
             capped_in_a_row: 0,
             last_contacts: None,
+            kept: None,
         }
     }
 
@@ -340,8 +346,16 @@ impl<'a> InteriorPointNewton<'a> {
     fn evaluate(&mut self, state: &mut State, with_tangent: bool) -> Evaluation {
         let m = self.held.as_ref().unwrap_or(self.model);
         if with_tangent {
-            // the matrix no longer holds the last step's tangent
-            self.last_contacts = None;
+            // the last step's matrix and factor are kept (a solve converged at this evaluation
+            // hands them out, [`LastLinearization`]) and the tangent assembled in the other
+            // buffer
+            if let Some(last) = self.last_contacts.take() {
+                let spare = match self.kept.take() {
+                    Some((matrix, _)) => matrix,
+                    None => MatrixAndFactor::for_model(self.model),
+                };
+                self.kept = Some((std::mem::replace(&mut self.lin, spare), last));
+            }
             m.evaluate(state, &self.gaps, Some(self.lin.sink()))
         } else {
             m.evaluate(state, &self.gaps, None)
@@ -448,6 +462,7 @@ impl<'a> InteriorPointNewton<'a> {
             normals: lz.cols.normals.clone(),
             node: lz.cols.node.clone(),
             state: state.clone(),
+            constrained: self.constrained.clone(),
         });
         self.capped_in_a_row = match ip.iterations >= MAX_IP_ITERATIONS {
             true => self.capped_in_a_row + 1,
@@ -497,20 +512,22 @@ impl<'a> InteriorPointNewton<'a> {
     }
 
     /// The last step's linear system ([`LastLinearization`]): for an undamped solve with the LU
-    /// whose last evaluation, after a step, was made without the tangent (the matrix is the
-    /// step's); None otherwise.
+    /// that made a step; None otherwise.
     fn into_last_linearization(self) -> Option<Box<LastLinearization>> {
         let lu = matches!(self.lin, MatrixAndFactor::General(..));
         if !(lu && self.ctl.lateral_damping_n_per_m == 0.0 && self.held.is_none()) {
             return None;
         }
-        let last = self.last_contacts?;
+        let (lin, last) = match (self.last_contacts, self.kept) {
+            (Some(last), _) => (self.lin, last),
+            (None, kept) => kept?,
+        };
         Some(Box::new(LastLinearization {
-            lin: self.lin,
+            lin,
             ratio: last.ratio,
             normals: last.normals,
             node: last.node,
-            constrained: self.constrained,
+            constrained: last.constrained,
             state: last.state,
         }))
     }
