@@ -15,7 +15,7 @@
 
 use super::condensed_top::CondensedTop;
 use super::element::corotational::Mat12;
-use super::model::{Model, State, HALF_BANDWIDTH};
+use super::model::{Model, State};
 use super::model_top::state_part;
 use super::solve::interior_point_newton::steps_until_likely;
 use super::solve::solution::{LastLinearization, Solution};
@@ -116,8 +116,9 @@ pub(crate) struct Upper<'a> {
     cut: usize,
     /// The plain solution's residual over the leading DOFs (held DOFs zeroed), N and N.m.
     r_u: Vec<f64>,
-    /// The coupling columns `A_Uc` of the cut's six DOFs over the leading DOFs.
-    a_uc: [Vec<f64>; 6],
+    /// The coupling `A_Uc` of the cut's six DOFs with the node above it (its rows: the last six
+    /// leading DOFs; the rest of `A_Uc` is zero).
+    a_uc: Matrix6<f64>,
     /// The hook-load column over the leading DOFs.
     hook_u: Vec<f64>,
     /// The condensed top of the lower part.
@@ -141,13 +142,12 @@ impl<'a> Upper<'a> {
         let last = sol.last_linearization.as_deref()?;
         let m = plain.dof(cut, 0);
         let held = |d: usize| last.constrained.contains(&d);
-        let lo = m.saturating_sub(HALF_BANDWIDTH);
-        let a_uc: [Vec<f64>; 6] = std::array::from_fn(|k| {
-            (0..m)
-                .map(|i| if i < lo || held(i) { 0.0 } else { last.lin.get(i, m + k) })
-                .collect()
-        });
-        let a_cu = |k: usize, j: usize| if j < lo || held(j) { 0.0 } else { last.lin.get(m + k, j) };
+        // the element above the cut where the factored matrix was assembled (it alone couples
+        // the cut to the part above), its terms at the solution
+        let (k, r_c) = element_at_cut(plain, &last.state, &sol.state, cut);
+        let above = m - 6;
+        let a_uc = Matrix6::from_fn(|r, l| if held(above + r) { 0.0 } else { k[(r, 6 + l)] });
+        let a_cu = |kk: usize, j: usize| if held(j) { 0.0 } else { k[(6 + kk, j - above)] };
         let leading = |v: &[f64]| -> Option<Vec<f64>> {
             let mut x: Vec<f64> = v
                 .iter()
@@ -159,17 +159,17 @@ impl<'a> Upper<'a> {
         // A_cU A_UU^-1 v, over the cut's six DOFs
         let through = |v: &[f64]| -> Option<Vector6<f64>> {
             let x = leading(v)?;
-            Some(Vector6::from_fn(|k, _| (lo..m).map(|j| a_cu(k, j) * x[j]).sum()))
+            Some(Vector6::from_fn(|kk, _| (above..m).map(|j| a_cu(kk, j) * x[j]).sum()))
         };
-        // the element's tangent where the factored block's was assembled (the axial stiffness
-        // of a string free at the surface cancels in the Schur complement), its force at the
-        // solution
-        let (a_cc, r_c) = element_at_cut(plain, &last.state, &sol.state, cut);
-        let mut stiffness = a_cc;
-        for (l, col) in a_uc.iter().enumerate() {
-            let t = through(col)?;
-            for k in 0..6 {
-                stiffness[(k, l)] -= t[k];
+        let mut stiffness = Matrix6::from_fn(|r, c| k[(6 + r, 6 + c)]);
+        for l in 0..6 {
+            let mut col = vec![0.0; m];
+            for r in 0..6 {
+                col[above + r] = a_uc[(r, l)];
+            }
+            let t = through(&col)?;
+            for kk in 0..6 {
+                stiffness[(kk, l)] -= t[kk];
             }
         }
         let mut hook_u = vec![0.0; m];
@@ -212,8 +212,13 @@ impl<'a> Upper<'a> {
         let c = self.cut + shift;
         let du_c = self.top.increment(&fine.basis[c], &state.x[c], &state.triads[c]);
         let dh = state.hook_load_n - self.top.hook_load0_n;
+        let coupled = self.a_uc * du_c;
+        let above = self.m - 6;
         let mut x: Vec<f64> = (0..self.m)
-            .map(|i| -(self.r_u[i] + (0..6).map(|k| self.a_uc[k][i] * du_c[k]).sum::<f64>() + self.hook_u[i] * dh))
+            .map(|i| {
+                let a = if i >= above { coupled[i - above] } else { 0.0 };
+                -(self.r_u[i] + a + self.hook_u[i] * dh)
+            })
             .collect();
         for &d in &self.last.constrained {
             if d < self.m {
@@ -275,15 +280,12 @@ impl Upper<'_> {
     }
 }
 
-/// The tangent block (consistent tangent) at `state_k` and the residual terms at `state_r` of
-/// the element above node `cut` of `model` at that node (DOF basis): the part above's own
-/// terms at the cut.
-fn element_at_cut(model: &Model, state_k: &State, state_r: &State, cut: usize) -> (Matrix6<f64>, Vector6<f64>) {
+/// The tangent (consistent, both nodes, the upper node's DOFs first) at `state_k` and the
+/// residual terms at node `cut` at `state_r` of the element above node `cut` of `model` (DOF
+/// bases): the part above's own terms at the cut.
+fn element_at_cut(model: &Model, state_k: &State, state_r: &State, cut: usize) -> (Mat12, Vector6<f64>) {
     let mut k = Mat12::zeros();
     model.element_terms(state_k, cut, None, Some(&mut k), true);
     let (_, terms) = model.element_terms(state_r, cut, None, None, true);
-    (
-        Matrix6::from_fn(|r, c| k[(6 + r, 6 + c)]),
-        Vector6::from_fn(|r, _| terms[6 + r]),
-    )
+    (k, Vector6::from_fn(|r, _| terms[6 + r]))
 }

@@ -545,6 +545,7 @@ impl Model {
     /// bases); with `tangent`, its tangent stiffness written there (`consistent`: the full
     /// consistent tangent with the end moments' load stiffness where the tangent is
     /// unsymmetric; `given` must then be None).
+    #[inline(always)]
     pub(crate) fn element_terms(
         &self,
         state: &State,
@@ -587,7 +588,8 @@ impl Model {
         let fa = q * (l / 2.0);
         let ma = e1.cross(&q) * (l * l / 12.0);
         // mud drag torque about -t, lumped
-        let mt = -e1 * (self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0);
+        let c = self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0;
+        let mt = -e1 * c;
         let (qa, qb) = (&self.basis[a], &self.basis[b]);
         let ext = [
             qa.transpose() * fa,
@@ -598,31 +600,35 @@ impl Model {
         let terms = std::array::from_fn(|j| resp.force[j] - ext[j / 3][j % 3]);
         if let Some(t) = tangent {
             if consistent && self.needs_unsymmetric() {
-                self.add_end_moment_load_stiffness(state, e, &e1, &q, t);
+                self.add_end_moment_load_stiffness(state, e, &e1, &q, c, t);
             }
         }
         (resp, terms)
     }
 
     /// Add to the element tangent `tangent` of element `e` (chord direction `e1`, weight per
-    /// length `q`, N/m, global) the load stiffness of the end moments that follow the chord
+    /// length `q`, N/m, global; `c` its mud torque lumped at each end, N.m) the load stiffness of the end moments that follow the chord
     /// `r1` (gravity's consistent moments and the mud torque):
     /// `dr1/dx_B = -dr1/dx_A = (I - r1 r1^T)/L`. Unsymmetric, so only in the unsymmetric (LU)
     /// tangent: a symmetric band store keeps one triangle.
-    fn add_end_moment_load_stiffness(&self, state: &State, e: usize, e1: &Vec3, q: &Vec3, tangent: &mut Mat12) {
+    fn add_end_moment_load_stiffness(&self, state: &State, e: usize, e1: &Vec3, q: &Vec3, c: f64, tangent: &mut Mat12) {
         let (a, b) = (e + 1, e);
         let l = self.sections[e].l0;
         let chord = state.x[b] - state.x[a];
         let dr1 = (Matrix3::identity() - e1 * e1.transpose()) / chord.norm();
-        let c = self.mud_torque(e, 0.5 * (state.md[e] + state.md[e + 1])) * l / 2.0;
         let qx = q.cross_matrix() * (l * l / 12.0);
-        // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt)
-        let dm = [-qx - Matrix3::identity() * c, qx - Matrix3::identity() * c];
+        // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt), in the ends' bases
         let bases = [&self.basis[a], &self.basis[b]];
+        let dm = [
+            bases[0].transpose() * (-qx - Matrix3::identity() * c),
+            bases[1].transpose() * (qx - Matrix3::identity() * c),
+        ];
+        // dr1 by the DOFs of A (-) and B (+)
+        let dr = [dr1 * bases[0] * -1.0, dr1 * bases[1]];
         for (end, dme) in dm.iter().enumerate() {
-            for (col, sign) in [(0usize, -1.0), (6usize, 1.0)] {
+            for (k, col) in [0usize, 6].into_iter().enumerate() {
                 // residual = internal - external: minus the load's derivative
-                let blk = bases[end].transpose() * dme * dr1 * bases[col / 6] * (-sign);
+                let blk = -(dme * dr[k]);
                 for rr in 0..3 {
                     for cc in 0..3 {
                         tangent[(6 * end + 3 + rr, col + cc)] += blk[(rr, cc)];

@@ -223,13 +223,11 @@ struct InteriorPointNewton<'a> {
     held: Option<Model>,
     /// Newton steps in a row whose contact subproblem ended at [`MAX_IP_ITERATIONS`].
     capped_in_a_row: usize,
-    /// The last step's contacts (`R / s` of its last factorization, normals and nodes) and the
-    /// state its tangent was assembled at, the step's matrix and factor being [`Self::lin`];
-    /// None before the first step and once the tangent is assembled again.
+    /// The last step's contacts (`R / s` of its last factorization, normals and nodes), the
+    /// state its tangent was assembled at and the DOFs it held, the factor in [`Self::lin`]
+    /// being that step's (an assembly after it writes the matrix, not the factor); None before
+    /// the first step.
     last_contacts: Option<LastStep>,
-    /// The last step's matrix and factor and its [`LastStep`] once a tangent was assembled
-    /// after it (in [`Self::lin`], the other buffer).
-    kept: Option<(MatrixAndFactor, LastStep)>,
 }
 
 /// The last Newton step's contacts and state ([`LastLinearization`] without the matrix).
@@ -293,7 +291,6 @@ impl<'a> InteriorPointNewton<'a> {
             held: None,
             capped_in_a_row: 0,
             last_contacts: None,
-            kept: None,
         }
     }
 
@@ -346,16 +343,6 @@ impl<'a> InteriorPointNewton<'a> {
     fn evaluate(&mut self, state: &mut State, with_tangent: bool) -> Evaluation {
         let m = self.held.as_ref().unwrap_or(self.model);
         if with_tangent {
-            // the last step's matrix and factor are kept (a solve converged at this evaluation
-            // hands them out, [`LastLinearization`]) and the tangent assembled in the other
-            // buffer
-            if let Some(last) = self.last_contacts.take() {
-                let spare = match self.kept.take() {
-                    Some((matrix, _)) => matrix,
-                    None => MatrixAndFactor::for_model(self.model),
-                };
-                self.kept = Some((std::mem::replace(&mut self.lin, spare), last));
-            }
             m.evaluate(state, &self.gaps, Some(self.lin.sink()))
         } else {
             m.evaluate(state, &self.gaps, None)
@@ -456,14 +443,9 @@ impl<'a> InteriorPointNewton<'a> {
         // move changes the contact set), nor on a refined mesh (its degenerate pairs switch)
         let try_active_set =
             stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL && !self.ctl.carried_start;
-        let ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
-        self.last_contacts = Some(LastStep {
-            ratio: ip.factored_ratio.clone(),
-            normals: lz.cols.normals.clone(),
-            node: lz.cols.node.clone(),
-            state: state.clone(),
-            constrained: self.constrained.clone(),
-        });
+        let mut ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
+        let ratio = std::mem::take(&mut ip.factored_ratio);
+        keep_last_step(&mut self.last_contacts, ratio, &lz.cols, state, &self.constrained);
         self.capped_in_a_row = match ip.iterations >= MAX_IP_ITERATIONS {
             true => self.capped_in_a_row + 1,
             false => 0,
@@ -518,12 +500,9 @@ impl<'a> InteriorPointNewton<'a> {
         if !(lu && self.ctl.lateral_damping_n_per_m == 0.0 && self.held.is_none()) {
             return None;
         }
-        let (lin, last) = match (self.last_contacts, self.kept) {
-            (Some(last), _) => (self.lin, last),
-            (None, kept) => kept?,
-        };
+        let last = self.last_contacts?;
         Some(Box::new(LastLinearization {
-            lin,
+            lin: self.lin,
             ratio: last.ratio,
             normals: last.normals,
             node: last.node,
@@ -547,6 +526,44 @@ impl<'a> InteriorPointNewton<'a> {
         };
         self.evaluated()
             .evaluate_reusing_elements(state, &final_gaps, ev.elements)
+    }
+}
+
+/// Keep in `last` a step's contacts (`ratio`: `R / s` of its last factorization), the `state`
+/// its tangent was assembled at and the DOFs it held (`constrained`), in the buffers of the step
+/// before ([`InteriorPointNewton::last_contacts`]).
+fn keep_last_step(
+    last: &mut Option<LastStep>,
+    ratio: Vec<f64>,
+    cols: &ContactColumns,
+    state: &State,
+    constrained: &[usize],
+) {
+    match last {
+        Some(last) => {
+            last.ratio = ratio;
+            last.normals.clone_from(&cols.normals);
+            last.node.clone_from(&cols.node);
+            last.constrained.clear();
+            last.constrained.extend_from_slice(constrained);
+            let (to, from) = (&mut last.state, state);
+            to.x.clone_from(&from.x);
+            to.triads.clone_from(&from.triads);
+            to.md.clone_from(&from.md);
+            to.multipliers.clone_from(&from.multipliers);
+            to.normal.clone_from(&from.normal);
+            to.pin_multipliers.clone_from(&from.pin_multipliers);
+            to.hook_load_n = from.hook_load_n;
+        }
+        None => {
+            *last = Some(LastStep {
+                ratio,
+                normals: cols.normals.clone(),
+                node: cols.node.clone(),
+                state: state.clone(),
+                constrained: constrained.to_vec(),
+            })
+        }
     }
 }
 

@@ -87,8 +87,8 @@ pub struct Solution {
 /// The last Newton step's linear system of an interior-point solve: what a part of the model
 /// can be condensed with ([`crate::models::fem::condense`]).
 pub(crate) struct LastLinearization {
-    /// The last step's tangent `K` and the LU of its reduced matrix `K + N diag(R/s) N^T`,
-    /// held DOFs held.
+    /// The LU of the last step's reduced matrix `K + N diag(R/s) N^T`, held DOFs held (the
+    /// matrix beside it may have been assembled again since).
     pub(crate) lin: super::matrix_and_factor::MatrixAndFactor,
     /// Per contact of that step: `R / s` of the factored matrix, N/m.
     pub(crate) ratio: Vec<f64>,
