@@ -9,7 +9,7 @@
 //! condenses onto it ([`CondensedTop`]: the Schur complement of its block, its force at the
 //! plain solution and the hook load's column) at the cost of a few substitutions. The lower
 //! part is solved with that top ([`Model::lower_part`]), the part above follows linearly
-//! ([`Upper::follow`]: its increments and the contact forces of its contacts in the plain
+//! (`Upper::follow`: its increments and the contact forces of its contacts in the plain
 //! step's contact stiffness), and the whole refined model is checked from there with the
 //! solver's own convergence test.
 

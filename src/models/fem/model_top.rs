@@ -40,7 +40,7 @@ impl Model {
 
     /// The part of this model from the bit to node `top` (inclusive): the same nodes, elements,
     /// sections, bases and frame, so that the first `top + 1` nodes of a [`State`] of this model
-    /// are a state of the part ([`lower_state`]); its top is `condensed`.
+    /// are a state of the part ([`state_part`]); its top is `condensed`.
     ///
     /// # Panics
     /// If `top` is not a node above the bit.
