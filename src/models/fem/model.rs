@@ -617,18 +617,13 @@ impl Model {
         let chord = state.x[b] - state.x[a];
         let dr1 = (Matrix3::identity() - e1 * e1.transpose()) / chord.norm();
         let qx = q.cross_matrix() * (l * l / 12.0);
-        // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt), in the ends' bases
+        // d(ext moment)/dr1 at A (ma + mt) and at B (-ma + mt)
+        let dm = [-qx - Matrix3::identity() * c, qx - Matrix3::identity() * c];
         let bases = [&self.basis[a], &self.basis[b]];
-        let dm = [
-            bases[0].transpose() * (-qx - Matrix3::identity() * c),
-            bases[1].transpose() * (qx - Matrix3::identity() * c),
-        ];
-        // dr1 by the DOFs of A (-) and B (+)
-        let dr = [dr1 * bases[0] * -1.0, dr1 * bases[1]];
         for (end, dme) in dm.iter().enumerate() {
-            for (k, col) in [0usize, 6].into_iter().enumerate() {
+            for (col, sign) in [(0usize, -1.0), (6usize, 1.0)] {
                 // residual = internal - external: minus the load's derivative
-                let blk = -(dme * dr[k]);
+                let blk = bases[end].transpose() * dme * dr1 * bases[col / 6] * (-sign);
                 for rr in 0..3 {
                     for cc in 0..3 {
                         tangent[(6 * end + 3 + rr, col + cc)] += blk[(rr, cc)];
