@@ -53,6 +53,31 @@ pub fn load_temp_case(survey: &str, case_toml: &str) -> Case {
     try_load_temp_case(survey, case_toml).unwrap()
 }
 
+/// `bha` drilling in a straight 8.5 in hole at 30 deg (3,000 m, bit at TD), 80 kN WOB, 60 rpm,
+/// friction 0.25, drill pipe above the assembly, BHA elements of `bel` m.
+pub fn bha_at_30_deg(bha: &str, bel: f64) -> Case {
+    let survey = "md_m,inc_deg,azi_deg\n0,30,0\n3000,30,0\n";
+    let toml = format!(
+        r#"
+[well]
+survey = "survey.csv"
+hole = [{{ to_md = "3000 m", diameter = "8.5 in" }}]
+[mud]
+density = "1.2 sg"
+[operation]
+mode = "drilling"
+bit_md = "3000 m"
+wob = "80 kN"
+rpm = 60
+rop = "10 m/h"
+friction = 0.25
+{bha}{DRILL_PIPE}[solver]
+bha_element_length = "{bel} m"
+"#
+    );
+    load_temp_case(survey, &toml)
+}
+
 /// A slick collar string ([`COLLAR_TO_SURFACE`], properties [`collar_properties`]) `length_m`
 /// long in a straight 8.5 in hole of inclination `inc_deg` and azimuth `azi_deg` (deg), 1.2 sg
 /// mud, sliding without friction at `wob_kn` (kN), elements of `element_m` (m) everywhere;

@@ -18,32 +18,7 @@ use drillpath::models::fem::refine::{
 use drillpath::models::fem::results::extract;
 use drillpath::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 
-use crate::common::{collar, example, fulcrum_bha, load_temp_case, packed_bha, pendulum_bha, DRILL_PIPE};
-
-/// `bha` drilling in a straight 8.5 in hole at 30 deg, 80 kN WOB, 60 rpm, friction 0.25, drill
-/// pipe above the assembly, BHA elements of `bel` m (as `fine_mesh.rs`).
-fn test_bha_case(bha: &str, bel: f64) -> Case {
-    let survey = "md_m,inc_deg,azi_deg\n0,30,0\n3000,30,0\n";
-    let toml = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "3000 m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "drilling"
-bit_md = "3000 m"
-wob = "80 kN"
-rpm = 60
-rop = "10 m/h"
-friction = 0.25
-{bha}{DRILL_PIPE}[solver]
-bha_element_length = "{bel} m"
-"#
-    );
-    load_temp_case(survey, &toml)
-}
+use crate::common::{bha_at_30_deg, collar, example, fulcrum_bha, packed_bha, pendulum_bha};
 
 /// The `bha` model of `case` cut at the default length above its stabilizers.
 fn bha_of(case: &Case) -> Model {
@@ -127,7 +102,7 @@ fn the_lower_part_refined_solve_gives_the_whole_refined_answer_on_the_test_bhas(
         ("pendulum + collars", pendulum_collars),
     ] {
         for bel in [0.5, 1.0] {
-            let case = test_bha_case(&bha, bel);
+            let case = bha_at_30_deg(&bha, bel);
             let label = format!("{name} at {bel} m");
             let d = differences(&case, &bha_of(&case), &label);
             eprintln!("{label}: {d:?}");
@@ -136,23 +111,33 @@ fn the_lower_part_refined_solve_gives_the_whole_refined_answer_on_the_test_bhas(
     }
 }
 
+/// The example wells whose models the comparisons run on.
+const WELLS: [&str; 6] = [
+    "seed-daqing",
+    "j-shape",
+    "s-shape",
+    "forge-16a",
+    "volve-f10",
+    "horizontal",
+];
+
+/// Each of [`WELLS`]' model built by `model` (named `label`) takes the lower part and gives the
+/// whole refined answer.
+fn wells_agree(model: impl Fn(&Case) -> Model, label: &str) {
+    for name in WELLS {
+        let case = example(name);
+        let d = differences(&case, &model(&case), name);
+        eprintln!("{name} {label}: {d:?}");
+        let d = d.unwrap_or_else(|| panic!("{name} {label}: the lower part not taken"));
+        assert_close(d, &format!("{name} {label}"));
+    }
+}
+
 /// The six example wells' `bha` models: every one takes the lower part and gives the whole
 /// refined answer.
 #[test]
 fn the_lower_part_refined_solve_gives_the_whole_refined_answer_on_the_example_wells() {
-    for name in [
-        "seed-daqing",
-        "j-shape",
-        "s-shape",
-        "forge-16a",
-        "volve-f10",
-        "horizontal",
-    ] {
-        let case = example(name);
-        let d = differences(&case, &bha_of(&case), name);
-        eprintln!("{name}: {d:?}");
-        assert_close(d.unwrap_or_else(|| panic!("{name}: the lower part not taken")), name);
-    }
+    wells_agree(bha_of, "bha");
 }
 
 /// The six example wells' whole strings. On s-shape the lower solve twists the cut by 5e-4 rad
@@ -162,20 +147,5 @@ fn the_lower_part_refined_solve_gives_the_whole_refined_answer_on_the_example_we
 /// the answer is the whole refined solve's all the same.
 #[test]
 fn whole_strings_take_the_lower_part_and_give_the_whole_refined_answer() {
-    for name in [
-        "seed-daqing",
-        "j-shape",
-        "s-shape",
-        "forge-16a",
-        "volve-f10",
-        "horizontal",
-    ] {
-        let case = example(name);
-        let d = differences(&case, &Model::from_case(&case), name);
-        eprintln!("{name} whole: {d:?}");
-        assert_close(
-            d.unwrap_or_else(|| panic!("{name} whole: the lower part not taken")),
-            &format!("{name} whole"),
-        );
-    }
+    wells_agree(Model::from_case, "whole");
 }

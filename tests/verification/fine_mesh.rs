@@ -9,7 +9,7 @@ use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
 use drillpath::models::fem::solve::SolveControls;
 use drillpath::models::levels::run;
 
-use crate::common::{collar, fulcrum_bha, load_temp_case, packed_bha, pendulum_bha, DRILL_PIPE};
+use crate::common::{bha_at_30_deg, collar, fulcrum_bha, packed_bha, pendulum_bha};
 use drillpath::models::fem::results::sensor_results;
 
 /// The bit's build force, walk force (N) and inclination tilt (rad), Newton iterations.
@@ -22,29 +22,9 @@ struct Bit {
     nodes: usize,
 }
 
-/// `bha` drilling in a straight 8.5 in hole at 30 deg (3,000 m, bit at TD), 80 kN WOB, 60 rpm,
-/// friction 0.25, drill pipe above the assembly, BHA elements of `bel` m.
+/// The case of `bha` at BHA elements of `bel` m ([`bha_at_30_deg`]).
 fn case(bha: &str, bel: f64) -> Case {
-    let survey = "md_m,inc_deg,azi_deg\n0,30,0\n3000,30,0\n";
-    let toml = format!(
-        r#"
-[well]
-survey = "survey.csv"
-hole = [{{ to_md = "3000 m", diameter = "8.5 in" }}]
-[mud]
-density = "1.2 sg"
-[operation]
-mode = "drilling"
-bit_md = "3000 m"
-wob = "80 kN"
-rpm = 60
-rop = "10 m/h"
-friction = 0.25
-{bha}{DRILL_PIPE}[solver]
-bha_element_length = "{bel} m"
-"#
-    );
-    load_temp_case(survey, &toml)
+    bha_at_30_deg(bha, bel)
 }
 
 fn solve(bha: &str, bel: f64) -> Bit {
