@@ -78,6 +78,19 @@ bha_element_length = "{bel} m"
     load_temp_case(survey, &toml)
 }
 
+/// The `bha` model of `case` cut at the default length above its stabilizers.
+pub fn bha_of(case: &Case) -> drillpath::models::fem::model::Model {
+    use drillpath::models::fem::bha::{bha_model, default_cut_m};
+    let (path, hole, bit) = (&case.well.path, &case.well.hole, case.operation.bit_md_m);
+    let cut = default_cut_m(
+        &case.string,
+        hole.diameter_at(bit),
+        path.point_at(bit).inc_rad,
+        case.mud.density_kg_m3,
+    );
+    bha_model(case, path, hole, bit, cut)
+}
+
 /// A slick collar string ([`COLLAR_TO_SURFACE`], properties [`collar_properties`]) `length_m`
 /// long in a straight 8.5 in hole of inclination `inc_deg` and azimuth `azi_deg` (deg), 1.2 sg
 /// mud, sliding without friction at `wob_kn` (kN), elements of `element_m` (m) everywhere;

@@ -10,7 +10,6 @@
 //! the residual tolerance (1e-7 of a load scale of 1e5-1e6 N) allows 0.01-0.1 N.
 
 use drillpath::case::Case;
-use drillpath::models::fem::bha::{bha_model, default_cut_m};
 use drillpath::models::fem::model::Model;
 use drillpath::models::fem::refine::{
     carried_state, near_bit_elements, refined_model, solve_refined, Scope, REFINED_FRACTION,
@@ -18,19 +17,7 @@ use drillpath::models::fem::refine::{
 use drillpath::models::fem::results::extract;
 use drillpath::models::fem::solve::{solve, solve_interior_point_from, SolveControls};
 
-use crate::common::{bha_at_30_deg, collar, example, fulcrum_bha, packed_bha, pendulum_bha};
-
-/// The `bha` model of `case` cut at the default length above its stabilizers.
-fn bha_of(case: &Case) -> Model {
-    let (path, hole, bit) = (&case.well.path, &case.well.hole, case.operation.bit_md_m);
-    let cut = default_cut_m(
-        &case.string,
-        hole.diameter_at(bit),
-        path.point_at(bit).inc_rad,
-        case.mud.density_kg_m3,
-    );
-    bha_model(case, path, hole, bit, cut)
-}
+use crate::common::{bha_at_30_deg, bha_of, collar, example, fulcrum_bha, packed_bha, pendulum_bha};
 
 /// Differences between the refined solve of `model` by its lower part and the whole refined
 /// solve from the same carried state (bit side forces relative to the lateral bit force, tilt

@@ -9,7 +9,7 @@ use drillpath::case::{choose, Case, Fidelity, Level, Purpose};
 use drillpath::models::fem::solve::SolveControls;
 use drillpath::models::levels::run;
 
-use crate::common::{bha_at_30_deg, collar, fulcrum_bha, packed_bha, pendulum_bha};
+use crate::common::{bha_at_30_deg, bha_of, collar, fulcrum_bha, packed_bha, pendulum_bha};
 use drillpath::models::fem::results::sensor_results;
 
 /// The bit's build force, walk force (N) and inclination tilt (rad), Newton iterations.
@@ -278,20 +278,12 @@ fn carried_state_spreads_the_run_forces_and_keeps_the_total() {
     // to the same total wall force (to 1e-12 relative: only redistributed), every new node of an
     // element with both end nodes touching must carry force (its share of the run's line load)
     // and every other new node none.
-    use drillpath::models::fem::bha::{bha_model, default_cut_m};
     use drillpath::models::fem::refine::{
         carried_state, refined_model, tangency_elements, CONTACT_FORCE_N, REFINED_FRACTION,
     };
     use drillpath::models::fem::solve::solve;
     let case = case(&pendulum_with_sensor(), 0.5);
-    let (path, hole, bit) = (&case.well.path, &case.well.hole, case.operation.bit_md_m);
-    let cut = default_cut_m(
-        &case.string,
-        hole.diameter_at(bit),
-        path.point_at(bit).inc_rad,
-        case.mud.density_kg_m3,
-    );
-    let model = bha_model(&case, path, hole, bit, cut);
+    let model = bha_of(&case);
     let sol = solve(&model, &SolveControls::from_settings(&case.solver)).unwrap();
     assert!(sol.converged);
     let h = REFINED_FRACTION * 0.5;
