@@ -141,25 +141,29 @@ impl<'a> Upper<'a> {
     pub(crate) fn condense(plain: &Model, sol: &'a Solution, cut: usize) -> Option<Upper<'a>> {
         let last = sol.last_linearization.as_deref()?;
         let m = plain.dof(cut, 0);
-        let held = |d: usize| last.constrained.contains(&d);
+        let mut is_held = vec![false; m + 6];
+        for &d in &last.constrained {
+            if d < is_held.len() {
+                is_held[d] = true;
+            }
+        }
+        let held = |d: usize| is_held[d];
         // the element above the cut where the factored matrix was assembled (it alone couples
         // the cut to the part above), its terms at the solution
         let (k, r_c) = element_at_cut(plain, &last.state, &sol.state, cut);
         let above = m - 6;
         let a_uc = Matrix6::from_fn(|r, l| if held(above + r) { 0.0 } else { k[(r, 6 + l)] });
         let a_cu = |kk: usize, j: usize| if held(j) { 0.0 } else { k[(6 + kk, j - above)] };
-        let leading = |v: &[f64]| -> Option<Vec<f64>> {
+        // A_cU A_UU^-1 v, over the cut's six DOFs: A_cU reaches the node above the cut only, so
+        // only its rows of the solution are computed
+        let through = |v: &[f64]| -> Option<Vector6<f64>> {
             let mut x: Vec<f64> = v
                 .iter()
                 .enumerate()
                 .map(|(i, &e)| if held(i) { 0.0 } else { e })
                 .collect();
-            (last.lin.solve_leading(&mut x) && x.iter().all(|v| v.is_finite())).then_some(x)
-        };
-        // A_cU A_UU^-1 v, over the cut's six DOFs
-        let through = |v: &[f64]| -> Option<Vector6<f64>> {
-            let x = leading(v)?;
-            Some(Vector6::from_fn(|kk, _| (above..m).map(|j| a_cu(kk, j) * x[j]).sum()))
+            let solved = last.lin.solve_leading_from(&mut x, above) && x[above..].iter().all(|v| v.is_finite());
+            solved.then(|| Vector6::from_fn(|kk, _| (above..m).map(|j| a_cu(kk, j) * x[j]).sum()))
         };
         let mut stiffness = Matrix6::from_fn(|r, c| k[(6 + r, 6 + c)]);
         for l in 0..6 {

@@ -458,22 +458,30 @@ impl BandLu {
     /// # Panics
     /// Without a valid factor, or if `x` is longer than the order.
     pub fn solve_leading_in_place(&self, x: &mut [f64]) {
-        assert!(self.ok, "BandLu::solve_leading_in_place without a valid factor");
+        self.solve_leading_from(x, 0);
+    }
+
+    /// [`BandLu::solve_leading_in_place`] for the rows `from..` of the solution only (those
+    /// above `from` are left unspecified): the backward substitution stops there, and the
+    /// forward one starts at the first nonzero entry of `x`. A right-hand side that lives in
+    /// the last rows and is wanted there costs a few rows, not the whole block.
+    ///
+    /// # Panics
+    /// Without a valid factor, or if `x` is longer than the order.
+    pub fn solve_leading_from(&self, x: &mut [f64], from: usize) {
+        assert!(self.ok, "BandLu::solve_leading_from without a valid factor");
         let m = x.len();
-        assert!(
-            m <= self.f.n,
-            "BandLu::solve_leading_in_place: {m} rows of {}",
-            self.f.n
-        );
+        assert!(m <= self.f.n, "BandLu::solve_leading_from: {m} rows of {}", self.f.n);
         let (b, w) = (self.f.b, self.f.w);
         let data = &self.f.data;
-        for i in 0..m {
-            let lo = i.saturating_sub(b);
+        let first = x.iter().position(|&v| v != 0.0).unwrap_or(m);
+        for i in first..m {
+            let lo = i.saturating_sub(b).max(first);
             let row = &data[i * w + (lo + b - i)..i * w + b];
             let acc: f64 = row.iter().zip(&x[lo..i]).map(|(l, v)| l * v).sum();
             x[i] -= acc;
         }
-        for i in (0..m).rev() {
+        for i in (from.min(m)..m).rev() {
             let hi = (i + b).min(m - 1);
             let row = &data[i * w + b + 1..i * w + b + 1 + (hi - i)];
             let acc: f64 = row.iter().zip(&x[i + 1..=hi]).map(|(u, v)| u * v).sum();
@@ -609,7 +617,8 @@ mod tests {
         }
     }
 
-    /// The factor of the whole matrix solves its leading blocks: against nalgebra's dense LU of
+    /// The factor of the whole matrix solves its leading blocks, and their last rows alone:
+    /// against nalgebra's dense LU of
     /// the leading 17 x 17 block of an unsymmetric band (tolerance 1e-12).
     #[test]
     fn the_factor_solves_a_leading_block() {
@@ -634,8 +643,17 @@ mod tests {
         lu.factor(&a).unwrap();
         let mut x = rhs.clone();
         lu.solve_leading_in_place(&mut x);
-        let xd = dense.lu().solve(&DVector::from_vec(rhs)).unwrap();
+        let xd = dense.clone().lu().solve(&DVector::from_vec(rhs)).unwrap();
         for i in 0..m {
+            assert!((x[i] - xd[i]).abs() < 1e-12, "{i}: {} vs {}", x[i], xd[i]);
+        }
+        // a right-hand side in the last rows, the solution wanted in the last six rows
+        let mut tail = vec![0.0; m];
+        tail[m - 2] = 1.0;
+        let mut x = tail.clone();
+        lu.solve_leading_from(&mut x, m - 6);
+        let xd = dense.lu().solve(&DVector::from_vec(tail)).unwrap();
+        for i in m - 6..m {
             assert!((x[i] - xd[i]).abs() < 1e-12, "{i}: {} vs {}", x[i], xd[i]);
         }
     }

@@ -70,10 +70,15 @@ impl MatrixAndFactor {
     /// DOFs nearest the surface): true for the LU ([`BandLu::solve_leading_in_place`]); false,
     /// `x` unchanged, for the LDL^T.
     pub(crate) fn solve_leading(&self, x: &mut [f64]) -> bool {
+        self.solve_leading_from(x, 0)
+    }
+    /// [`MatrixAndFactor::solve_leading`] for the rows `from..` only
+    /// ([`BandLu::solve_leading_from`]).
+    pub(crate) fn solve_leading_from(&self, x: &mut [f64], from: usize) -> bool {
         match self {
             MatrixAndFactor::Symmetric(..) => false,
             MatrixAndFactor::General(_, f) => {
-                f.solve_leading_in_place(x);
+                f.solve_leading_from(x, from);
                 true
             }
         }
