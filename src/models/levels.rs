@@ -298,10 +298,7 @@ fn off_the_straight_branch(case: &Case, model: Model, sol: Solution, ctl: &Solve
         let sol = buckled_or_straight(case, &model, sol, &straight, &axial, ctl);
         return (model, sol);
     };
-    again.stats.add_work(&sol.stats);
-    again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
-    again.stats.friction_continuation = sol.stats.friction_continuation;
-    again.stats.buckled_start = sol.stats.buckled_start;
+    again.stats.continue_from(&sol.stats);
     let results = extract(&fine, &again, case.mud.density_kg_m3);
     let straight = node_runs(case, &fine, &results);
     let axial: Vec<f64> = results.nodes.iter().map(|n| n.axial_force_n).collect();

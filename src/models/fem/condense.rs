@@ -128,7 +128,7 @@ pub(crate) struct Upper<'a> {
 /// The first node at or above `lowest` (plain model) where neither it nor the node above is a
 /// pin (a zero-clearance gap: held on the axis, its force coupled to its neighbours), with at
 /// least two nodes above it; None if there is none.
-pub fn cut_node(plain: &Model, lowest: usize) -> Option<usize> {
+fn cut_node(plain: &Model, lowest: usize) -> Option<usize> {
     let pin = |i: usize| {
         plain.mesh.nodes[i].has_gap && plain.clearance(i, plain.md_ref[i]) <= super::contact::gap::ZERO_CLEARANCE_M
     };
@@ -251,9 +251,7 @@ impl<'a> Upper<'a> {
         }
         true
     }
-}
 
-impl Upper<'_> {
     /// Shifts (global, m) of the nodes of `fine` above the cut that take out the second-order
     /// stretch of the linear increments `x` (the leading DOFs) of the part above: added
     /// translations lengthen an element that turns by `theta` by `L theta^2 / 2`, and a stiff

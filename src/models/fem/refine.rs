@@ -392,18 +392,12 @@ pub fn solve_refined_by(
     };
     let highest = split.last().copied().unwrap_or(0);
     if let Some(mut again) = super::condense::solve_refined_lower(&model, &sol, &fine, highest, &state, &rest) {
-        again.stats.add_work(&sol.stats);
-        again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
-        again.stats.friction_continuation = sol.stats.friction_continuation;
-        again.stats.buckled_start = sol.stats.buckled_start;
+        again.stats.continue_from(&sol.stats);
         return Ok((fine, again));
     }
     match solve_holding_toolface(&mut fine, &rest, |m| solve_interior_point_from(m, state, &rest)) {
         Ok(mut again) if again.converged => {
-            again.stats.add_work(&sol.stats);
-            again.stats.wob_continuation_n = sol.stats.wob_continuation_n;
-            again.stats.friction_continuation = sol.stats.friction_continuation;
-            again.stats.buckled_start = sol.stats.buckled_start;
+            again.stats.continue_from(&sol.stats);
             Ok((fine, again))
         }
         other => {

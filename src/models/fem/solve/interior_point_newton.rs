@@ -226,7 +226,8 @@ struct InteriorPointNewton<'a> {
     /// The last step's contacts (`R / s` of its last factorization, normals and nodes), the
     /// state its tangent was assembled at and the DOFs it held, the factor in [`Self::lin`]
     /// being that step's (an assembly after it writes the matrix, not the factor); None before
-    /// the first step.
+    /// the first step and in a solve that does not hand it out
+    /// ([`Self::hands_out_last_step`]).
     last_contacts: Option<LastStep>,
 }
 
@@ -444,8 +445,15 @@ impl<'a> InteriorPointNewton<'a> {
         let try_active_set =
             stats.iterations > 0 && lz.pin_move.is_empty() && rn < ACTIVE_SET_RESIDUAL && !self.ctl.carried_start;
         let mut ip = sub.solve(&mut self.lin, stats, rn, try_active_set)?;
-        let ratio = std::mem::take(&mut ip.factored_ratio);
-        keep_last_step(&mut self.last_contacts, ratio, &lz.cols, state, &self.constrained);
+        if self.hands_out_last_step() {
+            self.last_contacts = Some(LastStep {
+                ratio: std::mem::take(&mut ip.factored_ratio),
+                normals: lz.cols.normals.clone(),
+                node: lz.cols.node.clone(),
+                state: state.clone(),
+                constrained: self.constrained.clone(),
+            });
+        }
         self.capped_in_a_row = match ip.iterations >= MAX_IP_ITERATIONS {
             true => self.capped_in_a_row + 1,
             false => 0,
@@ -493,11 +501,18 @@ impl<'a> InteriorPointNewton<'a> {
         }
     }
 
-    /// The last step's linear system ([`LastLinearization`]): for an undamped solve with the LU
-    /// that made a step; None otherwise.
-    fn into_last_linearization(self) -> Option<Box<LastLinearization>> {
+    /// Whether the solve hands out its last step's linear system ([`LastLinearization`]): an
+    /// undamped solve with the LU, its kink not turned (the damping and a turned kink are in
+    /// the factored matrix); the steps of other solves keep nothing.
+    fn hands_out_last_step(&self) -> bool {
         let lu = matches!(self.lin, MatrixAndFactor::General(..));
-        if !(lu && self.ctl.lateral_damping_n_per_m == 0.0 && self.held.is_none()) {
+        lu && self.ctl.lateral_damping_n_per_m == 0.0 && self.held.is_none()
+    }
+
+    /// The last step's linear system ([`LastLinearization`]) where the solve hands it out
+    /// ([`Self::hands_out_last_step`]) and made a step; None otherwise.
+    fn into_last_linearization(self) -> Option<Box<LastLinearization>> {
+        if !self.hands_out_last_step() {
             return None;
         }
         let last = self.last_contacts?;
@@ -526,44 +541,6 @@ impl<'a> InteriorPointNewton<'a> {
         };
         self.evaluated()
             .evaluate_reusing_elements(state, &final_gaps, ev.elements)
-    }
-}
-
-/// Keep in `last` a step's contacts (`ratio`: `R / s` of its last factorization), the `state`
-/// its tangent was assembled at and the DOFs it held (`constrained`), in the buffers of the step
-/// before ([`InteriorPointNewton::last_contacts`]).
-fn keep_last_step(
-    last: &mut Option<LastStep>,
-    ratio: Vec<f64>,
-    cols: &ContactColumns,
-    state: &State,
-    constrained: &[usize],
-) {
-    match last {
-        Some(last) => {
-            last.ratio = ratio;
-            last.normals.clone_from(&cols.normals);
-            last.node.clone_from(&cols.node);
-            last.constrained.clear();
-            last.constrained.extend_from_slice(constrained);
-            let (to, from) = (&mut last.state, state);
-            to.x.clone_from(&from.x);
-            to.triads.clone_from(&from.triads);
-            to.md.clone_from(&from.md);
-            to.multipliers.clone_from(&from.multipliers);
-            to.normal.clone_from(&from.normal);
-            to.pin_multipliers.clone_from(&from.pin_multipliers);
-            to.hook_load_n = from.hook_load_n;
-        }
-        None => {
-            *last = Some(LastStep {
-                ratio,
-                normals: cols.normals.clone(),
-                node: cols.node.clone(),
-                state: state.clone(),
-                constrained: constrained.to_vec(),
-            })
-        }
     }
 }
 

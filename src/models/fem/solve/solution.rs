@@ -67,6 +67,16 @@ impl SolveStats {
         self.factorizations += other.factorizations;
         self.seconds += other.seconds;
     }
+
+    /// These statistics of a solve that continued `first` (a re-solve of its solution on a
+    /// refined mesh, or from a helix): `first`'s work added ([`SolveStats::add_work`]) and the
+    /// path it took to its solution kept (WOB and friction continuation, buckled start).
+    pub fn continue_from(&mut self, first: &SolveStats) {
+        self.add_work(first);
+        self.wob_continuation_n = first.wob_continuation_n;
+        self.friction_continuation = first.friction_continuation;
+        self.buckled_start = first.buckled_start;
+    }
 }
 
 /// A converged (or flagged unconverged) solution.
