@@ -87,8 +87,15 @@ pub const ACTIVE_SET_RESIDUAL: f64 = 1e-3;
 /// per contact (multipliers).
 pub const ACTIVE_SET_EPS: f64 = 1e-9;
 
-/// Active-set steps tried per Newton step before the interior point takes over.
+/// Active-set steps tried per Newton step before the interior point takes over, unless the
+/// set is settling ([`ACTIVE_SET_MAX_TRIES`]).
 pub const ACTIVE_SET_TRIES: usize = 2;
+
+/// Active-set steps tried at most per Newton step: beyond [`ACTIVE_SET_TRIES`], one more each
+/// time a try switched fewer pairs than the one before (the set settling, not cycling). On the
+/// example wells' `bha` solves 2-3 factorizations fewer on two of six (one pair, then none, to
+/// switch), the others unchanged (docs/performance.md, "The refined solve of the lower part").
+pub const ACTIVE_SET_MAX_TRIES: usize = 3;
 
 /// Smallest force of a pair in the active set's start, per contact's share of the load scale:
 /// a pair with less force (one just touching, at the end of a contact run) starts outside the
@@ -282,6 +289,40 @@ struct Work {
     /// The pairs that limited the stalled steps since the last step that was not: contact
     /// index and the pair's ratio `|dR / ds|` in that step, N/m.
     blockers: Vec<(usize, f64)>,
+}
+
+/// The active-set steps left to an interior-point solve ([`ACTIVE_SET_TRIES`],
+/// [`ACTIVE_SET_MAX_TRIES`]).
+struct ActiveSetTries {
+    /// Tries left.
+    left: usize,
+    /// Tries made.
+    made: usize,
+    /// Pairs switched by the last try.
+    last_switched: usize,
+}
+
+impl ActiveSetTries {
+    /// [`ACTIVE_SET_TRIES`] tries, or none.
+    fn new(try_active_set: bool) -> ActiveSetTries {
+        ActiveSetTries {
+            left: if try_active_set { ACTIVE_SET_TRIES } else { 0 },
+            made: 0,
+            last_switched: usize::MAX,
+        }
+    }
+
+    /// Count a try that switched `switched` pairs; whether another is made: while tries are
+    /// left, or, up to [`ACTIVE_SET_MAX_TRIES`], when this one switched fewer than the last.
+    fn another_after(&mut self, switched: usize) -> bool {
+        self.left -= 1;
+        self.made += 1;
+        if self.left == 0 && switched < self.last_switched && self.made < ACTIVE_SET_MAX_TRIES {
+            self.left = 1;
+        }
+        self.last_switched = switched;
+        self.left > 0
+    }
 }
 
 /// Sizes of an iterate's residuals.
@@ -515,9 +556,9 @@ impl ContactSubproblem<'_> {
     }
 
     /// The active-set step: the affine direction is taken in full when no pair leaves its set
-    /// `in_set` (the equality-constrained Newton step of that set; returns `true`); otherwise
-    /// the pairs that left it switch sides (returns `false`).
-    fn try_active_set(&self, in_set: &mut [bool], it: &mut IpIterate, w: &Work, dh_aff: f64) -> bool {
+    /// `in_set` (the equality-constrained Newton step of that set; returns 0); otherwise
+    /// the pairs that left it switch sides (returns how many switched).
+    fn try_active_set(&self, in_set: &mut [bool], it: &mut IpIterate, w: &Work, dh_aff: f64) -> usize {
         let eps_r = ACTIVE_SET_EPS * self.per_contact();
         let mut switched = 0usize;
         for (j, inside) in in_set.iter_mut().enumerate() {
@@ -531,7 +572,7 @@ impl ContactSubproblem<'_> {
         }
         tracing::trace!(switched, "active-set step");
         if switched > 0 {
-            return false;
+            return switched;
         }
         for (x, d) in it.du.iter_mut().zip(&w.rhs) {
             *x += d;
@@ -541,7 +582,7 @@ impl ContactSubproblem<'_> {
             it.r[j] = (it.r[j] + w.dr_aff[j]).max(0.0);
             it.s[j] = (it.s[j] + w.ds_aff[j]).max(0.0);
         }
-        true
+        0
     }
 
     /// Mehrotra's corrector after the affine direction in `w`: the centering
@@ -607,8 +648,8 @@ impl ContactSubproblem<'_> {
         };
         let mut it = self.start(shift);
         let mut in_set = self.initial_set();
-        let mut active_set_tries = if try_active_set { ACTIVE_SET_TRIES } else { 0 };
-        if active_set_tries > 0 {
+        let mut tries = ActiveSetTries::new(try_active_set);
+        if tries.left > 0 {
             self.active_set_start(&in_set, &mut it);
         }
         let mut w = Work {
@@ -646,12 +687,12 @@ impl ContactSubproblem<'_> {
             self.build_rhs(&it, &mut w);
             self.solve_predictor(lin, &mut w);
             let dh_aff = self.finish(&it, &mut w, true);
-            if active_set_tries > 0 {
-                active_set_tries -= 1;
-                if self.try_active_set(&mut in_set, &mut it, &w, dh_aff) {
+            if tries.left > 0 {
+                let switched = self.try_active_set(&mut in_set, &mut it, &w, dh_aff);
+                if switched == 0 {
                     break;
                 }
-                if active_set_tries > 0 {
+                if tries.another_after(switched) {
                     self.active_set_start(&in_set, &mut it);
                 } else {
                     it.r = self.start_r(shift);
@@ -709,6 +750,21 @@ impl ContactSubproblem<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Two tries whatever they switch; a third only after a try that switched fewer pairs than
+    /// the one before; never a fourth.
+    #[test]
+    fn active_set_tries_go_on_only_while_the_set_settles() {
+        let tries = |switched: &[usize]| {
+            let mut t = ActiveSetTries::new(true);
+            switched.iter().take_while(|&&s| t.another_after(s)).count() + 1
+        };
+        assert_eq!(tries(&[4, 5, 1, 0]), 2);
+        assert_eq!(tries(&[6, 6, 1, 0]), 2);
+        assert_eq!(tries(&[2, 1, 1, 0]), 3);
+        assert_eq!(tries(&[3, 2, 1, 0]), 3);
+        assert_eq!(ActiveSetTries::new(false).left, 0);
+    }
 
     /// The pair that limits the step is found by its own ratio to the boundary (here the second
     /// pair's force, 0.1 / 10 = 0.01, before the first pair's 1 / 0.5 = 2), with its `|dR/ds|`.
