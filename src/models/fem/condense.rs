@@ -60,7 +60,7 @@ pub(crate) fn solve_refined_lower(
     };
     let c = cut + fine.nodes() - plain.nodes();
     let lower = fine.lower_part(c, upper.top.clone());
-    let (low_state, low, ok) = steps_until_likely(&lower, state_part(carried, 0, c), ctl).ok()?;
+    let (low_state, low, ok) = steps_until_likely(&lower, state_part(carried, c), ctl).ok()?;
     if !ok {
         return declined("the lower part did not converge");
     }

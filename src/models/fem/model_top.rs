@@ -60,15 +60,16 @@ impl Model {
     }
 }
 
-/// The nodes `lo..=hi` of `state` (the hook load kept).
-pub fn state_part(state: &State, lo: usize, hi: usize) -> State {
-    let r = lo..hi + 1;
+/// The nodes from the bit to `top` (inclusive) of `state`, the hook load kept: a state of
+/// [`Model::lower_part`] of the same `top`.
+pub fn state_part(state: &State, top: usize) -> State {
+    let r = ..top + 1;
     State {
-        x: state.x[r.clone()].to_vec(),
-        triads: state.triads[r.clone()].to_vec(),
-        md: state.md[r.clone()].to_vec(),
-        multipliers: state.multipliers[r.clone()].to_vec(),
-        normal: state.normal[r.clone()].to_vec(),
+        x: state.x[r].to_vec(),
+        triads: state.triads[r].to_vec(),
+        md: state.md[r].to_vec(),
+        multipliers: state.multipliers[r].to_vec(),
+        normal: state.normal[r].to_vec(),
         hook_load_n: state.hook_load_n,
         pin_multipliers: state.pin_multipliers[r].to_vec(),
     }
