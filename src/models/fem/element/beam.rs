@@ -38,6 +38,7 @@ pub struct LocalResponse {
 
 /// Evaluate the local element. `with_geometric = false` drops the axial-force/bending coupling
 /// (a linear beam), used to show that the geometric stiffness matters.
+#[inline(always)]
 pub fn local_response(s: &BeamSection, p: &[f64; 7], with_geometric: bool) -> LocalResponse {
     let l0 = s.l0;
     let [u, ta1, ta2, ta3, tb1, tb2, tb3] = *p;

@@ -93,6 +93,7 @@ struct Kinematics {
     ti_b: Matrix3<f64>,
 }
 
+#[inline(always)]
 fn kinematics(st: &ElementState, l0: f64) -> Kinematics {
     let d = st.x_b - st.x_a;
     let ln = d.norm();
@@ -155,6 +156,7 @@ fn b_matrix(st: &ElementState, l0: f64) -> (SMatrix<f64, 7, 12>, Kinematics) {
 
 /// [`b_matrix`] written into `b` (every entry set), the kinematics returned: no 7 x 12
 /// temporary moved around.
+#[inline(always)]
 fn b_matrix_into(st: &ElementState, l0: f64, b: &mut SMatrix<f64, 7, 12>) -> Kinematics {
     let k = kinematics(st, l0);
     let rr = k.rr;
@@ -289,6 +291,7 @@ const TWIST: [usize; 2] = [1, 4];
 /// formed and mirrored (hand-written: about 2/3 of the multiplications of the plain product).
 /// `K B` runs over the non-zeros of `K` only ([`AXIAL_BENDING`], [`TWIST`]), summed in the
 /// dense product's order, so the result is bit for bit that of `(K * B)`.
+#[inline(always)]
 fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>, out: &mut Mat12) {
     debug_assert!(AXIAL_BENDING
         .iter()
@@ -328,6 +331,10 @@ fn congruence(b: &SMatrix<f64, 7, 12>, kl: &SMatrix<f64, 7, 7>, out: &mut Mat12)
     }
 }
 
+/// The element's forces and section results, and its tangent into `tangent_out` when given
+/// (see [`element_response`]). Compiled also for AVX2 and selected at run time where the
+/// processor has it (the same operations in the same order: the same results bit for bit).
+#[multiversion::multiversion(targets("x86_64+avx2+fma"))]
 fn response(
     st: &ElementState,
     s: &BeamSection,
@@ -386,6 +393,7 @@ fn response(
 
 /// `d(T^-T(theta) m)/d(theta)` for the inverse tangent operator of [`tangent_inverse`]
 /// (`T^-T m = m + theta x m / 2 + eta(a) theta x (theta x m)`, `a = |theta|`).
+#[inline(always)]
 fn d_tinv_t_m(theta: &Vec3, m: &Vec3) -> Matrix3<f64> {
     let a = theta.norm();
     // eta(a) = (1 - (a/2) cot(a/2)) / a^2 and mu = eta'(a) / a, by series for small a
@@ -433,6 +441,7 @@ fn geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>) ->
 
 /// `out += (dB^T/dp_global) f_local` (see `geometric_tangent`, its test form, for the
 /// derivation), each entry added once (no 12x12 temporary).
+#[inline(always)]
 fn add_geometric_tangent(st: &ElementState, k: &Kinematics, fl: &SVector<f64, 7>, out: &mut Mat12) {
     type Blocks = [[Matrix3<f64>; 4]; 4];
     let rr = k.rr;

@@ -25,6 +25,7 @@ pub fn exp_so3(theta: &Vec3) -> Matrix3<f64> {
 }
 
 /// Rotation vector of a rotation matrix (angle < pi), robust for small angles.
+#[inline(always)]
 pub fn log_so3(r: &Matrix3<f64>) -> Vec3 {
     let v = Vec3::new(r[(2, 1)] - r[(1, 2)], r[(0, 2)] - r[(2, 0)], r[(1, 0)] - r[(0, 1)]) * 0.5;
     let s = v.norm();
@@ -40,6 +41,7 @@ pub fn log_so3(r: &Matrix3<f64>) -> Vec3 {
 /// Inverse of the tangent operator T_s: `d(theta) = T_s^-1(theta) dw` for a spatial spin `dw`
 /// of `R = exp(theta)` (Battini & Pacoste 2002):
 /// `T_s^-1 = I - Theta/2 + (1 - (a/2) cot(a/2)) / a^2 Theta^2`.
+#[inline(always)]
 pub fn tangent_inverse(theta: &Vec3) -> Matrix3<f64> {
     let a = theta.norm();
     let k = skew(theta);

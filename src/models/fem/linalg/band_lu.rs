@@ -270,6 +270,80 @@ fn in_chain_profile(i: usize, row: &[f64]) -> bool {
     row[..CHAIN_NODE_DOFS - 1 - k].iter().all(|&v| v == 0.0) && row[w - k..].iter().all(|&v| v == 0.0)
 }
 
+/// The elimination of [`BandLu::eliminate`] on the band storage `data` of order `n`,
+/// half-bandwidth `b`, row width `w` (`[n, b, w]`), `diag` receiving each row's diagonal as
+/// loaded. Compiled also for AVX2 and selected at run time where the processor has it (the
+/// same operations in the same order: the same factor bit for bit).
+#[multiversion::multiversion(targets("x86_64+avx2+fma"))]
+fn eliminate_band(
+    data: &mut [f64],
+    diag: &mut [f64],
+    [n, b, w]: [usize; 3],
+    mut load: impl FnMut(usize, &mut [f64]),
+) -> Result<(), FactorError> {
+    let mut chain = b == CHAIN_HALF_BANDWIDTH;
+    for i in 0..b.min(n) {
+        load(i, &mut data[i * w..(i + 1) * w]);
+        diag[i] = data[i * w + b];
+        chain = chain && in_chain_profile(i, &data[i * w..(i + 1) * w]);
+    }
+    // columns whose whole band lies inside the matrix: a kernel with the node-chain
+    // half-bandwidth fixed at compile time (fully unrolled), the rest generic
+    let fixed_end = if b == CHAIN_HALF_BANDWIDTH {
+        n.saturating_sub(b)
+    } else {
+        0
+    };
+    for k in 0..n {
+        if k + b < n {
+            let i = k + b;
+            load(i, &mut data[i * w..(i + 1) * w]);
+            diag[i] = data[i * w + b];
+            chain = chain && in_chain_profile(i, &data[i * w..(i + 1) * w]);
+        }
+        let pivot = data[k * w + b];
+        if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
+            return Err(FactorError::ZeroPivot {
+                column: k,
+                pivot,
+                diagonal: diag[k].abs(),
+            });
+        }
+        if k < fixed_end {
+            const B: usize = CHAIN_HALF_BANDWIDTH;
+            if chain {
+                match k % CHAIN_NODE_DOFS {
+                    0 => eliminate_chain::<11>(data, k, pivot),
+                    1 => eliminate_chain::<10>(data, k, pivot),
+                    2 => eliminate_chain::<9>(data, k, pivot),
+                    3 => eliminate_chain::<8>(data, k, pivot),
+                    4 => eliminate_chain::<7>(data, k, pivot),
+                    _ => eliminate_chain::<6>(data, k, pivot),
+                }
+            } else {
+                eliminate_fixed::<B>(data, k, pivot);
+            }
+            continue;
+        }
+        let hi = (k + b).min(n - 1);
+        let len = hi - k; // columns k+1 ..= hi
+        let (head, tail) = data.split_at_mut((k + 1) * w);
+        let row_k = &head[k * w + b + 1..k * w + b + 1 + len];
+        for i in k + 1..=hi {
+            let row_i = &mut tail[(i - k - 1) * w..(i - k) * w];
+            let off = k + b - i; // column k in row i
+            let lik = row_i[off] / pivot;
+            row_i[off] = lik;
+            if lik != 0.0 {
+                for (x, &u) in row_i[off + 1..off + 1 + len].iter_mut().zip(row_k) {
+                    *x -= lik * u;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// LU factor (Doolittle, no pivoting) of a [`GeneralBand`], stored in place of a copy.
 #[derive(Debug, Clone)]
 pub struct BandLu {
@@ -341,75 +415,12 @@ impl BandLu {
 
     /// The elimination; `load(i, row)` is called for every row before the first column
     /// that updates it (rows `0..b` first, then row `k + b` before column `k`).
-    fn eliminate(&mut self, mut load: impl FnMut(usize, &mut [f64])) -> Result<(), FactorError> {
+    fn eliminate(&mut self, load: impl FnMut(usize, &mut [f64])) -> Result<(), FactorError> {
         self.ok = false;
         let (n, b, w) = (self.f.n, self.f.b, self.f.w);
         self.diag.resize(n, 0.0);
-        let diag = &mut self.diag;
-        let data = &mut self.f.data;
-        // the node-chain kernel skips the chain's structural zeros while every row loaded so
-        // far lies inside the chain profile (checked as each row is loaded; a row outside it
-        // switches to the full kernel from there on, before any pivot that the row affects)
-        let mut chain = b == CHAIN_HALF_BANDWIDTH;
-        for i in 0..b.min(n) {
-            load(i, &mut data[i * w..(i + 1) * w]);
-            diag[i] = data[i * w + b];
-            chain = chain && in_chain_profile(i, &data[i * w..(i + 1) * w]);
-        }
-        // columns whose whole band lies inside the matrix: a kernel with the node-chain
-        // half-bandwidth fixed at compile time (fully unrolled), the rest generic
-        let fixed_end = if b == CHAIN_HALF_BANDWIDTH {
-            n.saturating_sub(b)
-        } else {
-            0
-        };
-        for k in 0..n {
-            if k + b < n {
-                let i = k + b;
-                load(i, &mut data[i * w..(i + 1) * w]);
-                diag[i] = data[i * w + b];
-                chain = chain && in_chain_profile(i, &data[i * w..(i + 1) * w]);
-            }
-            let pivot = data[k * w + b];
-            if !pivot.is_finite() || pivot.abs() <= 1e-14 * diag[k].abs().max(f64::MIN_POSITIVE) {
-                return Err(FactorError::ZeroPivot {
-                    column: k,
-                    pivot,
-                    diagonal: diag[k].abs(),
-                });
-            }
-            if k < fixed_end {
-                const B: usize = CHAIN_HALF_BANDWIDTH;
-                if chain {
-                    match k % CHAIN_NODE_DOFS {
-                        0 => eliminate_chain::<11>(data, k, pivot),
-                        1 => eliminate_chain::<10>(data, k, pivot),
-                        2 => eliminate_chain::<9>(data, k, pivot),
-                        3 => eliminate_chain::<8>(data, k, pivot),
-                        4 => eliminate_chain::<7>(data, k, pivot),
-                        _ => eliminate_chain::<6>(data, k, pivot),
-                    }
-                } else {
-                    eliminate_fixed::<B>(data, k, pivot);
-                }
-                continue;
-            }
-            let hi = (k + b).min(n - 1);
-            let len = hi - k; // columns k+1 ..= hi
-            let (head, tail) = data.split_at_mut((k + 1) * w);
-            let row_k = &head[k * w + b + 1..k * w + b + 1 + len];
-            for i in k + 1..=hi {
-                let row_i = &mut tail[(i - k - 1) * w..(i - k) * w];
-                let off = k + b - i; // column k in row i
-                let lik = row_i[off] / pivot;
-                row_i[off] = lik;
-                if lik != 0.0 {
-                    for (x, &u) in row_i[off + 1..off + 1 + len].iter_mut().zip(row_k) {
-                        *x -= lik * u;
-                    }
-                }
-            }
-        }
+        eliminate_band(&mut self.f.data, &mut self.diag, [n, b, w], load)?;
+        let data = &self.f.data;
         self.inv_pivot.resize(n, 0.0);
         for (k, inv) in self.inv_pivot.iter_mut().enumerate() {
             *inv = 1.0 / data[k * w + b];
