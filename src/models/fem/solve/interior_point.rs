@@ -91,10 +91,11 @@ pub const ACTIVE_SET_EPS: f64 = 1e-9;
 /// set is settling ([`ACTIVE_SET_MAX_TRIES`]).
 pub const ACTIVE_SET_TRIES: usize = 2;
 
-/// Active-set steps tried at most per Newton step: beyond [`ACTIVE_SET_TRIES`], one more each
-/// time a try switched fewer pairs than the one before (the set settling, not cycling). On the
+/// Active-set steps tried at most per Newton step: beyond [`ACTIVE_SET_TRIES`], one more while
+/// the last try switched fewer pairs than the one before (the set settling, not cycling). On the
 /// example wells' `bha` solves 2-3 factorizations fewer on two of six (one pair, then none, to
-/// switch), the others unchanged (docs/performance.md, "The refined solve of the lower part").
+/// switch), the others unchanged (docs/performance.md, "A third active-set try while the set
+/// settles").
 pub const ACTIVE_SET_MAX_TRIES: usize = 3;
 
 /// Smallest force of a pair in the active set's start, per contact's share of the load scale:
