@@ -17,6 +17,15 @@ pub(crate) const MIN_REFERENCE_CLEARANCE_M: f64 = 1e-3;
 /// of nodes' small imbalances add up in the global equilibrium check.
 pub const NET_FORCE_TOLERANCE: f64 = 1.0;
 
+/// Net force of the residual allowed at convergence relative to the largest applied force (an
+/// element's weight, a contact force, the WOB or the hook load), in units of the residual
+/// tolerance: 1e-6 at the default tolerance, the global equilibrium error that `solve` reports
+/// ("equilibrium error ... of the largest force"). On a long string the load scale (its whole
+/// weight) is tens of times its largest single force, so [`NET_FORCE_TOLERANCE`] alone let a
+/// solve end at 3e-6 of the largest force (docs/performance.md, "Converged means within 1e-6 of
+/// the largest force").
+pub const NET_FORCE_OF_LARGEST: f64 = 10.0;
+
 /// Largest complementarity `|R min(gap, 0)|` allowed at convergence, relative to the load scale
 /// times the clearance.
 const COMPLEMENTARITY_TOLERANCE: f64 = 1e-6;
@@ -78,6 +87,26 @@ pub(crate) fn rounding_floor(model: &Model, state: &State, scale: f64) -> f64 {
         / scale
 }
 
+/// Largest force applied to `model` in `state`, N: an element's weight, a contact or pin
+/// force, the WOB or the hook load (at most the largest force of the reported equilibrium
+/// check, whose contact forces include their friction).
+fn largest_applied_force(model: &Model, state: &State) -> f64 {
+    let weights = model
+        .mesh
+        .elements
+        .iter()
+        .zip(&model.sections)
+        .map(|(e, s)| (e.buoyed_weight_n_per_m * s.l0).abs());
+    let contacts = state
+        .multipliers
+        .iter()
+        .copied()
+        .chain(state.pin_multipliers.iter().map(|p| p.norm()));
+    weights
+        .chain(contacts)
+        .fold(model.loads.wob_n.abs().max(state.hook_load_n.abs()), f64::max)
+}
+
 /// Largest residual entry relative to the load scale `scale` (N).
 pub(crate) fn residual_norm(r: &[f64], scale: f64) -> f64 {
     r.iter().fold(0.0f64, |m, v| m.max(v.abs())) / scale
@@ -119,21 +148,25 @@ pub(crate) struct Measures {
     pub(crate) net: f64,
     /// Largest offset of a pin from the hole axis, m.
     pub(crate) pin_offset: f64,
+    /// Largest applied force (an element's weight, a contact or pin force, the WOB or the hook
+    /// load) relative to the load scale.
+    pub(crate) largest: f64,
 }
 
 impl Measures {
     /// Measures of the outer residual `outer` at the evaluation `ev`, with the managed gaps of
-    /// `contacts` at the gaps of `cols` and the multipliers `multipliers` (N, per node),
-    /// relative to the load scale `scale` (N).
+    /// `contacts` at the gaps of `cols` and the multipliers, pin forces and hook load of
+    /// `state`, relative to the load scale `scale` (N).
     pub(crate) fn of(
         model: &Model,
         ev: &Evaluation,
         contacts: &ContactSet,
         cols: &ContactColumns,
         outer: &OuterResidual,
-        multipliers: &[f64],
+        state: &State,
         scale: f64,
     ) -> Measures {
+        let multipliers = &state.multipliers;
         let (rt, gaps0) = (&outer.forces, &cols.gaps0);
         let rn = residual_norm(rt, scale).max(outer.wob.abs() / scale);
         let mut pen: f64 = 0.0;
@@ -159,6 +192,7 @@ impl Measures {
             compl,
             net,
             pin_offset: pin_offset_m(ev, &contacts.pins),
+            largest: largest_applied_force(model, state) / scale,
         }
     }
 
@@ -167,6 +201,7 @@ impl Measures {
     pub(crate) fn equilibrium(&self, ctl: &SolveControls) -> bool {
         self.rn < ctl.residual_tolerance
             && self.net < NET_FORCE_TOLERANCE * ctl.residual_tolerance
+            && self.net < NET_FORCE_OF_LARGEST * ctl.residual_tolerance * self.largest
             && self.pen <= ctl.gap_tolerance
             && self.compl < COMPLEMENTARITY_TOLERANCE
     }

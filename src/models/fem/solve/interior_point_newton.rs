@@ -366,7 +366,7 @@ impl<'a> InteriorPointNewton<'a> {
             forces: contact_residual(model, &r0, qidx, &cols.eq_cols, &state.multipliers, &self.constrained),
             wob: c,
         };
-        let measures = Measures::of(model, ev, &self.contacts, &cols, &outer, &state.multipliers, self.scale);
+        let measures = Measures::of(model, ev, &self.contacts, &cols, &outer, state, self.scale);
         Linearization {
             r0,
             pin_move,
