@@ -607,8 +607,9 @@ impl Model {
     }
 
     /// Add to the element tangent `tangent` of element `e` (chord direction `e1`, weight per
-    /// length `q`, N/m, global; `c` its mud torque lumped at each end, N.m) the load stiffness of the end moments that follow the chord
-    /// `r1` (gravity's consistent moments and the mud torque):
+    /// length `q`, N/m, global; `c` its mud torque lumped at each end, N.m) the load stiffness
+    /// of the end moments that follow the chord `r1` (gravity's consistent moments and the mud
+    /// torque):
     /// `dr1/dx_B = -dr1/dx_A = (I - r1 r1^T)/L`. Unsymmetric, so only in the unsymmetric (LU)
     /// tangent: a symmetric band store keeps one triangle.
     fn add_end_moment_load_stiffness(&self, state: &State, e: usize, e1: &Vec3, q: &Vec3, c: f64, tangent: &mut Mat12) {

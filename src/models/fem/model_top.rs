@@ -23,7 +23,7 @@ impl Model {
             r[d] += f[k];
         }
         if let Some(sink) = k {
-            let blk: Vec<f64> = (0..36).map(|i| c.stiffness[(i / 6, i % 6)]).collect();
+            let blk: [f64; 36] = std::array::from_fn(|i| c.stiffness[(i / 6, i % 6)]);
             sink.add_block(&dofs, &blk, 6);
         }
     }

@@ -281,6 +281,9 @@ fn eliminate_band(
     [n, b, w]: [usize; 3],
     mut load: impl FnMut(usize, &mut [f64]),
 ) -> Result<(), FactorError> {
+    // the node-chain kernel skips the chain's structural zeros while every row loaded so
+    // far lies inside the chain profile (checked as each row is loaded; a row outside it
+    // switches to the full kernel from there on, before any pivot that the row affects)
     let mut chain = b == CHAIN_HALF_BANDWIDTH;
     for i in 0..b.min(n) {
         load(i, &mut data[i * w..(i + 1) * w]);

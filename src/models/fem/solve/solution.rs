@@ -38,8 +38,9 @@ pub struct SolveStats {
     /// solve held it at ([`super::toolface::solve_holding_toolface`]); None when off.
     pub reactive_turn: Option<crate::models::fem::reactive::ReactiveTurn>,
     /// The orientation (rad) the interior-point Newton turned the bent housing's kink to,
-    /// holding the model's [`crate::models::fem::model::Model::toolface_hold_rad`]: the solution is of the model with its
-    /// kink turned there ([`crate::models::fem::model::Model::turn_kink`]); None when the kink was not turned.
+    /// holding the model's [`crate::models::fem::model::Model::toolface_hold_rad`]: the
+    /// solution is of the model with its kink turned there
+    /// ([`crate::models::fem::model::Model::turn_kink`]); None when the kink was not turned.
     pub kink_turned_to_rad: Option<f64>,
     /// Whether a whole-string solve that found no equilibrium was solved again from its buckled
     /// shape (`models::buckled_start`): `Some(true)` kept (the answer came from it),
