@@ -206,20 +206,26 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
-    // a string that cannot be put on bottom at any WOB is not followed along the paths (decided
-    // once, where the solve first asks)
     let locked = std::cell::OnceCell::new();
     let locked_up = || *locked.get_or_init(|| locked_at_zero_wob(case));
-    let cold = |m: &Model| solve_unless(m, &ctl, locked_up).map(|(sol, _)| sol);
+    let cold = |m: &Model| {
+        let early = |direct: &Solution| buckled_start::early_damped(case, m, direct, &ctl);
+        solve_unless(m, &ctl, locked_up, early).map(|(sol, _)| sol)
+    };
     match solve_holding_toolface(&mut model, &ctl, cold) {
         Ok(sol) if sol.converged => {
+            // the damped re-solve from the buckled shape may answer before the paths
+            let start = match sol.stats.buckled_start {
+                Some(true) => Start::BuckledShape,
+                _ => Start::Cold,
+            };
             let out = converged(
                 case,
                 &model,
                 &sol,
                 iterations + sol.stats.iterations,
                 t0.elapsed().as_secs_f64(),
-                Start::Cold,
+                start,
                 None,
             );
             (out, Some((model, sol.state)))

@@ -8,12 +8,13 @@
 //! and the contact Newton from it (the direct solve, the WOB and friction paths) wanders: the
 //! residual stays at 1e-4 to 1e-2 of the load scale with the worst node in that section.
 //!
-//! [`solve_from_buckled_start`] runs after those stages fail: the soft string of the case (its
-//! friction, motion and WOB) gives the axial force at the model's nodes and the runs beyond
-//! the helical onset ([`soft_helical_runs`]); the cold start is solved with a pseudo-transient
-//! lateral damping held full until the residual is small ([`Strategy::Damped`]), then, if that
-//! fails, moved onto a helix along the wall there and solved as the helix re-solve is
-//! ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result is kept only if it
+//! [`solve_from_buckled_start`] runs after those stages fail (a sliding string tries its damped
+//! strategy right after the direct solve, before the paths: [`early_damped`]): the soft string
+//! of the case (its friction, motion and WOB) gives the axial force at the model's nodes and the
+//! runs beyond the helical onset ([`soft_helical_runs`]); the cold start is solved with a
+//! pseudo-transient lateral damping held full until the residual is small
+//! ([`Strategy::Damped`]), then, if that fails, moved onto a helix along the wall there and
+//! solved as the helix re-solve is ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result is kept only if it
 //! converged with global equilibrium within [`EQUILIBRIUM`] of the largest force, penetration
 //! within the gap tolerance and a hook load not below zero. A case whose soft string is locked
 //! up is left to the lock-up answer, and one that the soft string with the helix's drag finds
@@ -162,19 +163,10 @@ pub fn solve_from_buckled_start_by(
         return sol;
     }
     let t0 = Instant::now();
-    let accept = |h: &Solution| {
-        // a negative hook load (the surface pushing) is a lock-up, not an answer
-        let pushed = model.loads.hook_load_n.is_none() && h.state.hook_load_n < 0.0;
-        if !h.converged || h.stats.max_penetration > ctl.gap_tolerance || pushed {
-            return false;
-        }
-        let r = extract(model, h, case.mud.density_kg_m3);
-        let eq = r.equilibrium_error();
-        tracing::info!(equilibrium = eq, "re-solve from a buckled start converged");
-        eq <= EQUILIBRIUM
-    };
+    let accept = |h: &Solution| acceptable(case, model, ctl, h);
     let mut work = SolveStats::default();
-    for &strategy in strategies {
+    let repeated = |s: &Strategy| *s == Strategy::Damped && sol.stats.damped_start_exhausted;
+    for &strategy in strategies.iter().filter(|s| !repeated(s)) {
         let left = SolveControls {
             time_limit_s: ctl.time_limit_s - sol.stats.seconds - t0.elapsed().as_secs_f64(),
             ..*ctl
@@ -184,7 +176,10 @@ pub fn solve_from_buckled_start_by(
         }
         let start = cold_start(model);
         let (kept, w) = match strategy {
-            Strategy::Damped => damped(model, start, &axial, &runs, &left, accept),
+            Strategy::Damped => {
+                let limit = DAMPED_ITERATION_FACTOR * left.max_iterations;
+                damped(model, start, &axial, &runs, &left, limit, accept)
+            }
             Strategy::Helix => helix::solve_from_helix(model, &start, &axial, &runs, &left, accept),
         };
         work.add_work(&w);
@@ -213,6 +208,77 @@ pub fn solve_from_buckled_start_by(
     sol
 }
 
+/// Whether the re-solve `h` of `model` (of `case`) is an answer: converged, penetration within
+/// the gap tolerance, global equilibrium within [`EQUILIBRIUM`] of the largest force, and a hook
+/// load not below zero (the surface pushing is a lock-up, not an answer).
+fn acceptable(case: &Case, model: &Model, ctl: &SolveControls, h: &Solution) -> bool {
+    let pushed = model.loads.hook_load_n.is_none() && h.state.hook_load_n < 0.0;
+    if !h.converged || h.stats.max_penetration > ctl.gap_tolerance || pushed {
+        return false;
+    }
+    let r = extract(model, h, case.mud.density_kg_m3);
+    let eq = r.equilibrium_error();
+    tracing::info!(equilibrium = eq, "re-solve from a buckled start converged");
+    eq <= EQUILIBRIUM
+}
+
+/// Newton steps in a row whose contact subproblem ends at its iteration limit after which the
+/// early damped re-solve gives up ([`early_damped`]; the damped solves that answer the grid's
+/// buckled 2,000 m slides have no two in a row, the one that fails on 2,000 m, 92 deg, 20 kN
+/// has 140 from its 260th iteration on).
+pub const EARLY_DAMPED_CAPPED_SUBPROBLEMS: usize = 3;
+
+/// The damped re-solve from the buckled start ([`Strategy::Damped`], its iteration limit) of a
+/// whole string of `case` that slides (no rotation) with its soft string helically buckled and
+/// not locked up by the helix's drag, run as soon as the direct solve `direct` of `model` has
+/// failed, before the WOB and friction paths: where it answers, it is the answer the full
+/// re-solve after those paths would give (the same cold start and iterations), without their
+/// time. Returns the kept solution (its statistics counting `direct`'s work and its own) or None,
+/// and the work of a solve not kept ([`SolveStats::damped_start_exhausted`] set where it ran to
+/// its limit).
+pub fn early_damped(
+    case: &Case,
+    model: &Model,
+    direct: &Solution,
+    ctl: &SolveControls,
+) -> (Option<Solution>, SolveStats) {
+    if direct.converged || direct.stats.timed_out || !sliding_whole_string(model) {
+        return (None, SolveStats::default());
+    }
+    let (axial, runs) = soft_helical_runs(case, model);
+    if runs.is_empty() || helically_locked(case) {
+        return (None, SolveStats::default());
+    }
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - direct.stats.seconds,
+        stop_after_capped_subproblems: EARLY_DAMPED_CAPPED_SUBPROBLEMS,
+        ..*ctl
+    };
+    let accept = |h: &Solution| acceptable(case, model, ctl, h);
+    let limit = DAMPED_ITERATION_FACTOR * ctl.max_iterations;
+    let (kept, mut work) = damped(model, cold_start(model), &axial, &runs, &left, limit, accept);
+    work.damped_start_exhausted = kept.is_none() && work.iterations >= limit;
+    tracing::info!(
+        kept = kept.is_some(),
+        iterations = work.iterations,
+        "early damped re-solve from a buckled start"
+    );
+    match kept {
+        Some(mut h) => {
+            h.stats.add_work(&direct.stats);
+            h.stats.buckled_start = Some(true);
+            (Some(h), SolveStats::default())
+        }
+        None => (None, work),
+    }
+}
+
+/// Whether `model` is a whole string (not a part cut at a coupling point) that slides: no
+/// rotation.
+fn sliding_whole_string(model: &Model) -> bool {
+    model.loads.omega_rad_s <= 0.0 && !matches!(model.top, TopCondition::Cut { .. })
+}
+
 /// Whether `case` (on bottom, WOB given) is locked up by the helix's drag: the soft string with
 /// Mitchell's helical contact force ([`helical_drag`]) has a negative hook load. The whole
 /// string then has no equilibrium at the case's WOB with the surface holding the string (it
@@ -224,21 +290,23 @@ fn helically_locked(case: &Case) -> bool {
     op.mode.on_bottom() && op.hook_load_n.is_none() && helical_drag::helical_soft_string(case).hook_load_n < 0.0
 }
 
-/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` (its
-/// iteration limit times [`DAMPED_ITERATION_FACTOR`]) with the lateral damping of [`helix::instability_stiffness`] in `runs` (`axial` the soft string's
-/// axial forces at the nodes, N); the solution if `accept` takes it, and the work.
+/// [`Strategy::Damped`]: `model` solved from `start` (consistent tangent) under `ctl` with at
+/// most `max_iterations` and the lateral damping of [`helix::instability_stiffness`] in `runs`
+/// (`axial` the soft string's axial forces at the nodes, N); the solution if `accept` takes it,
+/// and the work.
 fn damped(
     model: &Model,
     start: State,
     axial: &[f64],
     runs: &[(usize, usize)],
     ctl: &SolveControls,
+    max_iterations: usize,
     accept: impl Fn(&Solution) -> bool,
 ) -> (Option<Solution>, SolveStats) {
     let mut m = model.clone();
     m.consistent_tangent = true;
     let c = SolveControls {
-        max_iterations: DAMPED_ITERATION_FACTOR * ctl.max_iterations,
+        max_iterations,
         lateral_damping_n_per_m: helix::instability_stiffness(model, axial, runs),
         damping_reference_residual: DAMPING_REFERENCE_RESIDUAL,
         ..*ctl

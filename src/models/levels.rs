@@ -202,7 +202,9 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f
     // a whole string that finds no equilibrium is solved again from its buckled shape, unless
     // it cannot be put on bottom at any WOB (its answer is the lock-up, models::string_solve)
     let first = |m: &Model| {
-        let (sol, gave_up) = solve_unless(m, ctl, || whole_locked_at_zero_wob(case, m))?;
+        let locked = || whole_locked_at_zero_wob(case, m);
+        let early = |direct: &Solution| buckled_start::early_damped(case, m, direct, ctl);
+        let (sol, gave_up) = solve_unless(m, ctl, locked, early)?;
         Ok(match gave_up {
             true => sol,
             false => buckled_start::solve_from_buckled_start(case, m, sol, ctl),

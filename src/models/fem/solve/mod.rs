@@ -61,18 +61,21 @@ pub const DIRECT_BEFORE_CONTINUATION: usize = 60;
 /// time left); if that does not reach the model's WOB, the direct solve resumes for the rest
 /// of its iterations. [`SolveStats::wob_continuation_n`] says how far the path got.
 pub fn solve(model: &Model, ctl: &SolveControls) -> Result<Solution, SolveError> {
-    solve_unless(model, ctl, || false).map(|(sol, _)| sol)
+    solve_unless(model, ctl, || false, |_| (None, SolveStats::default())).map(|(sol, _)| sol)
 }
 
 /// [`solve`], stopped after the direct solve's first [`DIRECT_BEFORE_CONTINUATION`] iterations
 /// when they did not converge and `give_up` (asked only then) says no path can help (a string
 /// that cannot be put on bottom at any WOB: every path would end with the surface pushing). A
 /// model without a WOB path (running in, off bottom) asks `give_up` first and is then limited to
-/// those iterations. Returns the solution and whether it gave up.
+/// those iterations. Otherwise `early` runs on the direct solve that did not converge, before the
+/// paths: its solution, if it returns one, is the answer, and its work (the returned statistics)
+/// is added to the paths' where it does not. Returns the solution and whether it gave up.
 pub fn solve_unless(
     model: &Model,
     ctl: &SolveControls,
     give_up: impl FnOnce() -> bool,
+    early: impl FnOnce(&Solution) -> (Option<Solution>, SolveStats),
 ) -> Result<(Solution, bool), SolveError> {
     match ctl.method {
         Method::Paper => Ok((solve_modified_newton(model, ctl)?, false)),
@@ -101,7 +104,18 @@ pub fn solve_unless(
             if give_up() {
                 return Ok((direct, true));
             }
-            Ok((continued(model, ctl, direct)?, false))
+            let (kept, spent) = early(&direct);
+            if let Some(sol) = kept {
+                return Ok((sol, false));
+            }
+            let rest = SolveControls {
+                time_limit_s: ctl.time_limit_s - spent.seconds,
+                ..*ctl
+            };
+            let mut sol = continued(model, &rest, direct)?;
+            sol.stats.add_work(&spent);
+            sol.stats.damped_start_exhausted = spent.damped_start_exhausted;
+            Ok((sol, false))
         }
     }
 }

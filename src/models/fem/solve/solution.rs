@@ -46,6 +46,10 @@ pub struct SolveStats {
     /// shape (`models::buckled_start`): `Some(true)` kept (the answer came from it),
     /// `Some(false)` tried and not kept; None when none ran.
     pub buckled_start: Option<bool>,
+    /// The damped re-solve from the buckled shape ran before the WOB and friction paths
+    /// (`models::buckled_start::early_damped`) to its full iteration limit without an answer:
+    /// the re-solve after the paths, which would repeat it step for step, leaves it out.
+    pub damped_start_exhausted: bool,
     /// The refined solve of the assembly's mesh solved its lower part with the string above
     /// condensed ([`crate::models::fem::condense`]) and the whole refined model converged from
     /// there.
