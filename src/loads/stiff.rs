@@ -206,6 +206,31 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
             Err(e) => tracing::info!("warm start ({start:?}) failed ({e}); cold start"),
         }
     }
+    // a slide locked up by the helix's drag is solved below that lock-up first, as `solve` does
+    let mut early = None;
+    if helical_lock_up::searched_first(case) {
+        let mut spent = SolveStats::default();
+        let found = helical_lock_up::below_helical_lock_up(case, &ctl, &mut spent).map(|b| b.climbed);
+        iterations += spent.iterations;
+        match found {
+            Some(c) if helical_lock_up::at_largest_wob(c.climb_end) => {
+                return (climbed_row(case, &c, iterations, t0, true), None);
+            }
+            mut found => {
+                // counted here whether or not the row ends up answered from it
+                if let Some(c) = found.as_mut() {
+                    iterations += c.solution.stats.iterations;
+                    c.solution.stats.iterations = 0;
+                }
+                early = Some(found);
+            }
+        }
+    }
+    // the row's solve has the time the search left
+    let ctl = match early {
+        Some(_) => ctl.with_time_left(t0),
+        None => ctl,
+    };
     let locked = std::cell::OnceCell::new();
     let locked_up = || *locked.get_or_init(|| locked_at_zero_wob(case));
     let cold = |m: &Model| {
@@ -251,7 +276,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
                 let out = converged(case, &model, &sol, total(&spent), seconds, Start::BuckledShape, None);
                 return (out, Some((model, sol.state)));
             }
-            if let Some(out) = at_helical_lock_up(case, &ctl, total(&spent), t0, &mut spent) {
+            if let Some(out) = at_helical_lock_up(case, &ctl, total(&spent), t0, &mut spent, early.take()) {
                 return (out, None);
             }
             match helical_lock_up::climbed_to_wob(case, &ctl.with_time_left(t0), &mut spent) {
@@ -317,16 +342,22 @@ fn at_lock_up(
 /// where the stiff solve of an on-bottom row of `case` found no equilibrium and the soft string
 /// with the helix's drag is locked up while the plain one is not, the whole string below that
 /// lock-up: the row's loads there (`lock_up_wob_n` that WOB, `iterations` before it added).
-/// None when no such solve converges with a hook load not below zero.
+/// None when no such solve converges with a hook load not below zero. `early`: that search's
+/// result where it ran before the row's solve (its work already in `iterations`), taken instead
+/// of running it again.
 fn at_helical_lock_up(
     case: &Case,
     ctl: &SolveControls,
     iterations: usize,
     t0: std::time::Instant,
     spent: &mut SolveStats,
+    early: Option<Option<Climbed>>,
 ) -> Option<StiffOutcome> {
     let before = spent.iterations;
-    let below = helical_lock_up::below_helical_lock_up(case, &ctl.with_time_left(t0), spent)?.climbed;
+    let below = match early {
+        Some(found) => found?,
+        None => helical_lock_up::below_helical_lock_up(case, &ctl.with_time_left(t0), spent)?.climbed,
+    };
     // the starts that did not converge before the one climbed from
     let iterations = iterations + spent.iterations - before;
     Some(climbed_row(case, &below, iterations, t0, true))

@@ -4,10 +4,12 @@
 //! string solved below the lock-up ([`below_helical_lock_up`]): from its buckled shape
 //! ([`solve_buckled`]) at a fraction of that soft string's largest WOB, then slacked off toward
 //! it ([`continuation::climb_wob`]) until its hook load is near zero or the path meets a limit.
-//! `solve` (`models::string_solve`) and the whole-string rows of `loads` answer with it.
+//! `solve` (`models::string_solve`) and the whole-string rows of `loads` answer with it; a
+//! slide so locked up tries it before its usual solve ([`searched_first`]).
 
-use crate::case::Case;
+use crate::case::{Case, Mode};
 use crate::models::buckled_start::{solve_buckled, EQUILIBRIUM};
+use crate::models::checks::locked_at_zero_wob;
 use crate::models::fem::model::Model;
 use crate::models::fem::results::extract;
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
@@ -40,6 +42,25 @@ pub struct BelowLockUp {
     pub lock_up: helical_drag::HelicalLockUp,
     /// The whole string climbed toward that soft string's largest WOB.
     pub climbed: Climbed,
+}
+
+/// Whether the whole string of `case` looks for its lock-up by the helix's drag
+/// ([`below_helical_lock_up`]) before its usual solve: a slide on bottom (no rotation, WOB given)
+/// that the plain soft string delivers and the soft string with the helix's drag does not, and
+/// that can be put on bottom at zero WOB. Where that search ends at the largest WOB the string
+/// delivers (its hook load near zero, or bracketed), it is the answer; where it stops short, the
+/// usual solve and its paths run as for any case (docs/theory.md 7.7).
+pub fn searched_first(case: &Case) -> bool {
+    let op = &case.operation;
+    op.mode == Mode::Sliding
+        && !locked_at_zero_wob(case)
+        && helical_drag::helical_lock_up(case).is_some_and(|h| h.max_wob_n > 0.0)
+}
+
+/// Whether a climb that ended so reached the largest WOB the string delivers along its path:
+/// its hook load near zero, or turning negative within the bracket.
+pub fn at_largest_wob(end: ClimbEnd) -> bool {
+    matches!(end, ClimbEnd::HookLoad | ClimbEnd::Bracketed)
 }
 
 /// Lock-up by the helix's drag as an answer: when the plain soft string of `case` delivers its

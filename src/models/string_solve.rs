@@ -122,27 +122,7 @@ pub fn solve_string(
     ctl: &SolveControls,
     on_stage: &mut dyn FnMut(usize, usize, &str),
 ) -> Result<StringSolve, FidelityError> {
-    let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
-    let mut delivered = None;
-    let mut from_soft_string = false;
-    let no_equilibrium = !level.converged && choice.level == Level::Whole;
-    if no_equilibrium && locked_at_zero_wob(case) {
-        if let Some(r) = soft_answer(case, &choice, ctl, &level, on_stage) {
-            from_soft_string = true;
-            level = r;
-        }
-    } else if no_equilibrium {
-        let (answer, lock_up) = answer_without_equilibrium(case, choice, ctl, &mut level, on_stage);
-        if let Some(mut r) = answer {
-            // the statistics count the solve that found no equilibrium too
-            if let (Some(new), Some(failed)) = (r.fem.as_mut(), level.fem.as_ref()) {
-                new.stats.add_work(&failed.stats);
-            }
-            r.seconds += level.seconds;
-            delivered = lock_up;
-            level = r;
-        }
-    }
+    let (level, delivered, from_soft_string) = answered_level(case, choice, ctl, on_stage)?;
     let coupling = level.fem.as_ref().and_then(|part| part.coupling);
     let last_reported_node = level
         .fem
@@ -192,6 +172,76 @@ pub fn solve_string(
         sensors,
         soft_comparison,
     })
+}
+
+/// The level result of `case` at `choice`'s level, with the answer of a whole string that finds
+/// no equilibrium at the WOB asked for: the soft string's results where it cannot be put on
+/// bottom at any WOB ([`soft_answer`]), else [`answer_without_equilibrium`]. A slide locked up by
+/// the helix's drag ([`helical_lock_up::searched_first`]) is first solved below that lock-up
+/// ([`whole_at_helical_lock_up`]), the answer where it reaches the largest WOB the string
+/// delivers; otherwise its result is kept for [`answer_without_equilibrium`] and the usual solve
+/// runs, its statistics counting that search's work. Returns the result, the lock-up it delivers
+/// and whether its results are the soft string's.
+fn answered_level(
+    case: &Case,
+    choice: Choice,
+    ctl: &SolveControls,
+    on_stage: &mut dyn FnMut(usize, usize, &str),
+) -> Result<(LevelResult, Option<LockUp>, bool), FidelityError> {
+    let t0 = Instant::now();
+    let mut early = None;
+    let mut early_work = SolveStats::default();
+    if choice.level == Level::Whole && helical_lock_up::searched_first(case) {
+        match whole_at_helical_lock_up(case, choice.clone(), ctl, on_stage, &mut early_work) {
+            Some((l, mut r)) if l.results_at_largest_wob => {
+                if let Some(part) = r.fem.as_mut() {
+                    part.stats.add_work(&early_work);
+                }
+                r.seconds = t0.elapsed().as_secs_f64();
+                return Ok((r, Some(l), false));
+            }
+            found => early = Some(found),
+        }
+    }
+    // the usual solve has the time the search left
+    let ctl = &ctl.with_time_left(t0);
+    let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
+    let mut delivered = None;
+    let mut from_soft_string = false;
+    let no_equilibrium = !level.converged && choice.level == Level::Whole;
+    if no_equilibrium && locked_at_zero_wob(case) {
+        if let Some(r) = soft_answer(case, &choice, ctl, &level, on_stage) {
+            from_soft_string = true;
+            level = r;
+        }
+    } else if no_equilibrium {
+        let (answer, lock_up) = answer_without_equilibrium(case, choice, ctl, &mut level, on_stage, &mut early);
+        if let Some(mut r) = answer {
+            // the statistics count the solve that found no equilibrium too
+            if let (Some(new), Some(failed)) = (r.fem.as_mut(), level.fem.as_ref()) {
+                new.stats.add_work(&failed.stats);
+            }
+            r.seconds += level.seconds;
+            delivered = lock_up;
+            level = r;
+        }
+    }
+    if let Some(found) = early {
+        // the search before the usual solve ran and its result was not the answer
+        if let Some(part) = found.as_ref().and_then(|(_, r)| r.fem.as_ref()) {
+            early_work.add_work(&part.stats);
+        }
+        let failed = !level.converged;
+        if let Some(part) = level.fem.as_mut() {
+            part.stats.add_work(&early_work);
+            if failed {
+                let stages = early_work.unanswered_stages.iter().copied();
+                part.stats.unanswered_stages.extend(stages);
+            }
+        }
+        level.seconds = t0.elapsed().as_secs_f64();
+    }
+    Ok((level, delivered, from_soft_string))
 }
 
 /// The lock-up `l` of a solve of `case` whose hook load is below zero at the WOB asked for, as a
@@ -358,12 +408,15 @@ const CLIMB_STARTS_STAGE: &str = "a start from the buckled shape below the WOB f
 /// or climbed to its WOB from its buckled shape ([`whole_climbed_to_wob`]), the first that
 /// applies and answers, with its lock-up. None without one; a climb that stopped below the WOB
 /// is recorded in `level`'s statistics ([`crate::models::fem::solve::SolveStats::buckled_climb_n`]) for the message.
+/// `early` holds the result of [`whole_at_helical_lock_up`] where it ran before the solve
+/// ([`answered_level`]): it is taken (left None) instead of running it again.
 fn answer_without_equilibrium(
     case: &Case,
     choice: Choice,
     ctl: &SolveControls,
     level: &mut LevelResult,
     on_stage: &mut dyn FnMut(usize, usize, &str),
+    early: &mut Option<Option<(LockUp, LevelResult)>>,
 ) -> (Option<LevelResult>, Option<LockUp>) {
     let left = SolveControls {
         time_limit_s: ctl.time_limit_s - level.seconds,
@@ -372,8 +425,10 @@ fn answer_without_equilibrium(
     // the work of the stages that ran and did not answer, counted in the failed level's
     // statistics (which the answer's count too, `solve_string`)
     let mut spent = SolveStats::default();
-    let locked = whole_at_lock_up(case, choice.clone(), &left, on_stage, &mut spent)
-        .or_else(|| whole_at_helical_lock_up(case, choice.clone(), &left, on_stage, &mut spent));
+    let locked = whole_at_lock_up(case, choice.clone(), &left, on_stage, &mut spent).or_else(|| match early.take() {
+        Some(found) => found,
+        None => whole_at_helical_lock_up(case, choice.clone(), &left, on_stage, &mut spent),
+    });
     let (answer, lock_up) = match locked {
         Some((l, r)) => (Some(r), Some(l)),
         None => (whole_climbed_to_wob(case, choice, &left, on_stage, &mut spent), None),
@@ -479,7 +534,7 @@ fn whole_at_helical_lock_up(
     let (h, climbed) = (below.lock_up, below.climbed);
     let l = LockUp {
         results_at_wob_n: Some(climbed.wob_n),
-        results_at_largest_wob: matches!(climbed.climb_end, ClimbEnd::HookLoad | ClimbEnd::Bracketed),
+        results_at_largest_wob: helical_lock_up::at_largest_wob(climbed.climb_end),
         ..LockUp::by_helix(&h)
     };
     let out = whole_from_climb(case, choice, climbed, ctl, t0, spent)?;
