@@ -231,6 +231,8 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
         Some(_) => ctl.with_time_left(t0),
         None => ctl,
     };
+    // a string that cannot be put on bottom at any WOB is not followed along the paths (decided
+    // once, where the solve first asks)
     let locked = std::cell::OnceCell::new();
     let locked_up = || *locked.get_or_init(|| locked_at_zero_wob(case));
     let cold = |m: &Model| {

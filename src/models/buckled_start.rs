@@ -14,11 +14,12 @@
 //! runs beyond the helical onset ([`soft_helical_runs`]); the cold start is solved with a
 //! pseudo-transient lateral damping held full until the residual is small
 //! ([`Strategy::Damped`]), then, if that fails, moved onto a helix along the wall there and
-//! solved as the helix re-solve is ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result is kept only if it
-//! converged with global equilibrium within [`EQUILIBRIUM`] of the largest force, penetration
-//! within the gap tolerance and a hook load not below zero. A case whose soft string is locked
-//! up is left to the lock-up answer, and one that the soft string with the helix's drag finds
-//! locked up ([`crate::models::helical_drag`]) is not re-solved: no equilibrium holds it there.
+//! solved as the helix re-solve is ([`Strategy::Helix`], [`helix::solve_from_helix`]). A result
+//! is kept only if it converged with global equilibrium within [`EQUILIBRIUM`] of the largest
+//! force, penetration within the gap tolerance and a hook load not below zero. A case whose soft
+//! string is locked up is left to the lock-up answer, and one that the soft string with the
+//! helix's drag finds locked up ([`crate::models::helical_drag`]) is not re-solved: no
+//! equilibrium holds it there.
 
 use crate::case::Case;
 use crate::models::buckling::{marks, BuckleState, MIN_HELICAL_RUN_M};
