@@ -203,6 +203,7 @@ fn answered_level(
             found => early = Some(found),
         }
     }
+    let searched = early.is_some();
     // the usual solve has the time the search left
     let ctl = &ctl.with_time_left(t0);
     let mut level = run_with_progress(case, choice.clone(), ctl, on_stage)?;
@@ -226,9 +227,10 @@ fn answered_level(
             level = r;
         }
     }
-    if let Some(found) = early {
-        // the search before the usual solve ran and its result was not the answer
-        if let Some(part) = found.as_ref().and_then(|(_, r)| r.fem.as_ref()) {
+    if searched {
+        // the search before the usual solve ran: its starts that did not converge, and its
+        // result where that was not taken for the answer
+        if let Some(part) = early.flatten().as_ref().and_then(|(_, r)| r.fem.as_ref()) {
             early_work.add_work(&part.stats);
         }
         let failed = !level.converged;
