@@ -44,9 +44,7 @@ use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, NodeResult, SolveResults};
 use crate::models::fem::solve::continuation::ClimbEnd;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{
-    continuation, solve, solve_interior_point_from, solve_unless, Solution, SolveControls, SolveStats,
-};
+use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls, SolveStats};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::helical_lock_up::{self, Climbed};
 use crate::models::levels::run as run_level;
@@ -235,10 +233,7 @@ pub fn stiff_row(case: &Case, warm: Option<(&Solved, Start)>) -> (StiffOutcome, 
     // once, where the solve first asks)
     let locked = std::cell::OnceCell::new();
     let locked_up = || *locked.get_or_init(|| locked_at_zero_wob(case));
-    let cold = |m: &Model| {
-        let early = |direct: &Solution| buckled_start::early_damped(case, m, direct, &ctl);
-        solve_unless(m, &ctl, locked_up, early).map(|(sol, _)| sol)
-    };
+    let cold = |m: &Model| buckled_start::solve_damped_before_paths(case, m, &ctl, locked_up).map(|(sol, _)| sol);
     match solve_holding_toolface(&mut model, &ctl, cold) {
         Ok(sol) if sol.converged => {
             // the damped re-solve from the buckled shape may answer before the paths

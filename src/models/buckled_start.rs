@@ -27,7 +27,8 @@ use crate::models::fem::model::{Model, State, TopCondition};
 use crate::models::fem::results::extract;
 use crate::models::fem::solve::start::cold_start;
 use crate::models::fem::solve::{
-    helix, solve_interior_point, solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats,
+    helix, solve_interior_point, solve_interior_point_from, solve_unless, Solution, SolveControls, SolveError,
+    SolveStats,
 };
 use crate::models::helical_drag;
 use crate::models::softstring;
@@ -272,6 +273,18 @@ pub fn early_damped(
         }
         None => (None, work),
     }
+}
+
+/// [`solve_unless`] of `model` (of `case`) with the damped re-solve from the buckled start tried
+/// right after the direct solve, before the paths ([`early_damped`]): the solve of a whole string
+/// in `solve`, `loads` and `predict`. Returns the solution and whether it gave up.
+pub fn solve_damped_before_paths(
+    case: &Case,
+    model: &Model,
+    ctl: &SolveControls,
+    give_up: impl FnOnce() -> bool,
+) -> Result<(Solution, bool), SolveError> {
+    solve_unless(model, ctl, give_up, |direct| early_damped(case, model, direct, ctl))
 }
 
 /// Whether `model` is a whole string (not a part cut at a coupling point) that slides: no

@@ -52,9 +52,10 @@ pub struct BelowLockUp {
 /// usual solve and its paths run as for any case (docs/theory.md 7.7).
 pub fn searched_first(case: &Case) -> bool {
     let op = &case.operation;
+    // the soft passes only for a slide, the zero-WOB check only for a helical lock-up
     op.mode == Mode::Sliding
-        && !locked_at_zero_wob(case)
         && helical_drag::helical_lock_up(case).is_some_and(|h| h.max_wob_n > 0.0)
+        && !locked_at_zero_wob(case)
 }
 
 /// Whether a climb that ended so reached the largest WOB the string delivers along its path:

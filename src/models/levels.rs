@@ -27,9 +27,7 @@ use crate::models::fem::refine;
 use crate::models::fem::results::{extract, BitResult, SolveResults};
 use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{
-    solve_interior_point_from, solve_unless, Solution, SolveControls, SolveError, SolveStats,
-};
+use crate::models::fem::solve::{solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
 use crate::models::softstring::{self, SoftStringInput, SoftStringResult};
 use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
@@ -203,8 +201,7 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f
     // it cannot be put on bottom at any WOB (its answer is the lock-up, models::string_solve)
     let first = |m: &Model| {
         let locked = || whole_locked_at_zero_wob(case, m);
-        let early = |direct: &Solution| buckled_start::early_damped(case, m, direct, ctl);
-        let (sol, gave_up) = solve_unless(m, ctl, locked, early)?;
+        let (sol, gave_up) = buckled_start::solve_damped_before_paths(case, m, ctl, locked)?;
         Ok(match gave_up {
             true => sol,
             false => buckled_start::solve_from_buckled_start(case, m, sol, ctl),

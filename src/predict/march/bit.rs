@@ -6,12 +6,12 @@
 use super::PredictError;
 use crate::case::{BitRock, Case};
 use crate::geometry::{HoleSize, Vec3, WellPath};
-use crate::models::buckled_start::{early_damped, solve_from_buckled_start};
+use crate::models::buckled_start::{solve_damped_before_paths, solve_from_buckled_start};
 use crate::models::fem::bha::{bha_model, cut_is_whole};
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{bit_with_sensor, BitResult};
 use crate::models::fem::solve::toolface::solve_holding_toolface;
-use crate::models::fem::solve::{solve_interior_point_from, solve_unless, Solution, SolveControls, SolveStats};
+use crate::models::fem::solve::{solve, solve_interior_point_from, Solution, SolveControls};
 use crate::models::fem::warm::transport_state;
 use crate::models::whirl::whirl_intervals;
 use crate::predict::law::BitAction;
@@ -134,11 +134,11 @@ fn solve_step(
         }
     }
     // a buckled slide tries the damped re-solve before the paths, as `solve` does
-    let early = |direct: &Solution| match whole_case {
-        Some(case) => early_damped(case, model, direct, ctl),
-        None => (None, SolveStats::default()),
-    };
-    let (mut sol, _) = solve_unless(model, ctl, || false, early).map_err(wrap)?;
+    let mut sol = match whole_case {
+        Some(case) => solve_damped_before_paths(case, model, ctl, || false).map(|(sol, _)| sol),
+        None => solve(model, ctl),
+    }
+    .map_err(wrap)?;
     if let (false, Some(case)) = (sol.converged, whole_case) {
         sol = solve_from_buckled_start(case, model, sol, ctl);
     }
