@@ -5,7 +5,7 @@
 use crate::case::{Case, Mode};
 use crate::models::fem::model::Model;
 use crate::models::fem::results::NodeResult;
-use crate::models::helical_drag::HelicalLockUp;
+use crate::models::helical_drag::{diverged, HelicalLockUp};
 use crate::models::lock_up_depth::{hook_load_at_wob_n, lock_up_depths, metres, Drag, LockUpDepths};
 use crate::models::softstring;
 use crate::string::material::grade_yield_strength_pa;
@@ -128,6 +128,12 @@ pub struct LockUp {
 }
 
 impl LockUp {
+    /// A lock-up by the helix's drag whose soft string's compression diverged up the helix: its
+    /// hook load a flag, not a load ([`crate::models::helical_drag::DIVERGED_HOOK_LOAD_N`]).
+    pub fn helical_drag_diverged(&self) -> bool {
+        self.by_helix && diverged(self.hook_load_n)
+    }
+
     /// The lock-up by the helix's drag `h` ([`LockUp::by_helix`]), its results at the WOB asked
     /// for.
     pub fn by_helix(h: &HelicalLockUp) -> LockUp {
@@ -251,11 +257,6 @@ impl LockUp {
     }
 }
 
-/// A hook load below which the helical lock-up's warning says the compression diverges, N:
-/// the soft string with the helix's drag then holds its added force at
-/// `models::helical_drag::COMPRESSION_CAP_N` and its hook load is no longer a load.
-pub const DIVERGED_HOOK_LOAD_N: f64 = -1e7;
-
 /// The clause of a lock-up warning whose results are a cut model's (`bha`), which has no hook
 /// load ([`LockUp::results_without_hook_load`]).
 const BHA_RESULTS_CLAUSE: &str = "; the results are the bottom-hole assembly's at the WOB asked for (the `bha` model has no hook load), a WOB the string cannot deliver";
@@ -297,7 +298,7 @@ impl LockUp {
             Some((top, bottom)) => format!(" (helically buckled at {top:.0}-{bottom:.0} m MD there)"),
             None => String::new(),
         };
-        let hook = if self.hook_load_n < DIVERGED_HOOK_LOAD_N {
+        let hook = if self.helical_drag_diverged() {
             "its compression diverges up the helix".to_string()
         } else {
             format!("its hook load is {:.0} kN", self.hook_load_n / 1e3)

@@ -25,6 +25,20 @@ use crate::models::softstring::{from_case_with_extra_contact, segment_length_m, 
 /// locked up far beyond its lock-up finite (the hook load then falls steeply, not to infinity).
 pub const COMPRESSION_CAP_N: f64 = 1e8;
 
+/// Hook load below which the soft string with the helix's drag has diverged, N: its compression
+/// grew without bound up the helix (Mitchell's drag grows with the square of the compression,
+/// and the compression of the closed form, a `coth`, diverges over a finite length:
+/// tests/verification/helical_drag.rs), the added force was held at [`COMPRESSION_CAP_N`], and
+/// the hook load is a flag, not a load (-10,000 kN: far beyond what any drill string can be
+/// pushed with).
+pub const DIVERGED_HOOK_LOAD_N: f64 = -1e7;
+
+/// Whether the hook load `hook_load_n` (N) of a soft string with the helix's drag says its
+/// compression diverged up the helix ([`DIVERGED_HOOK_LOAD_N`]).
+pub fn diverged(hook_load_n: f64) -> bool {
+    hook_load_n < DIVERGED_HOOK_LOAD_N
+}
+
 /// Mitchell's helical wall force per length (N/m) of `case`'s string at `md_m` (`s_m` from the
 /// bit face, m) under the effective compression `compression_n` (N): zero below the helical
 /// onset ([`onset_at`]) or where the pipe cannot buckle.

@@ -41,6 +41,12 @@ impl SoftComparison {
     pub fn hook_load_difference_n(&self) -> f64 {
         self.stiff_hook_load_n - self.hook_load_n
     }
+    /// Whether the soft string with the helix's drag diverged (its compression unbounded up the
+    /// helix): [`Self::helical_drag_hook_load_n`] is then a flag, not a load
+    /// ([`crate::models::helical_drag::DIVERGED_HOOK_LOAD_N`]).
+    pub fn helical_drag_diverged(&self) -> bool {
+        crate::models::helical_drag::diverged(self.helical_drag_hook_load_n)
+    }
     /// Stiff minus soft surface torque, N.m.
     pub fn surface_torque_difference_nm(&self) -> f64 {
         self.stiff_surface_torque_nm - self.surface_torque_nm

@@ -4,6 +4,7 @@
 use super::{num, Finite};
 use crate::loads::calibrate::Calibration;
 use crate::loads::row::{LoadRow, Start, StiffOutcome};
+use crate::models::helical_drag::diverged;
 
 /// Header of `loads.csv`: the six interface columns, then buckling, yield and stiff columns
 /// (`stiff_model`: `whole` or `hybrid`, the level of the `stiff_*` values).
@@ -11,7 +12,8 @@ pub const LOADS_HEADER: &str = "bit_md_m,mode,hook_load_kN,surface_torque_kNm,ma
 wob_kN,helical_buckled_length_m,max_compression_kN,max_sinusoidal_ratio,max_side_force_kN_per_m,\
 tension_limit_kN,torque_limit_kNm,combined_torque_limit_kNm,max_stress_ratio,\
 stiff_status,stiff_hook_load_kN,stiff_surface_torque_kNm,stiff_max_contact_force_kN,stiff_model,\
-stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start";
+stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start,\
+helical_drag_diverges";
 
 fn opt(x: Option<f64>, scale: f64, decimals: usize) -> Result<String, String> {
     x.map(|v| num(v * scale, decimals))
@@ -61,6 +63,7 @@ pub fn loads_csv(rows: &[LoadRow]) -> Result<String, String> {
                 .and_then(StiffOutcome::start)
                 .map(|s| (s == Start::BuckledShape).to_string())
                 .unwrap_or_default(),
+            diverged(r.helical_drag_hook_load_n).to_string(),
         ];
         out.push_str(&fields.join(","));
         out.push('\n');

@@ -7,6 +7,7 @@ use crate::loads::calibrate::Calibration;
 use crate::loads::row::{LoadRow, RowLoads, Start, StiffOutcome};
 use crate::loads::run::{Chart, ChartPlan};
 use crate::loads::MODES;
+use crate::models::helical_drag::diverged;
 use std::io::Write;
 use std::path::Path;
 
@@ -25,6 +26,7 @@ pub fn write_loads(
     }
     print_summary(&chart.rows, &plan.depths, chart.soft_seconds, units, out)?;
     warn_helical_lock_up(&chart.rows, units, out)?;
+    warn_helical_drag_diverges(&chart.rows, units, out)?;
     print_lock_up_depths(chart, units, out)?;
     if plan.choice.level != Level::Soft {
         print_stiff_summary(
@@ -229,6 +231,19 @@ fn warn_helical_lock_up(rows: &[LoadRow], units: UnitSystem, out: &mut impl Writ
         .collect();
     warn_rows(out, &locked, |n| {
         format!("helical lock-up: in {n} rows the soft string with the helix's drag (Mitchell's r F^2/(4 EI), helical_drag_hook_load_kN) needs the surface to push, while the soft string's hook load is not below zero: the helically buckled pipe's drag outgrows its weight (docs/theory.md 7.7)")
+    })
+}
+
+/// A `WARNING:` line listing the rows whose soft string with the helix's drag diverged
+/// (`helical_drag_diverges`): their `helical_drag_hook_load_kN` is a flag, not a load.
+fn warn_helical_drag_diverges(rows: &[LoadRow], units: UnitSystem, out: &mut impl Write) -> std::io::Result<()> {
+    let diverging: Vec<String> = rows
+        .iter()
+        .filter(|r| diverged(r.helical_drag_hook_load_n))
+        .map(|r| format!("{} {}", units.depth().fmt(r.bit_md_m, 0), r.mode.name()))
+        .collect();
+    warn_rows(out, &diverging, |n| {
+        format!("the helix's drag diverges: in {n} rows the compression of the soft string with the helix's drag grows without bound up the helix (helical_drag_diverges true): their helical_drag_hook_load_kN, below -10,000 kN, flags the lock-up and is not a load (docs/theory.md 7.7)")
     })
 }
 

@@ -162,6 +162,7 @@ struct LockUpJson {
     max_wob_kN: Finite,
     results_at_wob_kN: Option<Finite>,
     by_helical_drag: bool,
+    helical_drag_diverges: bool,
     helical_top_md_m: Option<Finite>,
     helical_bottom_md_m: Option<Finite>,
     results_at_largest_wob: bool,
@@ -186,6 +187,7 @@ struct SoftComparisonJson {
     helical_wall_force_kN: Finite,
     helical_drag_hook_load_kN: Finite,
     helical_drag_surface_torque_kNm: Finite,
+    helical_drag_diverges: bool,
     hook_load_difference_kN: Finite,
     surface_torque_difference_kNm: Finite,
 }
@@ -200,6 +202,7 @@ impl SoftComparisonJson {
             helical_wall_force_kN: Finite(c.helical_wall_force_n / 1e3),
             helical_drag_hook_load_kN: Finite(c.helical_drag_hook_load_n / 1e3),
             helical_drag_surface_torque_kNm: Finite(c.helical_drag_surface_torque_nm / 1e3),
+            helical_drag_diverges: c.helical_drag_diverged(),
             hook_load_difference_kN: Finite(c.hook_load_difference_n() / 1e3),
             surface_torque_difference_kNm: Finite(c.surface_torque_difference_nm() / 1e3),
         }
@@ -455,6 +458,7 @@ impl SolveSummary {
                 max_wob_kN: Finite(l.max_wob_n / 1e3),
                 results_at_wob_kN: l.results_at_wob_n.map(|w| Finite(w / 1e3)),
                 by_helical_drag: l.by_helix,
+                helical_drag_diverges: l.helical_drag_diverged(),
                 helical_top_md_m: l.helical_md_m.map(|(top, _)| Finite(top)),
                 helical_bottom_md_m: l.helical_md_m.map(|(_, bottom)| Finite(bottom)),
                 results_at_largest_wob: l.results_at_largest_wob,

@@ -6,7 +6,7 @@ use super::inputs::echo_inputs;
 use super::plots::{render, Band, Chart, Series, Style};
 use super::schematic::shown_length_m;
 use super::solve_output::CONTACT_THRESHOLD_N;
-use super::solve_text::{rss_line, steering_line};
+use super::solve_text::{helical_drag_hook_load_text, rss_line, steering_line};
 use crate::case::{Case, Level};
 use crate::models::buckling::{spans, tributary, BuckleState, Mark};
 use crate::models::fem::results::{NodeResult, SolveResults};
@@ -309,7 +309,7 @@ fn soft_rows(c: &SoftComparison, units: UnitSystem) -> [(String, String); 4] {
             "soft string with the helix's drag (Mitchell): hook load, surface torque".into(),
             format!(
                 "{}, {}",
-                force_unit.fmt(c.helical_drag_hook_load_n, 1),
+                helical_drag_hook_load_text(c, force_unit),
                 torque_unit.fmt(c.helical_drag_surface_torque_nm, 2)
             ),
         ),

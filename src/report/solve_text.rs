@@ -1,6 +1,6 @@
 //! The readable summary of `drillpath solve` on stdout, in the user's units.
 
-use super::display_units::{fixed, signed, UnitSystem};
+use super::display_units::{fixed, signed, DisplayUnit, UnitSystem};
 use super::solve_output::CONTACT_THRESHOLD_N;
 use crate::case::{Case, Level};
 use crate::models::buckling::summarize;
@@ -326,6 +326,17 @@ fn write_level(out: &mut impl Write, case: &Case, s: &StringSolve, view: &SolveV
     wrote_line(out, view)
 }
 
+/// The hook load of the soft string with the helix's drag beside a stiff solve, in
+/// `force_unit`: its value, or that its compression diverged up the helix (the value then a
+/// flag, [`SoftComparison::helical_drag_diverged`]).
+pub(super) fn helical_drag_hook_load_text(c: &SoftComparison, force_unit: DisplayUnit) -> String {
+    if c.helical_drag_diverged() {
+        "none (its compression diverges up the helix)".to_string()
+    } else {
+        force_unit.fmt(c.helical_drag_hook_load_n, 1)
+    }
+}
+
 /// The soft string beside the stiff solve `c`: its hook load and torque at the same WOB, the
 /// stiff-minus-soft differences, and its helically buckled length; where it is helically
 /// buckled, the soft string with the helix's drag too.
@@ -344,7 +355,7 @@ fn soft_line(out: &mut impl Write, c: &SoftComparison, units: UnitSystem) -> std
         writeln!(
             out,
             "  soft string with the helix's drag (Mitchell): hook load {}, torque {}",
-            force_unit.fmt(c.helical_drag_hook_load_n, 1),
+            helical_drag_hook_load_text(c, force_unit),
             torque_unit.fmt(c.helical_drag_surface_torque_nm, 2)
         )?;
     }

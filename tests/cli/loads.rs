@@ -6,7 +6,7 @@ use std::path::Path;
 use std::sync::LazyLock;
 use tempfile::TempDir;
 
-use crate::common::{assert_error_names, case_dir, collar, run_in, Run, DRILL_PIPE};
+use crate::common::{assert_error_names, case_dir, collar, run_in, slid_bit_on_pipe, Run, DRILL_PIPE};
 
 const SURVEY: &str = "md_m,inc_deg,azi_deg\n0,0,0\n300,0,0\n600,20,45\n1000,30,45\n";
 
@@ -190,7 +190,7 @@ fn fidelity_options_are_checked_and_reported() {
     assert!(stdout.contains("fidelity hybrid: requested"), "{stdout}");
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     assert!(csv.lines().next().unwrap().ends_with(
-        ",stiff_model,stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start"
+        ",stiff_model,stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start,helical_drag_diverges"
     ));
     assert_eq!(
         csv.lines()
@@ -263,4 +263,48 @@ fn fidelity_options_are_checked_and_reported() {
             .all(|l| l.split(',').skip(15).take(8).all(str::is_empty)),
         "soft only: empty stiff columns"
     );
+}
+
+/// A vertical 2,000 m hole, 5 in pipe body sliding with 300 kN on the bit at friction 0.35: the
+/// plain soft string delivers it (hook load about 180 kN) while the compression of the soft
+/// string with the helix's drag diverges about 1,800 m above the bit (the closed form's `coth`,
+/// tests/verification/helical_drag.rs). The sliding row flags it (`helical_drag_diverges` true,
+/// `helical_drag_hook_load_kN` below -10,000) and stdout names it in a `WARNING` line; the
+/// drilling row (rotation turns most of the friction round the pipe, and its helix's drag stays
+/// finite) and the rows off bottom (the pipe hangs in tension) do not.
+#[test]
+fn diverging_helix_drag_is_flagged_not_given_as_a_load() {
+    let survey = "md_m,inc_deg,azi_deg\n0,0,0\n2000,0,0\n";
+    let case = format!(
+        "[well]\nsurvey = \"survey.csv\"\nhole = [{{ to_md = \"2000 m\", diameter = \"8.5 in\" }}]\n{}",
+        slid_bit_on_pipe(2000.0, 300.0, 0.35)
+    );
+    let dir = case_dir(survey, &case);
+    let out = run(dir.path(), &["--from", "2000 m", "--out", "out"]);
+    assert!(out.success(), "{}", out.stderr);
+    assert!(
+        out.stdout.contains("WARNING: the helix's drag diverges: in 1 rows") && out.stdout.contains("2000 m sliding"),
+        "{}",
+        out.stdout
+    );
+    let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (mode, hook, helical, diverges) = (
+        col("mode"),
+        col("hook_load_kN"),
+        col("helical_drag_hook_load_kN"),
+        col("helical_drag_diverges"),
+    );
+    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 5, "{csv}");
+    for r in &rows {
+        let sliding = r[mode] == "sliding";
+        assert_eq!(r[diverges], sliding.to_string(), "{csv}");
+        let value: f64 = r[helical].parse().unwrap();
+        assert_eq!(value < -10_000.0, sliding, "{csv}");
+        if sliding {
+            assert!(r[hook].parse::<f64>().unwrap() > 0.0, "{csv}");
+        }
+    }
 }

@@ -11,7 +11,9 @@
 
 use drillpath::case::Case;
 use drillpath::models::diagnose::nonconvergence_hints;
-use drillpath::models::helical_drag::{helical_lock_up, helical_soft_string, lock_up_wob_n};
+use drillpath::models::helical_drag::{
+    diverged, helical_lock_up, helical_soft_string, lock_up_wob_n, DIVERGED_HOOK_LOAD_N,
+};
 use drillpath::models::lock_up_depth::{hook_load_at_depth_n, Drag};
 use drillpath::models::softstring;
 
@@ -98,6 +100,42 @@ fn vertical_helix_drag_follows_mitchells_closed_form() {
     // above `a` the compression grows upward: locked up, the surface would have to push
     let locked = helical_soft_string(&vertical_case(1000.0, 300.0, 0.35));
     assert!(locked.hook_load_n < -300e3, "{}", locked.hook_load_n);
+}
+
+/// Divergence of the soft string with the helix's drag where the closed form diverges (module
+/// docs): with 300 kN on the bit at friction 0.35 (above the lock-up force `a`) the compression
+/// grows without bound `acoth(F_0 / a) / (a k)` above the bit's top (about 1,800 m). A vertical
+/// string 30% shorter than that keeps a finite hook load, minus the compression at its top,
+/// within 1% of the closed form's, and is not flagged; one 30% longer is flagged as diverged
+/// (`helical_drag::diverged`, its hook load below -10,000 kN), and so is the lock-up `solve`
+/// reports for it.
+#[test]
+fn the_helix_drag_diverges_where_the_closed_form_does() {
+    let probe = vertical_case(1000.0, 300.0, 0.35);
+    let pipe = probe.string.component_at(10.0);
+    let (ei, w) = (pipe.ei_nm2(), pipe.buoyed_weight_n_per_m(probe.mud.density_kg_m3));
+    let r = (8.5 * 0.0254 - pipe.body_od_m) / 2.0;
+    let k = 0.35 * r / (4.0 * ei);
+    let a = (w / k).sqrt();
+    let f0 = 300e3;
+    let diverges_at = (a / f0).atanh() / (a * k);
+    assert!((1500.0..2200.0).contains(&diverges_at), "{diverges_at}");
+    let short = (0.7 * diverges_at).round();
+    let finite = helical_soft_string(&vertical_case(short + 0.3, 300.0, 0.35));
+    let exact = a / ((a / f0).atanh() - a * k * short).tanh();
+    assert!(!diverged(finite.hook_load_n), "{}", finite.hook_load_n);
+    assert!(
+        (-finite.hook_load_n - exact).abs() < 1e-2 * exact,
+        "top compression {} vs closed form {exact}",
+        -finite.hook_load_n
+    );
+    let long = (1.3 * diverges_at).round();
+    let case = vertical_case(long, 300.0, 0.35);
+    let runaway = helical_soft_string(&case);
+    assert!(diverged(runaway.hook_load_n), "{}", runaway.hook_load_n);
+    assert!(runaway.hook_load_n < DIVERGED_HOOK_LOAD_N);
+    let lock = helical_lock_up(&case).expect("a helical lock-up: the plain soft string delivers 300 kN");
+    assert!(drillpath::models::checks::LockUp::by_helix(&lock).helical_drag_diverged());
 }
 
 /// The grid's well with its kick-off at 500 m, a 300 m lateral at 90 deg, sliding with wall
