@@ -47,17 +47,26 @@ pub fn soft_loads(res: &SoftStringResult, string: &DrillString, bit_md_m: f64) -
     }
 }
 
+/// Hook load (N) within which an on-bottom row's hook load at its reduced WOB counts as zero
+/// (the secant of `softstring::at_zero_hook_load` ends within 1e-9 N of it).
+const ZERO_HOOK_LOAD_TOLERANCE_N: f64 = 1e-6;
+
 /// The soft-string row of `case` (string and operation already set for the row).
 ///
 /// On bottom, a WOB larger than the string can give (hook load below zero) is not achievable:
-/// the row then uses the WOB that brings the hook load to zero (the row's `wob_n` says so).
+/// the row then uses the WOB that brings the hook load to zero (the row's `wob_n` says so), or,
+/// where even a zero WOB leaves the hook load below zero (the string cannot be put on bottom),
+/// a zero WOB with that hook load.
 pub fn soft_row(case: &Case, max_element_m: f64) -> LoadRow {
     let op = &case.operation;
     let mut res = from_case(case, max_element_m);
     if op.mode.on_bottom() && res.hook_load_n < 0.0 {
         res = at_zero_hook_load(case, max_element_m);
-        // zero within the secant's tolerance (1e-9 N)
-        res.hook_load_n = res.hook_load_n.max(0.0);
+        // zero within the secant's tolerance (1e-9 N); below it, even a zero WOB needs the
+        // surface to push (the string cannot be put on bottom): the row keeps that hook load
+        if res.hook_load_n > -ZERO_HOOK_LOAD_TOLERANCE_N {
+            res.hook_load_n = res.hook_load_n.max(0.0);
+        }
     }
     let wob_n = -res.points[0].tension_n;
     let loads = soft_loads(&res, &case.string, op.bit_md_m);

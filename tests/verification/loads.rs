@@ -119,6 +119,30 @@ fn straight_inclined_hole_trip_loads_match_closed_form() {
     }
 }
 
+/// An on-bottom row where even a zero WOB leaves the hook load below zero: a straight 85 deg hole
+/// at friction 0.25 (`cos i < f sin i`), where the pipe cannot be slid down at all. Reference:
+/// the closed form of docs/theory.md 10.5 (b), `F = w_b L (cos i - f sin i)`, negative here. The
+/// sliding row asked for 50 kN has a zero WOB and that hook load (to 1e-9, as trip in), not a
+/// hook load of zero.
+#[test]
+fn a_string_that_cannot_be_put_on_bottom_keeps_its_negative_hook_load() {
+    let (inc, f, len) = (85.0_f64, 0.25, 1000.0);
+    let case = pipe_case(&survey(&[(0.0, inc, 30.0), (len, inc, 30.0)]), len, f, false, 2.0);
+    let i = inc.to_radians();
+    let exact = w_b() * len * (i.cos() - f * i.sin());
+    assert!(exact < -10e3, "{exact}");
+    let mut op = ChartOperation::from_case(&case);
+    op.wob_n = 50e3;
+    let settings = ChartSettings { op, max_element_m: 1.0 };
+    let rows = soft_chart(&case, &[len], &settings);
+    for mode in [Mode::Sliding, Mode::TripIn] {
+        let r = row(&rows, 0, mode);
+        assert_eq!(r.wob_n, 0.0, "{}", mode.name());
+        let hook = r.soft.hook_load_n;
+        assert!((hook / exact - 1.0).abs() < 1e-9, "{}: {hook} vs {exact}", mode.name());
+    }
+}
+
 /// Independent Johancsik computation (scalar form, docs/theory.md 10.5 with the sign of the lower -
 /// upper differences): inclination and azimuth linear in MD between `knots` (exact for these
 /// constant-rate sections up to the minimum-curvature interpolation), TVD by the midpoint rule,
