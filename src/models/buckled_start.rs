@@ -22,7 +22,7 @@
 //! equilibrium holds it there.
 
 use crate::case::Case;
-use crate::models::buckling::{marks, BuckleState, MIN_HELICAL_RUN_M};
+use crate::models::buckling::{helical_runs, marks, MIN_HELICAL_RUN_M};
 use crate::models::fem::model::{Model, State, TopCondition};
 use crate::models::fem::results::extract;
 use crate::models::fem::solve::start::cold_start;
@@ -74,22 +74,10 @@ pub fn soft_helical_runs(case: &Case, model: &Model) -> (Vec<f64>, Vec<(usize, u
         &case.well.hole,
         case.mud.density_kg_m3,
     );
-    let mut runs = Vec::new();
-    let mut first: Option<usize> = None;
-    for i in 0..=m.len() {
-        let helical = m.get(i).is_some_and(|k| k.state == BuckleState::Helical);
-        match (helical, first) {
-            (true, None) => first = Some(i),
-            (false, Some(a)) => {
-                let b = i - 1;
-                if model.mesh.nodes[b].s_m - model.mesh.nodes[a].s_m >= MIN_HELICAL_RUN_M {
-                    runs.push((a, b));
-                }
-                first = None;
-            }
-            _ => {}
-        }
-    }
+    let runs = helical_runs(&m)
+        .into_iter()
+        .filter(|&(a, b)| model.mesh.nodes[b].s_m - model.mesh.nodes[a].s_m >= MIN_HELICAL_RUN_M)
+        .collect();
     (axial, runs)
 }
 

@@ -223,6 +223,25 @@ pub fn mitchell_wall_force(c: &Component, hole_diameter_m: f64, compression_n: f
     r * compression_n * compression_n / (4.0 * c.ei_nm2())
 }
 
+/// Runs of consecutive `marks` beyond the helical onset ([`BuckleState::Helical`]), as index
+/// ranges (inclusive) in the marks' order.
+pub fn helical_runs(marks: &[Mark]) -> Vec<(usize, usize)> {
+    let mut runs = Vec::new();
+    let mut first: Option<usize> = None;
+    for i in 0..=marks.len() {
+        let helical = marks.get(i).is_some_and(|m| m.state == BuckleState::Helical);
+        match (helical, first) {
+            (true, None) => first = Some(i),
+            (false, Some(a)) => {
+                runs.push((a, i - 1));
+                first = None;
+            }
+            _ => {}
+        }
+    }
+    runs
+}
+
 /// Marks at nodes given as `(md_m, distance from the bit m, effective axial force N tension
 /// positive)`, for `string` with its bit at the MD the distances are measured from.
 pub fn marks(

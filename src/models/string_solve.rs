@@ -8,7 +8,7 @@
 use crate::case::fidelity::{Choice, Level};
 use crate::case::{Case, Mode};
 use crate::models::buckled_start::EQUILIBRIUM_RESIDUAL_FACTOR;
-use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
+use crate::models::buckling::{helical_runs, soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::{
     dogleg_warning, lock_up, locked_at_zero_wob, running_in_lock_up, soft_lock_up, soft_lock_up_at, yield_check,
     LockUp, YieldCheck,
@@ -16,7 +16,7 @@ use crate::models::checks::{
 use crate::models::fem::model::Model;
 use crate::models::fem::results::{sensor_results, NodeResult, SensorResult};
 use crate::models::fem::solve::continuation::{self, ClimbEnd};
-use crate::models::fem::solve::{SolveControls, SolveStats};
+use crate::models::fem::solve::{helix, SolveControls, SolveStats};
 use crate::models::helical_drag;
 use crate::models::helical_lock_up;
 use crate::models::levels::{fem_part_by, run_with_progress, FidelityError, LevelResult};
@@ -88,6 +88,7 @@ impl StringSolve {
         if let Some(p) = self.level.fem.as_ref().filter(|p| !p.model.whirl_md_m.is_empty()) {
             w.push(whirl_warning(&p.model.whirl_md_m));
         }
+        w.extend(self.pitch_warning());
         let runs = unbuckled_helical_runs(self.stiff_marks(), self.reported_nodes());
         if !runs.is_empty() {
             w.push(format!(
@@ -100,6 +101,31 @@ impl StringSolve {
 }
 
 impl StringSolve {
+    /// The warning of a stiff part whose helically buckled pipe has elements longer than an
+    /// eighth of the helix's pitch there ([`helix::coarse_for_pitch`], the pitch
+    /// `2 pi sqrt(2 EI / F)` at the nodes' compression): its helix, contacts and drag are then
+    /// coarsely resolved. None where none is.
+    fn pitch_warning(&self) -> Option<String> {
+        let part = self.level.fem.as_ref()?;
+        let (nodes, marks) = (self.reported_nodes(), self.stiff_marks());
+        let runs = helical_runs(marks);
+        let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
+        let (long, h) = helix::coarse_for_pitch(&part.model, &axial, &runs)?;
+        let s = |i: usize| part.model.mesh.nodes[i].s_m;
+        let longest = long.iter().map(|&e| s(e + 1) - s(e)).fold(0.0, f64::max);
+        let md = |e: usize| nodes[e].md_m;
+        let (top, bottom) = long
+            .iter()
+            .map(|&e| (md(e + 1).min(md(e)), md(e + 1).max(md(e))))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+                (a.min(c), b.max(d))
+            });
+        Some(format!(
+            "the helically buckled pipe at {top:.0}-{bottom:.0} m MD has elements of up to {longest:.2} m, longer than an eighth of the helix's pitch there (2 pi sqrt(2 EI / F): {:.1} m at its largest compression): its helix, wall contacts and drag there are coarsely resolved; `element_length` at most {h:.2} m (or `--accuracy precise`) resolves them (docs/theory.md 7.5)",
+            h * helix::ELEMENTS_PER_PITCH
+        ))
+    }
+
     /// The stiff part's node results from the bit to the last reported node (empty without
     /// a stiff part).
     pub fn reported_nodes(&self) -> &[NodeResult] {

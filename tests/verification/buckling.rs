@@ -229,6 +229,41 @@ fn window(s: &drillpath::models::string_solve::StringSolve, top_md: f64, bottom_
     (wall, f)
 }
 
+/// Issue 16, a mesh too coarse for the helix's pitch: the near-vertical string of
+/// [`vertical_helix_wall_force_within_15_percent_of_mitchell`] (100 kN on the bit) with 6 m
+/// elements. Reference: the pitch `2 pi sqrt(2 EI / F)` at the largest compression (about 100
+/// kN: 30.5 m, so 3.8 m is an eighth of it); the warning names that pitch within 2%, the helical
+/// interval, and its longest element, at most 6 m and above an eighth of the pitch; with 1 m
+/// elements (the other test) there is none.
+#[test]
+fn a_mesh_too_coarse_for_the_helix_pitch_is_named() {
+    let case = straight_hole_case(0.5, 1000.0, 100.0, 0.0, Some("6 m"));
+    let s = solve_whole(&case);
+    let w = s.warnings(&case);
+    let pitch = w
+        .iter()
+        .find(|x| x.contains("coarsely resolved"))
+        .unwrap_or_else(|| panic!("no pitch warning: {w:?}"));
+    let (ei, _, _) = pipe_properties();
+    let f = s.reported_nodes().iter().map(|n| -n.axial_force_n).fold(0.0, f64::max);
+    let expected = 2.0 * std::f64::consts::PI * (2.0 * ei / f).sqrt();
+    let named: f64 = pitch
+        .split("sqrt(2 EI / F): ")
+        .nth(1)
+        .and_then(|t| t.split(" m").next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{pitch}"));
+    assert!((named / expected - 1.0).abs() < 0.02, "{named} vs {expected}: {pitch}");
+    assert!((f / 100e3 - 1.0).abs() < 0.1, "largest compression {f}");
+    let longest: f64 = pitch
+        .split("elements of up to ")
+        .nth(1)
+        .and_then(|t| t.split(" m").next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{pitch}"));
+    assert!(longest > expected / 8.0 && longest <= 6.0, "{pitch}");
+}
+
 /// Issue 16, the straight branch left: 5 in pipe compressed far beyond the helical onset in a
 /// near-vertical hole (0.5 deg, 100 kN on the bit, 8.5 in hole, no friction). The Newton solve
 /// first finds the straight pipe on the low side (about 2 N/m of wall force, an equilibrium past
@@ -261,6 +296,7 @@ fn vertical_helix_wall_force_within_15_percent_of_mitchell() {
     }
     let w = s.warnings(&case);
     assert!(!w.iter().any(|x| x.contains("unbuckled")), "{w:?}");
+    assert!(!w.iter().any(|x| x.contains("coarsely resolved")), "{w:?}");
     // the soft string beside it (summary.json `soft_string_comparison`): without friction the
     // helix adds no drag (hook loads within 0.1 kN: both are the buoyed weight less the WOB), and
     // the soft string's Mitchell wall force summed over its helical length is the whole
