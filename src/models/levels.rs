@@ -19,7 +19,7 @@
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
 use crate::models::buckled_start;
-use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
+use crate::models::buckling::{helical_runs, stiff_marks, unbuckled_helical_runs};
 use crate::models::checks::locked_at_zero_wob;
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
@@ -207,7 +207,49 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f
             false => buckled_start::solve_from_buckled_start(case, m, sol, ctl),
         })
     };
-    fem_part_by(model, case, ctl, coupling_m, first)
+    let part = fem_part_by(model, case, ctl, coupling_m, first)?;
+    let Some(fine) = finer_for_pitch(case, &part) else {
+        return Ok(part);
+    };
+    let left = SolveControls {
+        time_limit_s: ctl.time_limit_s - part.stats.seconds,
+        ..*ctl
+    };
+    let mut part = part;
+    match fem_part_by(fine, case, &left, coupling_m, first) {
+        Ok(mut again) if again.converged && again.results.equilibrium_error() <= HELIX_EQUILIBRIUM => {
+            tracing::info!(
+                nodes = again.model.nodes(),
+                "solved again on a mesh that resolves the helix's pitch"
+            );
+            again.stats.add_work(&part.stats);
+            Ok(again)
+        }
+        Ok(again) => {
+            tracing::info!("no equilibrium on the mesh that resolves the helix's pitch: the coarse answer kept");
+            part.stats.add_work(&again.stats);
+            Ok(part)
+        }
+        Err(_) => Ok(part),
+    }
+}
+
+/// The whole-string model of the converged `part` (of `case`) with the elements of its
+/// helically buckled pipe split to an eighth of the helix's pitch there
+/// ([`helix::coarse_for_pitch`] at the solve's axial forces, [`refine::refined_model`]), where
+/// any is longer; None where the mesh resolves the pitch, or for a cut model. An answer solved
+/// on the coarse mesh keeps that mesh's equilibrium even when re-solved from its state on the
+/// refined one (docs/performance.md, "Pipe mesh"), so the caller solves the refined model
+/// afresh.
+fn finer_for_pitch(case: &Case, part: &FemPart) -> Option<Model> {
+    if !part.converged || matches!(part.model.top, TopCondition::Cut { .. }) {
+        return None;
+    }
+    let nodes = &part.results.nodes;
+    let runs = helical_runs(&stiff_marks(case, &part.model, nodes));
+    let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
+    let (split, h) = helix::coarse_for_pitch(&part.model, &axial, &runs)?;
+    Some(refine::refined_model(&part.model, &split, h))
 }
 
 /// Whether `model` is the whole string of `case` and the string cannot be put on bottom at any

@@ -28,6 +28,30 @@ use std::time::Instant;
 /// ([`crate::models::buckled_start`]).
 pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium from its usual start and this answer is an equilibrium solved from a buckled shape (docs/theory.md 7.5): with wall friction a buckled string has more than one equilibrium: this one starts from a formed helix, and a string slacked off to the same WOB can keep less of its helix, its hook load measured up to 38% higher (a known limit, docs/guide.md)";
 
+/// The warning of a stiff model `model` whose helically buckled pipe (the runs of `marks` beyond
+/// the helical onset, at the node results `nodes` from the bit) has elements longer than an
+/// eighth of the helix's pitch there ([`helix::coarse_for_pitch`], the pitch
+/// `2 pi sqrt(2 EI / F)` at the nodes' compression): its helix, contacts and drag are then
+/// coarsely resolved. None where the mesh resolves the pitch. A whole-string answer is solved
+/// again on a refined mesh first (`models::levels`); the warning stays where that fails.
+pub fn pitch_warning(model: &Model, nodes: &[NodeResult], marks: &[Mark]) -> Option<String> {
+    let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
+    let (long, h) = helix::coarse_for_pitch(model, &axial, &helical_runs(marks))?;
+    let s = |i: usize| model.mesh.nodes[i].s_m;
+    let longest = long.iter().map(|&e| s(e + 1) - s(e)).fold(0.0, f64::max);
+    let md = |e: usize| nodes[e].md_m;
+    let (top, bottom) = long
+        .iter()
+        .map(|&e| (md(e + 1).min(md(e)), md(e + 1).max(md(e))))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+            (a.min(c), b.max(d))
+        });
+    Some(format!(
+        "the helically buckled pipe at {top:.0}-{bottom:.0} m MD has elements of up to {longest:.2} m, longer than an eighth of the helix's pitch there (2 pi sqrt(2 EI / F): {:.1} m at its largest compression): its helix, wall contacts and drag there are coarsely resolved; `element_length` at most {h:.2} m (or `--accuracy precise`) resolves them (docs/theory.md 7.5)",
+        h * helix::ELEMENTS_PER_PITCH
+    ))
+}
+
 /// MD intervals `(top, bottom)` (m) as a warning lists them: "a-b m MD", joined by commas.
 fn md_intervals(intervals: &[(f64, f64)]) -> String {
     let each: Vec<String> = intervals.iter().map(|(a, b)| format!("{a:.0}-{b:.0} m MD")).collect();
@@ -101,29 +125,11 @@ impl StringSolve {
 }
 
 impl StringSolve {
-    /// The warning of a stiff part whose helically buckled pipe has elements longer than an
-    /// eighth of the helix's pitch there ([`helix::coarse_for_pitch`], the pitch
-    /// `2 pi sqrt(2 EI / F)` at the nodes' compression): its helix, contacts and drag are then
-    /// coarsely resolved. None where none is.
+    /// The warning of a stiff part whose helically buckled pipe is on a mesh too coarse for
+    /// the helix's pitch ([`pitch_warning`]).
     fn pitch_warning(&self) -> Option<String> {
         let part = self.level.fem.as_ref()?;
-        let (nodes, marks) = (self.reported_nodes(), self.stiff_marks());
-        let runs = helical_runs(marks);
-        let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
-        let (long, h) = helix::coarse_for_pitch(&part.model, &axial, &runs)?;
-        let s = |i: usize| part.model.mesh.nodes[i].s_m;
-        let longest = long.iter().map(|&e| s(e + 1) - s(e)).fold(0.0, f64::max);
-        let md = |e: usize| nodes[e].md_m;
-        let (top, bottom) = long
-            .iter()
-            .map(|&e| (md(e + 1).min(md(e)), md(e + 1).max(md(e))))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
-                (a.min(c), b.max(d))
-            });
-        Some(format!(
-            "the helically buckled pipe at {top:.0}-{bottom:.0} m MD has elements of up to {longest:.2} m, longer than an eighth of the helix's pitch there (2 pi sqrt(2 EI / F): {:.1} m at its largest compression): its helix, wall contacts and drag there are coarsely resolved; `element_length` at most {h:.2} m (or `--accuracy precise`) resolves them (docs/theory.md 7.5)",
-            h * helix::ELEMENTS_PER_PITCH
-        ))
+        pitch_warning(&part.model, self.reported_nodes(), self.stiff_marks())
     }
 
     /// The stiff part's node results from the bit to the last reported node (empty without
