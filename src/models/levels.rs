@@ -19,12 +19,12 @@
 use crate::case::fidelity::{Choice, Level};
 use crate::case::Case;
 use crate::models::buckled_start;
-use crate::models::buckling::{helical_runs, stiff_marks, unbuckled_helical_runs};
+use crate::models::buckling::{helical_runs, stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::locked_at_zero_wob;
 use crate::models::fem::bha::{bha_model, default_cut_m, tangency_length_m};
 use crate::models::fem::model::{Model, TopCondition};
 use crate::models::fem::refine;
-use crate::models::fem::results::{extract, BitResult, SolveResults};
+use crate::models::fem::results::{extract, BitResult, NodeResult, SolveResults};
 use crate::models::fem::solve::helix;
 use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{solve_interior_point_from, Solution, SolveControls, SolveError, SolveStats};
@@ -207,7 +207,7 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f
             false => buckled_start::solve_from_buckled_start(case, m, sol, ctl),
         })
     };
-    let part = fem_part_by(model, case, ctl, coupling_m, first)?;
+    let mut part = fem_part_by(model, case, ctl, coupling_m, first)?;
     let Some(fine) = finer_for_pitch(case, &part) else {
         return Ok(part);
     };
@@ -215,7 +215,6 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f
         time_limit_s: ctl.time_limit_s - part.stats.seconds,
         ..*ctl
     };
-    let mut part = part;
     match fem_part_by(fine, case, &left, coupling_m, first) {
         Ok(mut again) if again.converged && again.results.equilibrium_error() <= HELIX_EQUILIBRIUM => {
             tracing::info!(
@@ -246,10 +245,18 @@ fn finer_for_pitch(case: &Case, part: &FemPart) -> Option<Model> {
         return None;
     }
     let nodes = &part.results.nodes;
-    let runs = helical_runs(&stiff_marks(case, &part.model, nodes));
-    let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
-    let (split, h) = helix::coarse_for_pitch(&part.model, &axial, &runs)?;
+    let marks = stiff_marks(case, &part.model, nodes);
+    let (split, h) = coarse_for_helix_pitch(&part.model, nodes, &marks)?;
     Some(refine::refined_model(&part.model, &split, h))
+}
+
+/// The elements of a stiff model `model` in its helically buckled pipe (the runs of `marks`
+/// beyond the helical onset, at the node results `nodes` from the bit) longer than an eighth of
+/// the helix's pitch there, with that length (m): [`helix::coarse_for_pitch`] at the nodes'
+/// axial forces. None where the mesh resolves the pitch.
+pub fn coarse_for_helix_pitch(model: &Model, nodes: &[NodeResult], marks: &[Mark]) -> Option<(Vec<usize>, f64)> {
+    let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
+    helix::coarse_for_pitch(model, &axial, &helical_runs(marks))
 }
 
 /// Whether `model` is the whole string of `case` and the string cannot be put on bottom at any

@@ -8,7 +8,7 @@
 use crate::case::fidelity::{Choice, Level};
 use crate::case::{Case, Mode};
 use crate::models::buckled_start::EQUILIBRIUM_RESIDUAL_FACTOR;
-use crate::models::buckling::{helical_runs, soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
+use crate::models::buckling::{soft_marks, stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::{
     dogleg_warning, lock_up, locked_at_zero_wob, running_in_lock_up, soft_lock_up, soft_lock_up_at, yield_check,
     LockUp, YieldCheck,
@@ -19,7 +19,7 @@ use crate::models::fem::solve::continuation::{self, ClimbEnd};
 use crate::models::fem::solve::{helix, SolveControls, SolveStats};
 use crate::models::helical_drag;
 use crate::models::helical_lock_up;
-use crate::models::levels::{fem_part_by, run_with_progress, FidelityError, LevelResult};
+use crate::models::levels::{coarse_for_helix_pitch, fem_part_by, run_with_progress, FidelityError, LevelResult};
 use crate::models::soft_comparison::{soft_comparison, SoftComparison};
 use crate::models::whirl::whirl_intervals;
 use std::time::Instant;
@@ -30,13 +30,12 @@ pub const BUCKLED_START_WARNING: &str = "the whole string found no equilibrium f
 
 /// The warning of a stiff model `model` whose helically buckled pipe (the runs of `marks` beyond
 /// the helical onset, at the node results `nodes` from the bit) has elements longer than an
-/// eighth of the helix's pitch there ([`helix::coarse_for_pitch`], the pitch
+/// eighth of the helix's pitch there ([`coarse_for_helix_pitch`], the pitch
 /// `2 pi sqrt(2 EI / F)` at the nodes' compression): its helix, contacts and drag are then
 /// coarsely resolved. None where the mesh resolves the pitch. A whole-string answer is solved
 /// again on a refined mesh first (`models::levels`); the warning stays where that fails.
 pub fn pitch_warning(model: &Model, nodes: &[NodeResult], marks: &[Mark]) -> Option<String> {
-    let axial: Vec<f64> = nodes.iter().map(|n| n.axial_force_n).collect();
-    let (long, h) = helix::coarse_for_pitch(model, &axial, &helical_runs(marks))?;
+    let (long, h) = coarse_for_helix_pitch(model, nodes, marks)?;
     let s = |i: usize| model.mesh.nodes[i].s_m;
     let longest = long.iter().map(|&e| s(e + 1) - s(e)).fold(0.0, f64::max);
     let md = |e: usize| nodes[e].md_m;
