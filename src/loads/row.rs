@@ -45,6 +45,11 @@ pub enum StiffOutcome {
         /// Length of the MD intervals where the rotating string whirls (its wall friction
         /// without its lateral push, [`crate::models::whirl`]), m; 0 when there are none.
         whirl_m: f64,
+        /// Length of the helically buckled pipe meshed with elements longer than an eighth of
+        /// the helix's pitch there ([`crate::models::levels::coarse_for_helix_pitch`]), m: its
+        /// wall force and drag are those of a mesh too coarse for the helix (`solve` refines
+        /// it, `loads` does not); 0 when the mesh resolves the pitch.
+        coarse_for_pitch_m: f64,
     },
     /// The solver stopped without meeting its criteria: no valid numbers.
     NotConverged {
@@ -88,6 +93,14 @@ impl StiffOutcome {
             StiffOutcome::Converged {
                 unbuckled_helical_m, ..
             } => Some(*unbuckled_helical_m),
+            _ => None,
+        }
+    }
+    /// The length of helically buckled pipe meshed too coarsely for the helix's pitch when
+    /// converged ([`StiffOutcome::Converged`]'s `coarse_for_pitch_m`), m.
+    pub fn coarse_for_pitch_m(&self) -> Option<f64> {
+        match self {
+            StiffOutcome::Converged { coarse_for_pitch_m, .. } => Some(*coarse_for_pitch_m),
             _ => None,
         }
     }

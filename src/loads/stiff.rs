@@ -47,6 +47,7 @@ use crate::models::fem::solve::toolface::solve_holding_toolface;
 use crate::models::fem::solve::{continuation, solve, solve_interior_point_from, Solution, SolveControls, SolveStats};
 use crate::models::fem::warm::{source_by_distance, transport_mapped, Source};
 use crate::models::helical_lock_up::{self, Climbed};
+use crate::models::levels::coarse_for_helix_pitch;
 use crate::models::levels::run as run_level;
 use crate::models::whirl::whirl_intervals;
 use crate::string::DrillString;
@@ -400,6 +401,7 @@ fn converged(
 ) -> StiffOutcome {
     let res = extract(model, sol, case.mud.density_kg_m3);
     let unbuckled_helical_m = unbuckled_length_m(case, model, &res.nodes);
+    let coarse_for_pitch_m = coarse_for_pitch_length_m(case, model, &res.nodes, model.nodes() - 1);
     let friction_torque_nm = rotating_friction_torque(model, &res, model.nodes() - 1);
     let max_f = res.nodes.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     StiffOutcome::Converged {
@@ -421,7 +423,22 @@ fn converged(
         lock_up_wob_n,
         unbuckled_helical_m,
         whirl_m: whirl_length_m(model),
+        coarse_for_pitch_m,
     }
+}
+
+/// Total length (m) of the elements of `model` below node `top` (results `nodes`, from the bit
+/// up) in its helically buckled pipe that are longer than an eighth of the helix's pitch there
+/// ([`coarse_for_helix_pitch`]).
+fn coarse_for_pitch_length_m(case: &Case, model: &Model, nodes: &[NodeResult], top: usize) -> f64 {
+    let marks = stiff_marks(case, model, nodes);
+    coarse_for_helix_pitch(model, nodes, &marks).map_or(0.0, |(elements, _)| {
+        elements
+            .iter()
+            .filter(|&&e| e < top)
+            .map(|&e| model.mesh.nodes[e + 1].s_m - model.mesh.nodes[e].s_m)
+            .sum()
+    })
 }
 
 /// Total length (m) of the runs of `nodes` (results of `model`, from the bit up) compressed
@@ -503,18 +520,20 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
     };
     // stiff results are reported up to the coupling node (above it the cut's clamp disturbs
     // them); the soft string above adds no torque without rotation
-    let (mut max_f, friction_torque, unbuckled_helical_m) = lr.fem.as_ref().map_or((0.0, 0.0, 0.0), |f| {
-        let k = f.coupling.unwrap_or(f.model.nodes() - 1);
-        let max_f = f.results.nodes[..=k]
-            .iter()
-            .map(|n| n.contact_force_n)
-            .fold(0.0, f64::max);
-        (
-            max_f,
-            rotating_friction_torque(&f.model, &f.results, k),
-            unbuckled_length_m(case, &f.model, &f.results.nodes[..=k]),
-        )
-    });
+    let (mut max_f, friction_torque, unbuckled_helical_m, coarse_for_pitch_m) =
+        lr.fem.as_ref().map_or((0.0, 0.0, 0.0, 0.0), |f| {
+            let k = f.coupling.unwrap_or(f.model.nodes() - 1);
+            let max_f = f.results.nodes[..=k]
+                .iter()
+                .map(|n| n.contact_force_n)
+                .fold(0.0, f64::max);
+            (
+                max_f,
+                rotating_friction_torque(&f.model, &f.results, k),
+                unbuckled_length_m(case, &f.model, &f.results.nodes[..=k]),
+                coarse_for_pitch_length_m(case, &f.model, &f.results.nodes, k),
+            )
+        });
     if let Some(s) = &lr.soft {
         max_f = max_f.max(soft_loads(s, &case.string, case.operation.bit_md_m).max_contact_force_n);
     }
@@ -537,6 +556,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
         lock_up_wob_n: None,
         unbuckled_helical_m,
         whirl_m: lr.fem.as_ref().map_or(0.0, |f| whirl_length_m(&f.model)),
+        coarse_for_pitch_m,
     }
 }
 

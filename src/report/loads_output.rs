@@ -13,7 +13,7 @@ wob_kN,helical_buckled_length_m,max_compression_kN,max_sinusoidal_ratio,max_side
 tension_limit_kN,torque_limit_kNm,combined_torque_limit_kNm,max_stress_ratio,\
 stiff_status,stiff_hook_load_kN,stiff_surface_torque_kNm,stiff_max_contact_force_kN,stiff_model,\
 stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start,\
-helical_drag_diverges";
+helical_drag_diverges,stiff_coarse_for_pitch_m";
 
 fn opt(x: Option<f64>, scale: f64, decimals: usize) -> Result<String, String> {
     x.map(|v| num(v * scale, decimals))
@@ -64,6 +64,7 @@ pub fn loads_csv(rows: &[LoadRow]) -> Result<String, String> {
                 .map(|s| (s == Start::BuckledShape).to_string())
                 .unwrap_or_default(),
             diverged(r.helical_drag_hook_load_n).to_string(),
+            opt(stiff.and_then(StiffOutcome::coarse_for_pitch_m), 1.0, 1)?,
         ];
         out.push_str(&fields.join(","));
         out.push('\n');

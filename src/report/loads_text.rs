@@ -208,6 +208,10 @@ fn print_stiff_summary(
     warn_rows(out, &unbuckled, |n| {
         format!("{n} stiff rows find the pipe unbuckled where it is compressed beyond the helical onset (stiff_unbuckled_helical_m): their stiff hook load and torque miss the helix's wall force and drag there; treat them with caution")
     })?;
+    let coarse = rows_over(rows, units, StiffOutcome::coarse_for_pitch_m);
+    warn_rows(out, &coarse, |n| {
+        format!("{n} stiff rows mesh helically buckled pipe with elements longer than an eighth of the helix's pitch (stiff_coarse_for_pitch_m): their wall force and drag there are a coarse mesh's; `solve` at that bit depth refines it, or set [solver] element_length shorter (docs/guide.md)")
+    })?;
     let whirling = rows_over(rows, units, StiffOutcome::whirl_m);
     warn_rows(out, &whirling, |n| {
         format!("{n} stiff rows rotate with pipe helically buckled (stiff_whirl_m): a real string whirls there, and their wall friction there keeps its torque and drag but not its lateral push (docs/theory.md 7.5)")

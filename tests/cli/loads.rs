@@ -190,7 +190,7 @@ fn fidelity_options_are_checked_and_reported() {
     assert!(stdout.contains("fidelity hybrid: requested"), "{stdout}");
     let csv = std::fs::read_to_string(dir.path().join("out/loads.csv")).unwrap();
     assert!(csv.lines().next().unwrap().ends_with(
-        ",stiff_model,stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start,helical_drag_diverges"
+        ",stiff_model,stiff_lock_up_wob_kN,stiff_unbuckled_helical_m,stiff_whirl_m,helical_drag_hook_load_kN,stiff_buckled_start,helical_drag_diverges,stiff_coarse_for_pitch_m"
     ));
     assert_eq!(
         csv.lines()

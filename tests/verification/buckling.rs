@@ -292,6 +292,39 @@ fn a_mesh_too_coarse_for_the_helix_pitch_is_refined() {
     assert!((hook(&coarse) - hook(&fine)).abs() < 1e3);
 }
 
+/// Issue 16, a `loads` row on a mesh too coarse for the helix's pitch: the 6 m mesh of
+/// [`a_mesh_too_coarse_for_the_helix_pitch_is_refined`] (100 kN on the bit, pitch about 30 m,
+/// an eighth of it 3.8 m) solved as a whole-string `loads` row, which is not refined, flags
+/// its helically buckled pipe (`stiff_coarse_for_pitch_m`). Reference: the pipe compressed
+/// beyond the Chen-Lin-Cheatham helical onset `F_h` at the hole's 0.5 deg, the compression
+/// falling by the buoyed weight `w` per metre above the bit: `(WOB - F_h) / w`; tolerance two
+/// elements plus 10% of `F_h / w` (the model's onset near vertical is not exactly that
+/// formula's; measured 8 m short of 326 m). The 1 m mesh
+/// of the same row (an eighth of the pitch resolved) flags nothing.
+#[test]
+fn a_loads_row_too_coarse_for_the_helix_pitch_is_flagged() {
+    use drillpath::analytical::buckling::helical_chen_lin_cheatham;
+    use drillpath::loads::stiff::stiff_row;
+    let (ei, w_b, r) = pipe_properties();
+    let flagged = |element: &str| -> f64 {
+        let case = straight_hole_case(0.5, 1000.0, 100.0, 0.0, Some(element));
+        let (out, _) = stiff_row(&case, None);
+        out.coarse_for_pitch_m().unwrap_or_else(|| panic!("{element}: {out:?}"))
+    };
+    let coarse = flagged("6 m");
+    let onset = helical_chen_lin_cheatham(ei, w_b, 0.5f64.to_radians(), r).unwrap();
+    let expected = (100e3 - onset) / w_b;
+    println!(
+        "6 m mesh: {coarse:.1} m flagged; (WOB - F_h) / w = {expected:.1} m (F_h {:.1} kN)",
+        onset / 1e3
+    );
+    assert!(
+        (coarse - expected).abs() < 12.0 + 0.1 * onset / w_b,
+        "{coarse} vs {expected}"
+    );
+    assert_eq!(flagged("1 m"), 0.0);
+}
+
 /// Issue 16, the straight branch left: 5 in pipe compressed far beyond the helical onset in a
 /// near-vertical hole (0.5 deg, 100 kN on the bit, 8.5 in hole, no friction). The Newton solve
 /// first finds the straight pipe on the low side (about 2 N/m of wall force, an equilibrium past
