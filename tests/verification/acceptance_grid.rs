@@ -182,10 +182,14 @@ impl Outcome {
     /// The outcome in one line (a `GRID` or `EXTRA` line after the case's name), ending with
     /// whether the acceptance applies (a non-negative soft hook load).
     pub fn line(&self) -> String {
+        // a diverged soft string with the helix's drag has a flag, not a load
+        let helical = match drillpath::models::helical_drag::diverged(self.helical_soft_hook_kn * 1e3) {
+            true => "diverges".to_string(),
+            false => format!("{:.1}", self.helical_soft_hook_kn),
+        };
         format!(
-            "soft_hook_kN {:.1} helical_soft_hook_kN {:.1} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} lock_up_at_kN {:?} applies {}",
+            "soft_hook_kN {:.1} helical_soft_hook_kN {helical} whole_converged {} whole_hook_kN {:.1} seconds {:.2} helix {:?} buckled_start {:?} lock_up_at_kN {:?} applies {}",
             self.soft_hook_kn,
-            self.helical_soft_hook_kn,
             self.converged,
             self.whole_hook_kn,
             self.seconds,
