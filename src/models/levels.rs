@@ -208,30 +208,38 @@ fn fem_part(model: Model, case: &Case, ctl: &SolveControls, coupling_m: Option<f
         })
     };
     let mut part = fem_part_by(model, case, ctl, coupling_m, first)?;
-    let Some(fine) = finer_for_pitch(case, &part) else {
-        return Ok(part);
-    };
-    let left = SolveControls {
-        time_limit_s: ctl.time_limit_s - part.stats.seconds,
-        ..*ctl
-    };
-    match fem_part_by(fine, case, &left, coupling_m, first) {
-        Ok(mut again) if again.converged && again.results.equilibrium_error() <= HELIX_EQUILIBRIUM => {
-            tracing::info!(
-                nodes = again.model.nodes(),
-                "solved again on a mesh that resolves the helix's pitch"
-            );
-            again.stats.add_work(&part.stats);
-            Ok(again)
+    for _ in 0..PITCH_REFINEMENTS {
+        let Some(fine) = finer_for_pitch(case, &part) else {
+            break;
+        };
+        let left = SolveControls {
+            time_limit_s: ctl.time_limit_s - part.stats.seconds,
+            ..*ctl
+        };
+        match fem_part_by(fine, case, &left, coupling_m, first) {
+            Ok(mut again) if again.converged && again.results.equilibrium_error() <= HELIX_EQUILIBRIUM => {
+                tracing::info!(
+                    nodes = again.model.nodes(),
+                    "solved again on a mesh that resolves the helix's pitch"
+                );
+                again.stats.add_work(&part.stats);
+                part = again;
+            }
+            Ok(again) => {
+                tracing::info!("no equilibrium on the mesh that resolves the helix's pitch: the coarser answer kept");
+                part.stats.add_work(&again.stats);
+                break;
+            }
+            Err(_) => break,
         }
-        Ok(again) => {
-            tracing::info!("no equilibrium on the mesh that resolves the helix's pitch: the coarse answer kept");
-            part.stats.add_work(&again.stats);
-            Ok(part)
-        }
-        Err(_) => Ok(part),
     }
+    Ok(part)
 }
+
+/// Whole-string solves afresh on meshes refined for the helix's pitch after the first
+/// ([`finer_for_pitch`]): a refined answer's helix can reach pipe the coarser answer's did not,
+/// and is refined once more there.
+const PITCH_REFINEMENTS: usize = 2;
 
 /// The whole-string model of the converged `part` (of `case`) with the elements of its
 /// helically buckled pipe split to an eighth of the helix's pitch there
