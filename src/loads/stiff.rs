@@ -38,7 +38,7 @@ use super::{set_row_operation, ChartOperation, MODES};
 use crate::case::fidelity::{choose, Level};
 use crate::case::Case;
 use crate::models::buckled_start;
-use crate::models::buckling::{stiff_marks, unbuckled_helical_runs};
+use crate::models::buckling::{stiff_marks, unbuckled_helical_runs, Mark};
 use crate::models::checks::locked_at_zero_wob;
 use crate::models::fem::model::{Model, State};
 use crate::models::fem::results::{extract, NodeResult, SolveResults};
@@ -400,8 +400,9 @@ fn converged(
     lock_up_wob_n: Option<f64>,
 ) -> StiffOutcome {
     let res = extract(model, sol, case.mud.density_kg_m3);
-    let unbuckled_helical_m = unbuckled_length_m(case, model, &res.nodes);
-    let coarse_for_pitch_m = coarse_for_pitch_length_m(case, model, &res.nodes, model.nodes() - 1);
+    let marks = stiff_marks(case, model, &res.nodes);
+    let unbuckled_helical_m = unbuckled_length_m(&marks, &res.nodes);
+    let coarse_for_pitch_m = coarse_for_pitch_length_m(model, &res.nodes, &marks, model.nodes() - 1);
     let friction_torque_nm = rotating_friction_torque(model, &res, model.nodes() - 1);
     let max_f = res.nodes.iter().map(|n| n.contact_force_n).fold(0.0, f64::max);
     StiffOutcome::Converged {
@@ -427,12 +428,11 @@ fn converged(
     }
 }
 
-/// Total length (m) of the elements of `model` below node `top` (results `nodes`, from the bit
-/// up) in its helically buckled pipe that are longer than an eighth of the helix's pitch there
-/// ([`coarse_for_helix_pitch`]).
-fn coarse_for_pitch_length_m(case: &Case, model: &Model, nodes: &[NodeResult], top: usize) -> f64 {
-    let marks = stiff_marks(case, model, nodes);
-    coarse_for_helix_pitch(model, nodes, &marks).map_or(0.0, |(elements, _)| {
+/// Total length (m) of the elements of `model` below node `top` (results `nodes` and their
+/// [`stiff_marks`] `marks`, from the bit up) in its helically buckled pipe that are longer than
+/// an eighth of the helix's pitch there ([`coarse_for_helix_pitch`]).
+fn coarse_for_pitch_length_m(model: &Model, nodes: &[NodeResult], marks: &[Mark], top: usize) -> f64 {
+    coarse_for_helix_pitch(model, nodes, marks).map_or(0.0, |(elements, _)| {
         elements
             .iter()
             .filter(|&&e| e < top)
@@ -441,12 +441,11 @@ fn coarse_for_pitch_length_m(case: &Case, model: &Model, nodes: &[NodeResult], t
     })
 }
 
-/// Total length (m) of the runs of `nodes` (results of `model`, from the bit up) compressed
-/// beyond the helical onset where the solved string lies unbuckled
-/// ([`unbuckled_helical_runs`]).
-fn unbuckled_length_m(case: &Case, model: &Model, nodes: &[NodeResult]) -> f64 {
-    let marks = stiff_marks(case, model, nodes);
-    unbuckled_helical_runs(&marks, nodes)
+/// Total length (m) of the runs of `nodes` (a stiff solve's results from the bit up, `marks`
+/// their [`stiff_marks`]) compressed beyond the helical onset where the solved string lies
+/// unbuckled ([`unbuckled_helical_runs`]).
+fn unbuckled_length_m(marks: &[Mark], nodes: &[NodeResult]) -> f64 {
+    unbuckled_helical_runs(marks, nodes)
         .iter()
         .map(|(top, bottom)| bottom - top)
         .sum()
@@ -523,6 +522,7 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
     let (mut max_f, friction_torque, unbuckled_helical_m, coarse_for_pitch_m) =
         lr.fem.as_ref().map_or((0.0, 0.0, 0.0, 0.0), |f| {
             let k = f.coupling.unwrap_or(f.model.nodes() - 1);
+            let marks = stiff_marks(case, &f.model, &f.results.nodes);
             let max_f = f.results.nodes[..=k]
                 .iter()
                 .map(|n| n.contact_force_n)
@@ -530,8 +530,8 @@ pub fn hybrid_row(case: &Case) -> StiffOutcome {
             (
                 max_f,
                 rotating_friction_torque(&f.model, &f.results, k),
-                unbuckled_length_m(case, &f.model, &f.results.nodes[..=k]),
-                coarse_for_pitch_length_m(case, &f.model, &f.results.nodes, k),
+                unbuckled_length_m(&marks[..=k], &f.results.nodes[..=k]),
+                coarse_for_pitch_length_m(&f.model, &f.results.nodes, &marks, k),
             )
         });
     if let Some(s) = &lr.soft {
